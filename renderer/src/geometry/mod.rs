@@ -1,0 +1,2 @@
+//! Geometry.
+pub mod polygon;

@@ -1,0 +1,122 @@
+//! Small shared math: orthonormal frames, safe functions, luminance.
+
+use glam::Vec3;
+
+/// An orthonormal basis whose `z` axis is a given unit normal; converts between world and local
+/// ("shading") coordinates, where BSDFs live with the normal along +z.
+#[derive(Clone, Copy, Debug)]
+pub struct Frame {
+    /// First tangent.
+    pub s: Vec3,
+    /// Second tangent.
+    pub t: Vec3,
+    /// The normal.
+    pub n: Vec3,
+}
+
+impl Frame {
+    /// Builds a frame around the unit vector `n` (Duff et al. 2017, branchless and continuous
+    /// except at one sign flip).
+    pub fn from_normal(n: Vec3) -> Frame {
+        let sign = 1.0f32.copysign(n.z);
+        let a = -1.0 / (sign + n.z);
+        let b = n.x * n.y * a;
+        let s = Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+        let t = Vec3::new(b, sign + n.y * n.y * a, -n.y);
+        Frame { s, t, n }
+    }
+
+    /// World → local.
+    #[inline]
+    pub fn to_local(&self, v: Vec3) -> Vec3 {
+        Vec3::new(v.dot(self.s), v.dot(self.t), v.dot(self.n))
+    }
+
+    /// Local → world.
+    #[inline]
+    pub fn to_world(&self, v: Vec3) -> Vec3 {
+        self.s * v.x + self.t * v.y + self.n * v.z
+    }
+}
+
+/// `sqrt(max(x, 0))`: never NaN for slightly negative rounding results.
+#[inline]
+pub fn safe_sqrt(x: f32) -> f32 {
+    x.max(0.0).sqrt()
+}
+
+/// `acos` clamped to the valid domain.
+#[inline]
+pub fn safe_acos(x: f32) -> f32 {
+    x.clamp(-1.0, 1.0).acos()
+}
+
+/// `asin` clamped to the valid domain.
+#[inline]
+pub fn safe_asin(x: f32) -> f32 {
+    x.clamp(-1.0, 1.0).asin()
+}
+
+/// Rec. 709 luminance of a linear RGB value.
+#[inline]
+pub fn luminance(c: Vec3) -> f32 {
+    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
+}
+
+/// Largest component.
+#[inline]
+pub fn max_component(c: Vec3) -> f32 {
+    c.x.max(c.y).max(c.z)
+}
+
+/// Mirror reflection of `w` about `n` (both pointing away from the surface).
+#[inline]
+pub fn reflect(w: Vec3, n: Vec3) -> Vec3 {
+    2.0 * w.dot(n) * n - w
+}
+
+/// `a * b - c * d` without catastrophic cancellation (Kahan's algorithm with an FMA).
+#[inline]
+pub fn difference_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
+    let cd = c * d;
+    let err = (-c).mul_add(d, cd);
+    let dop = a.mul_add(b, -cd);
+    dop + err
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frame_is_orthonormal_and_inverts() {
+        let mut seed = 1u32;
+        for i in 0..2000 {
+            let mut r = || {
+                seed = seed.wrapping_mul(747796405).wrapping_add(2891336453);
+                (seed >> 8) as f32 / (1u32 << 24) as f32 * 2.0 - 1.0
+            };
+            let mut n = Vec3::new(r(), r(), r());
+            if i < 4 {
+                // exact poles and the sign-flip plane
+                n = [Vec3::Z, -Vec3::Z, Vec3::new(1.0, 0.0, -1e-30), Vec3::X][i];
+            }
+            let n = n.normalize();
+            let f = Frame::from_normal(n);
+            assert!((f.s.length() - 1.0).abs() < 1e-5, "{n}");
+            assert!((f.t.length() - 1.0).abs() < 1e-5);
+            assert!(f.s.dot(f.t).abs() < 1e-5 && f.s.dot(n).abs() < 1e-5 && f.t.dot(n).abs() < 1e-5);
+            assert!((f.s.cross(f.t) - n).length() < 1e-4, "right-handed");
+            let v = Vec3::new(0.3, -0.5, 0.8);
+            assert!((f.to_world(f.to_local(v)) - v).length() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn difference_of_products_is_accurate() {
+        // 1e8 * 1e8 - (1e8+1)*(1e8-1) = 1 exactly; naive f32 gives 0.
+        let a = 1.0e4f32;
+        let r = difference_of_products(a, a, a + 1.0, a - 1.0);
+        assert_eq!(r, 1.0);
+    }
+}
