@@ -1,1 +1,114 @@
-//! Materials.
+//! Materials (BSDFs): Lambertian diffuse, GGX conductor and a rough plastic.
+//!
+//! Everything works in the local shading frame: normal = +z, `wo` points towards the viewer and
+//! `wi` towards the light, both unit and pointing away from the surface. The integrator flips the
+//! frame of two-sided materials so that `wo.z > 0`; all materials here are reflection only, so
+//! `wo.z <= 0` or `wi.z <= 0` gives zero.
+//!
+//! Conventions (Mitsuba 3): `eval` returns f·cosθi of the non-delta lobes; `pdf` is the solid-angle
+//! density with which `sample` produces `wi` through them, including the lobe-selection
+//! probability; a sample's `weight` is f·cosθi/pdf, or for a delta lobe its reflectance divided by
+//! its discrete selection probability (which is then reported as `pdf`).
+
+pub mod coat_albedo;
+pub mod conductor;
+pub mod diffuse;
+pub mod fresnel;
+pub mod ggx;
+pub mod plastic;
+#[cfg(test)]
+mod testing;
+
+pub use conductor::{Conductor, ConductorFresnel};
+pub use diffuse::Diffuse;
+pub use plastic::Plastic;
+
+use glam::{Vec2, Vec3};
+
+/// One sampled direction of a BSDF.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BsdfSample {
+    /// Sampled direction towards the light (local frame, unit, `wi.z > 0`).
+    pub wi: Vec3,
+    /// f·cosθi/pdf for a non-delta sample, or the delta lobe's reflectance / selection probability.
+    pub weight: Vec3,
+    /// Solid-angle pdf including lobe selection; for a delta lobe, its discrete selection
+    /// probability.
+    pub pdf: f32,
+    /// True if `wi` came from a delta (perfectly specular) lobe: `eval`/`pdf` do not see it.
+    pub delta: bool,
+}
+
+impl BsdfSample {
+    /// The sample if its pdf is positive and everything is finite; `None` otherwise, so that no
+    /// NaN/Inf ever leaves a material.
+    pub(crate) fn checked(self) -> Option<BsdfSample> {
+        let ok =
+            self.pdf > 0.0 && self.pdf.is_finite() && self.weight.is_finite() && self.wi.z > 0.0;
+        ok.then_some(self)
+    }
+}
+
+/// Every material, a closed set (the WGSL `switch` mirrors this variant order).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Material {
+    /// Lambertian.
+    Diffuse(Diffuse),
+    /// GGX metal (or a perfect mirror below [`ggx::SMOOTH_ALPHA`]).
+    Conductor(Conductor),
+    /// Lambert base under a GGX dielectric coat, energy conserving.
+    Plastic(Plastic),
+}
+
+impl Material {
+    /// f(wo, wi)·cosθi of the non-delta part.
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        match self {
+            Material::Diffuse(m) => m.eval(wo, wi),
+            Material::Conductor(m) => m.eval(wo, wi),
+            Material::Plastic(m) => m.eval(wo, wi),
+        }
+    }
+
+    /// Solid-angle pdf of `sample` producing `wi` through its non-delta lobes.
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        match self {
+            Material::Diffuse(m) => m.pdf(wo, wi),
+            Material::Conductor(m) => m.pdf(wo, wi),
+            Material::Plastic(m) => m.pdf(wo, wi),
+        }
+    }
+
+    /// Samples `wi`; `u_lobe` picks a lobe, `u` warps within it. `None` if no valid direction.
+    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        match self {
+            Material::Diffuse(m) => m.sample(wo, u),
+            Material::Conductor(m) => m.sample(wo, u),
+            Material::Plastic(m) => m.sample(wo, u_lobe, u),
+        }?
+        .checked()
+    }
+
+    /// True if `eval` can be non-zero, i.e. light sampling is worth doing.
+    pub fn has_smooth_part(&self) -> bool {
+        match self {
+            Material::Diffuse(_) => true,
+            Material::Conductor(m) => !m.is_delta(),
+            Material::Plastic(m) => m.has_smooth_part(),
+        }
+    }
+
+    /// Purely specular: `eval` is always 0 and every sample is a delta sample.
+    pub fn is_delta(&self) -> bool {
+        !self.has_smooth_part()
+    }
+
+    /// A rough colour of the surface, for display (e.g. the viewer's albedo AOV).
+    pub fn albedo_hint(&self) -> Vec3 {
+        match self {
+            Material::Diffuse(m) => m.albedo,
+            Material::Conductor(m) => m.normal_reflectance(),
+            Material::Plastic(m) => m.albedo_hint(),
+        }
+    }
+}

@@ -1,1 +1,27 @@
-//! Scenes.
+//! Scenes: the JSON scene format (`docs/scene-format.md`), its validation into a plain
+//! [`SceneDesc`], and errors that name the JSON path of every problem.
+//!
+//! * [`desc`] — the validated description (f64 plain data) and its writer,
+//!   [`SceneDesc::to_json`].
+//! * [`parse`] — [`parse_scene`] / [`load_scene`], with materials and shapes in their own files.
+//! * [`error`] — [`SceneError`].
+//! * [`build`] — the render-ready [`Scene`] (primitives in a BVH, materials, lights).
+
+pub mod desc;
+pub mod error;
+pub mod parse;
+mod parse_materials;
+mod parse_mesh;
+mod parse_shapes;
+mod walk;
+// pub mod build; (enabled once lights compile)
+
+#[cfg(test)]
+mod tests;
+
+pub use desc::{
+    CameraDesc, FresnelDesc, GeometryDesc, MaterialDesc, NamedMaterial, SceneDesc, ShapeDesc,
+};
+// pub use build::Scene;
+pub use error::SceneError;
+pub use parse::{load_scene, parse_scene, parse_scene_value};

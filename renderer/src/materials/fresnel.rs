@@ -1,0 +1,184 @@
+//! Fresnel reflectance: exact conductor Fresnel (complex index of refraction) and Schlick's
+//! approximation.
+
+use glam::Vec3;
+
+/// A minimal complex number, just enough for the conductor Fresnel equations.
+#[derive(Clone, Copy, Debug)]
+struct Complex {
+    re: f32,
+    im: f32,
+}
+
+impl Complex {
+    fn new(re: f32, im: f32) -> Complex {
+        Complex { re, im }
+    }
+    fn add(self, o: Complex) -> Complex {
+        Complex::new(self.re + o.re, self.im + o.im)
+    }
+    fn sub(self, o: Complex) -> Complex {
+        Complex::new(self.re - o.re, self.im - o.im)
+    }
+    fn mul(self, o: Complex) -> Complex {
+        Complex::new(
+            self.re * o.re - self.im * o.im,
+            self.re * o.im + self.im * o.re,
+        )
+    }
+    fn scale(self, s: f32) -> Complex {
+        Complex::new(self.re * s, self.im * s)
+    }
+    /// |z|².
+    fn norm(self) -> f32 {
+        self.re * self.re + self.im * self.im
+    }
+    fn div(self, o: Complex) -> Complex {
+        let s = 1.0 / o.norm();
+        Complex::new(
+            (self.re * o.re + self.im * o.im) * s,
+            (self.im * o.re - self.re * o.im) * s,
+        )
+    }
+    /// Principal square root (pbrt-v4's `pstd::sqrt`, stable for either sign of the real part).
+    fn sqrt(self) -> Complex {
+        let n = self.norm().sqrt();
+        if n == 0.0 {
+            return Complex::new(0.0, 0.0);
+        }
+        let t1 = (0.5 * (n + self.re.abs())).sqrt();
+        let t2 = 0.5 * self.im / t1;
+        if self.re >= 0.0 {
+            Complex::new(t1, t2)
+        } else {
+            Complex::new(t2.abs(), t1.copysign(self.im))
+        }
+    }
+}
+
+/// Unpolarised Fresnel reflectance of a conductor with complex IOR η + ik, one wavelength
+/// (pbrt-v4 `FrComplex`).
+pub fn fresnel_complex(cos_theta_i: f32, eta: f32, k: f32) -> f32 {
+    let cos_i = cos_theta_i.clamp(0.0, 1.0);
+    let eta = Complex::new(eta, k);
+    if eta.norm() == 0.0 {
+        return 1.0; // η = 0: a perfect reflector; avoids dividing by zero below
+    }
+    let sin2_i = 1.0 - cos_i * cos_i;
+    let sin2_t = Complex::new(sin2_i, 0.0).div(eta.mul(eta));
+    let cos_t = Complex::new(1.0, 0.0).sub(sin2_t).sqrt();
+    let ci = Complex::new(cos_i, 0.0);
+    let r_parl = eta.scale(cos_i).sub(cos_t).div(eta.scale(cos_i).add(cos_t));
+    let r_perp = ci.sub(eta.mul(cos_t)).div(ci.add(eta.mul(cos_t)));
+    (0.5 * (r_parl.norm() + r_perp.norm())).clamp(0.0, 1.0)
+}
+
+/// Per-channel [`fresnel_complex`] for RGB η and k.
+pub fn fresnel_conductor(cos_theta_i: f32, eta: Vec3, k: Vec3) -> Vec3 {
+    Vec3::new(
+        fresnel_complex(cos_theta_i, eta.x, k.x),
+        fresnel_complex(cos_theta_i, eta.y, k.y),
+        fresnel_complex(cos_theta_i, eta.z, k.z),
+    )
+}
+
+/// Schlick's approximation F0 + (1 − F0)(1 − cosθ)⁵, scalar F0.
+#[inline]
+pub fn fresnel_schlick(f0: f32, cos_theta: f32) -> f32 {
+    let m = 1.0 - cos_theta.clamp(0.0, 1.0);
+    let m2 = m * m;
+    f0 + (1.0 - f0) * (m2 * m2 * m)
+}
+
+/// Schlick's approximation with an RGB F0.
+#[inline]
+pub fn fresnel_schlick_rgb(f0: Vec3, cos_theta: f32) -> Vec3 {
+    let m = 1.0 - cos_theta.clamp(0.0, 1.0);
+    let m2 = m * m;
+    f0 + (Vec3::ONE - f0) * (m2 * m2 * m)
+}
+
+/// Normal-incidence reflectance of a dielectric interface with relative IOR `ior`:
+/// ((ior − 1)/(ior + 1))².
+#[inline]
+pub fn schlick_f0_from_ior(ior: f32) -> f32 {
+    let r = (ior - 1.0) / (ior + 1.0);
+    r * r
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// pbrt-v3's real-arithmetic `FrConductor` in f64: an independent reference.
+    fn reference(cos_i: f64, eta: f64, k: f64) -> f64 {
+        let c2 = cos_i * cos_i;
+        let s2 = 1.0 - c2;
+        let (e2, k2) = (eta * eta, k * k);
+        let t0 = e2 - k2 - s2;
+        let a2b2 = (t0 * t0 + 4.0 * e2 * k2).sqrt();
+        let t1 = a2b2 + c2;
+        let a = (0.5 * (a2b2 + t0)).sqrt();
+        let t2 = 2.0 * cos_i * a;
+        let rs = (t1 - t2) / (t1 + t2);
+        let t3 = c2 * a2b2 + s2 * s2;
+        let t4 = t2 * s2;
+        let rp = rs * (t3 - t4) / (t3 + t4);
+        0.5 * (rp + rs)
+    }
+
+    // (η, k) of gold, copper, aluminium (RGB-ish) and two dielectric-like cases.
+    const CASES: [(f32, f32); 6] = [
+        (0.143, 3.98),
+        (0.2, 2.58),
+        (1.3, 7.5),
+        (1.5, 0.0),
+        (0.05, 0.0),
+        (2.5, 0.3),
+    ];
+
+    #[test]
+    fn conductor_normal_incidence() {
+        for (eta, k) in CASES {
+            let expect = ((eta - 1.0).powi(2) + k * k) / ((eta + 1.0).powi(2) + k * k);
+            let f = fresnel_complex(1.0, eta, k);
+            assert!((f - expect).abs() < 1e-5, "{eta} {k}: {f} vs {expect}");
+        }
+        let v = fresnel_conductor(1.0, Vec3::new(0.2, 0.9, 1.1), Vec3::new(3.9, 2.4, 2.2));
+        assert!((v.y - fresnel_complex(1.0, 0.9, 2.4)).abs() < 1e-7);
+    }
+
+    #[test]
+    fn conductor_matches_reference_and_reaches_one_at_grazing() {
+        for (eta, k) in CASES {
+            for i in 0..=100 {
+                let c = i as f32 / 100.0;
+                let f = fresnel_complex(c, eta, k);
+                let r = reference(c as f64, eta as f64, k as f64);
+                // f32 complex arithmetic vs f64: 1e-4 absolute is ample.
+                assert!((f as f64 - r).abs() < 1e-4, "{eta} {k} cos {c}: {f} vs {r}");
+            }
+            assert!((fresnel_complex(0.0, eta, k) - 1.0).abs() < 1e-6);
+            assert!(fresnel_complex(1e-4, eta, k) > 0.99);
+        }
+        assert_eq!(fresnel_complex(0.5, 0.0, 0.0), 1.0);
+    }
+
+    #[test]
+    fn schlick_basics() {
+        let f0 = schlick_f0_from_ior(1.5);
+        assert!((f0 - 0.04).abs() < 1e-7);
+        assert_eq!(schlick_f0_from_ior(1.0), 0.0);
+        assert_eq!(fresnel_schlick(f0, 1.0), f0);
+        assert_eq!(fresnel_schlick(f0, 0.0), 1.0);
+        assert_eq!(fresnel_schlick(f0, -0.3), 1.0);
+        let mut prev = 1.0;
+        for i in 1..=50 {
+            let f = fresnel_schlick(f0, i as f32 / 50.0);
+            assert!(f <= prev && f >= f0);
+            prev = f;
+        }
+        let rgb = fresnel_schlick_rgb(Vec3::new(0.04, 0.5, 1.0), 0.3);
+        assert!((rgb.x - fresnel_schlick(0.04, 0.3)).abs() < 1e-7 && rgb.z == 1.0);
+    }
+}

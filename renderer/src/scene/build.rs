@@ -1,0 +1,301 @@
+//! Turns a validated [`SceneDesc`] into the render-ready [`Scene`]: f32 primitives in a BVH,
+//! materials, and one light per emitting shape (per triangle for `triangles` meshes).
+
+use super::desc::{FresnelDesc, GeometryDesc, MaterialDesc, SceneDesc};
+use super::error::SceneError;
+use crate::camera::Camera;
+use crate::geometry::disk::Disk;
+use crate::geometry::primitive::{NONE, Primitive, Shape};
+use crate::geometry::sphere::Sphere;
+use crate::geometry::{Accel, polygon};
+use crate::lights::{
+    BackgroundLight, DiskLight, Light, LightSampler, PolygonLight, QuadLight, SphereLight,
+    TriangleLight,
+};
+use crate::materials::{Conductor, ConductorFresnel, Diffuse, Material, Plastic};
+use glam::{DVec3, Vec3};
+
+/// A scene ready to render.
+pub struct Scene {
+    /// The camera.
+    pub camera: Camera,
+    /// Longest path (Mitsuba's convention, `-1` = unlimited).
+    pub max_depth: i32,
+    /// Primitives and their BVH.
+    pub accel: Accel,
+    /// Materials; the last one is the black diffuse used by shapes without a material.
+    pub materials: Vec<Material>,
+    /// Per material: whether its back side sees the same BSDF.
+    pub two_sided: Vec<bool>,
+    /// Material names, parallel to `materials`.
+    pub material_names: Vec<String>,
+    /// All lights, the background last if present.
+    pub lights: Vec<Light>,
+    /// Power-proportional light selection; `None` when nothing emits.
+    pub light_sampler: Option<LightSampler>,
+    /// Index of the background light, if the background is not black.
+    pub background_light: Option<u32>,
+}
+
+fn v(d: DVec3) -> Vec3 {
+    d.as_vec3()
+}
+
+fn material(desc: &MaterialDesc) -> Material {
+    match desc {
+        MaterialDesc::Diffuse { albedo } => Material::Diffuse(Diffuse { albedo: v(*albedo) }),
+        MaterialDesc::Conductor { alpha, fresnel } => Material::Conductor(Conductor {
+            alpha: *alpha as f32,
+            fresnel: match fresnel {
+                FresnelDesc::Complex { eta, k } => ConductorFresnel::Complex {
+                    eta: v(*eta),
+                    k: v(*k),
+                },
+                FresnelDesc::Reflectance(r) => ConductorFresnel::Tint(v(*r)),
+            },
+        }),
+        MaterialDesc::Plastic {
+            albedo,
+            alpha,
+            ior,
+            specular,
+        } => Material::Plastic(Plastic::new(
+            v(*albedo),
+            *alpha as f32,
+            *ior as f32,
+            v(*specular),
+        )),
+    }
+}
+
+/// The 6 faces of a box as parallelograms `(corner, edge_u, edge_v)` with outward normals, rotated
+/// about +y by `rot_deg` (x' = cos·x + sin·z, z' = −sin·x + cos·z) and translated.
+pub fn box_faces(min: DVec3, max: DVec3, rot_deg: f64, translate: DVec3) -> [[DVec3; 3]; 6] {
+    let (s, c) = rot_deg.to_radians().sin_cos();
+    let rot = |p: DVec3| DVec3::new(c * p.x + s * p.z, p.y, -s * p.x + c * p.z);
+    let size = max - min;
+    let mut faces = [[DVec3::ZERO; 3]; 6];
+    for axis in 0..3 {
+        let (ua, va) = ((axis + 1) % 3, (axis + 2) % 3);
+        let mut eu = DVec3::ZERO;
+        eu[ua] = size[ua];
+        let mut ev = DVec3::ZERO;
+        ev[va] = size[va];
+        // cross(e_u, e_v) = +axis at the max side; swapping the edges flips it for the min side.
+        let mut hi = min;
+        hi[axis] = max[axis];
+        faces[2 * axis] = [rot(hi) + translate, rot(eu), rot(ev)];
+        faces[2 * axis + 1] = [rot(min) + translate, rot(ev), rot(eu)];
+    }
+    faces
+}
+
+fn quad_triangles(corner: Vec3, eu: Vec3, ev: Vec3) -> [[Vec3; 3]; 2] {
+    [
+        [corner, corner + eu, corner + eu + ev],
+        [corner, corner + eu + ev, corner + ev],
+    ]
+}
+
+impl Scene {
+    /// Builds the scene. Fails only on lights the parser could not rule out (e.g. an emitter that
+    /// becomes degenerate in f32).
+    pub fn from_desc(desc: &SceneDesc) -> Result<Scene, SceneError> {
+        let cam = &desc.camera;
+        let camera = Camera::new(
+            v(cam.from),
+            v(cam.to),
+            v(cam.up),
+            cam.vfov_deg as f32,
+            cam.width,
+            cam.height,
+        );
+        let mut materials: Vec<Material> = desc
+            .materials
+            .iter()
+            .map(|m| material(&m.material))
+            .collect();
+        let mut two_sided: Vec<bool> = desc.materials.iter().map(|m| m.two_sided).collect();
+        let mut material_names: Vec<String> =
+            desc.materials.iter().map(|m| m.name.clone()).collect();
+        let black = materials.len() as u32;
+        materials.push(Material::Diffuse(Diffuse { albedo: Vec3::ZERO }));
+        two_sided.push(true);
+        material_names.push("(black)".into());
+
+        let mut prims = Vec::new();
+        let mut lights = Vec::new();
+        for shape in &desc.shapes {
+            let mat = shape.material.map_or(black, |m| m as u32);
+            let le = v(shape.emission);
+            let emits = le.cmpgt(Vec3::ZERO).any();
+            let err = |what: &str| SceneError::new(&shape.json_path, what);
+            let mut push_light = |light: Option<Light>| -> Result<u32, SceneError> {
+                if !emits {
+                    return Ok(NONE);
+                }
+                let light = light.ok_or_else(|| err("emitter has zero area"))?;
+                lights.push(light);
+                Ok(lights.len() as u32 - 1)
+            };
+            let mut push_tris = |tris: &[[Vec3; 3]], light: u32| {
+                for t in tris {
+                    if let Some(shape) = Shape::triangle(*t) {
+                        prims.push(Primitive {
+                            shape,
+                            material: mat,
+                            light,
+                        });
+                    }
+                }
+            };
+            match &shape.geometry {
+                GeometryDesc::Quad {
+                    corner,
+                    edge_u,
+                    edge_v,
+                } => {
+                    let (c, eu, ev) = (v(*corner), v(*edge_u), v(*edge_v));
+                    let light = push_light(QuadLight::new(c, eu, ev, le).map(Light::Quad))?;
+                    push_tris(&quad_triangles(c, eu, ev), light);
+                }
+                GeometryDesc::Polygon { vertices } => {
+                    let n = polygon::newell_normal(vertices).normalize().as_vec3();
+                    let tris: Vec<[Vec3; 3]> = polygon::triangulate(vertices)
+                        .iter()
+                        .map(|t| [v(vertices[t[0]]), v(vertices[t[1]]), v(vertices[t[2]])])
+                        .collect();
+                    let light =
+                        push_light(PolygonLight::new(tris.clone(), n, le).map(Light::Polygon))?;
+                    push_tris(&tris, light);
+                }
+                GeometryDesc::Triangles { positions, indices } => {
+                    for idx in indices {
+                        let t = [
+                            v(positions[idx[0] as usize]),
+                            v(positions[idx[1] as usize]),
+                            v(positions[idx[2] as usize]),
+                        ];
+                        let light =
+                            push_light(crate::geometry::triangle::triangle_normal(&t).map(|n| {
+                                Light::Triangle(TriangleLight {
+                                    v: t,
+                                    n,
+                                    area: crate::geometry::triangle::triangle_area(&t),
+                                    le,
+                                })
+                            }))?;
+                        push_tris(&[t], light);
+                    }
+                }
+                GeometryDesc::Disk {
+                    center,
+                    normal,
+                    radius,
+                } => {
+                    let disk = Disk {
+                        center: v(*center),
+                        n: v(*normal).normalize(),
+                        radius: *radius as f32,
+                    };
+                    let light = push_light(Some(Light::Disk(DiskLight::new(disk, le))))?;
+                    prims.push(Primitive {
+                        shape: Shape::Disk(disk),
+                        material: mat,
+                        light,
+                    });
+                }
+                GeometryDesc::Sphere { center, radius } => {
+                    let sphere = Sphere {
+                        center: v(*center),
+                        radius: *radius as f32,
+                    };
+                    let light = push_light(Some(Light::Sphere(SphereLight { sphere, le })))?;
+                    prims.push(Primitive {
+                        shape: Shape::Sphere(sphere),
+                        material: mat,
+                        light,
+                    });
+                }
+                GeometryDesc::Box {
+                    min,
+                    max,
+                    rotate_y_deg,
+                    translate,
+                } => {
+                    for [c, eu, ev] in box_faces(*min, *max, *rotate_y_deg, *translate) {
+                        let (c, eu, ev) = (v(c), v(eu), v(ev));
+                        let light = push_light(QuadLight::new(c, eu, ev, le).map(Light::Quad))?;
+                        push_tris(&quad_triangles(c, eu, ev), light);
+                    }
+                }
+            }
+        }
+        let accel = Accel::new(prims);
+        let background = v(desc.background);
+        let background_light = if background.cmpgt(Vec3::ZERO).any() {
+            let (lo, hi) = accel.bounds();
+            let scene_radius = if lo.is_finite() && hi.is_finite() {
+                0.5 * (hi - lo).length().max(1e-6)
+            } else {
+                1.0
+            };
+            lights.push(Light::Background(BackgroundLight {
+                le: background,
+                scene_radius,
+            }));
+            Some(lights.len() as u32 - 1)
+        } else {
+            None
+        };
+        let light_sampler = LightSampler::new(&lights);
+        Ok(Scene {
+            camera,
+            max_depth: desc.max_depth,
+            accel,
+            materials,
+            two_sided,
+            material_names,
+            lights,
+            light_sampler,
+            background_light,
+        })
+    }
+
+    /// Loads and builds a scene file.
+    pub fn load(path: &std::path::Path) -> Result<Scene, SceneError> {
+        let desc = super::parse::load_scene(path)?;
+        Scene::from_desc(&desc).map_err(|e| e.in_file(path))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn box_faces_point_outwards() {
+        let faces = box_faces(
+            DVec3::ZERO,
+            DVec3::new(1.0, 2.0, 3.0),
+            30.0,
+            DVec3::new(5.0, 0.0, 0.0),
+        );
+        let centre = DVec3::new(5.0, 0.0, 0.0) + {
+            let (s, c) = 30f64.to_radians().sin_cos();
+            let p = DVec3::new(0.5, 1.0, 1.5);
+            DVec3::new(c * p.x + s * p.z, p.y, -s * p.x + c * p.z)
+        };
+        let mut area = 0.0;
+        for [c, eu, ev] in faces {
+            let n = eu.cross(ev);
+            let face_centre = c + 0.5 * (eu + ev);
+            assert!(
+                n.dot(face_centre - centre) > 0.0,
+                "normal must point away from the centre"
+            );
+            area += n.length();
+        }
+        assert!((area - 2.0 * (2.0 + 3.0 + 6.0)).abs() < 1e-9);
+    }
+}

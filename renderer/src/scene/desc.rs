@@ -1,0 +1,266 @@
+//! The validated scene description: plain data in `f64`, exactly what the file says (with
+//! defaults filled in), before any render-ready structures are built from it.
+//!
+//! Everything in a [`SceneDesc`] has passed every rule of the format, so builders may rely on
+//! it: finite numbers, positive radii, unit disk normals, valid polygons, in-range indices.
+
+use glam::DVec3;
+use serde_json::{Map, Value, json};
+
+/// A whole scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneDesc {
+    /// The pinhole camera.
+    pub camera: CameraDesc,
+    /// Longest path in vertices, Mitsuba's convention: `-1` = unlimited, otherwise ≥ 1.
+    pub max_depth: i32,
+    /// Constant radiance from every direction that hits nothing.
+    pub background: DVec3,
+    /// All materials, sorted by name; shapes refer to them by index.
+    pub materials: Vec<NamedMaterial>,
+    /// All shapes, in file order.
+    pub shapes: Vec<ShapeDesc>,
+    /// Things that were accepted but look wrong (e.g. dropped degenerate triangles).
+    pub warnings: Vec<String>,
+}
+
+/// A pinhole camera looking from `from` towards `to`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CameraDesc {
+    /// Eye position.
+    pub from: DVec3,
+    /// A point the camera looks at; never equal to `from`.
+    pub to: DVec3,
+    /// Up hint; never parallel to `to - from`.
+    pub up: DVec3,
+    /// Vertical field of view in degrees, in (0, 180).
+    pub vfov_deg: f64,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+}
+
+/// A material with the name it has in the file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NamedMaterial {
+    /// The key in the file's `materials` map.
+    pub name: String,
+    /// The BSDF.
+    pub material: MaterialDesc,
+    /// Whether the back side sees the same BSDF with the normal flipped (default) or is black.
+    pub two_sided: bool,
+}
+
+/// A BSDF and its parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MaterialDesc {
+    /// Lambertian reflection, `albedo / π`; albedo in [0, 1].
+    Diffuse {
+        /// Reflectance per channel.
+        albedo: DVec3,
+    },
+    /// GGX microfacet conductor; `alpha == 0` is a perfect mirror.
+    Conductor {
+        /// GGX roughness α (not squared), in [0, 1].
+        alpha: f64,
+        /// How the Fresnel term is given.
+        fresnel: FresnelDesc,
+    },
+    /// Lambertian base under a GGX dielectric coating with Schlick Fresnel.
+    Plastic {
+        /// Base reflectance, in [0, 1].
+        albedo: DVec3,
+        /// GGX roughness α of the coating, in [0, 1].
+        alpha: f64,
+        /// Index of refraction of the coating, > 1.
+        ior: f64,
+        /// Tint of the specular reflection, in [0, 1].
+        specular: DVec3,
+    },
+}
+
+/// A conductor's Fresnel term.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FresnelDesc {
+    /// Exact conductor Fresnel from the complex index of refraction `eta + i k` per channel.
+    Complex {
+        /// Real part, > 0.
+        eta: DVec3,
+        /// Imaginary part (absorption), ≥ 0.
+        k: DVec3,
+    },
+    /// Fresnel = this reflectance at every angle, in [0, 1].
+    Reflectance(DVec3),
+}
+
+/// One shape of the scene with its material and emission.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShapeDesc {
+    /// The surface.
+    pub geometry: GeometryDesc,
+    /// Index into [`SceneDesc::materials`]; `None` = black diffuse.
+    pub material: Option<usize>,
+    /// Emitted radiance on the side the normal points to; zero for non-emitters.
+    pub emission: DVec3,
+    /// Where the shape is in the file (`shapes[3]`), for messages.
+    pub json_path: String,
+}
+
+/// The surface of a shape.
+#[derive(Clone, Debug, PartialEq)]
+pub enum GeometryDesc {
+    /// Parallelogram `corner + s·edge_u + t·edge_v`, `s, t ∈ [0, 1]`; normal along
+    /// `edge_u × edge_v` (never zero).
+    Quad {
+        /// One corner.
+        corner: DVec3,
+        /// First edge from the corner.
+        edge_u: DVec3,
+        /// Second edge from the corner.
+        edge_v: DVec3,
+    },
+    /// Planar simple polygon, normal by the right-hand rule (validated by
+    /// [`crate::geometry::polygon::validate_polygon`]).
+    Polygon {
+        /// The vertices in order, at least 3.
+        vertices: Vec<DVec3>,
+    },
+    /// Flat-shaded triangle mesh; every triangle has non-zero area and in-range indices.
+    Triangles {
+        /// Vertex positions.
+        positions: Vec<DVec3>,
+        /// Triangles as indices into `positions`, right-hand-rule normals.
+        indices: Vec<[u32; 3]>,
+    },
+    /// Disk facing along `normal`.
+    Disk {
+        /// Centre.
+        center: DVec3,
+        /// Unit normal.
+        normal: DVec3,
+        /// Radius, > 0.
+        radius: f64,
+    },
+    /// Sphere with outward normals.
+    Sphere {
+        /// Centre.
+        center: DVec3,
+        /// Radius, > 0.
+        radius: f64,
+    },
+    /// Axis-aligned box `[min, max]`, rotated about +y through the origin, then translated.
+    Box {
+        /// Lower corner; `min < max` on every axis.
+        min: DVec3,
+        /// Upper corner.
+        max: DVec3,
+        /// Rotation about +y in degrees (x' = cos·x + sin·z, z' = −sin·x + cos·z).
+        rotate_y_deg: f64,
+        /// Translation applied after the rotation.
+        translate: DVec3,
+    },
+}
+
+impl SceneDesc {
+    /// Writes the scene back in the file format (without comments and warnings), such that
+    /// parsing the result gives this description again.
+    pub fn to_json(&self) -> Value {
+        let c = &self.camera;
+        let materials: Map<String, Value> = self
+            .materials
+            .iter()
+            .map(|m| (m.name.clone(), material_json(m)))
+            .collect();
+        let shapes: Vec<Value> = self.shapes.iter().map(|s| self.shape_json(s)).collect();
+        json!({
+            "camera": {
+                "from": vec3(c.from), "to": vec3(c.to), "up": vec3(c.up),
+                "vfov_deg": c.vfov_deg, "width": c.width, "height": c.height,
+            },
+            "max_depth": self.max_depth,
+            "background": vec3(self.background),
+            "materials": materials,
+            "shapes": shapes,
+        })
+    }
+
+    fn shape_json(&self, shape: &ShapeDesc) -> Value {
+        let mut obj = match &shape.geometry {
+            GeometryDesc::Quad {
+                corner,
+                edge_u,
+                edge_v,
+            } => json!({
+                "type": "quad", "corner": vec3(*corner),
+                "edge_u": vec3(*edge_u), "edge_v": vec3(*edge_v),
+            }),
+            GeometryDesc::Polygon { vertices } => json!({
+                "type": "polygon",
+                "vertices": vertices.iter().map(|&v| vec3(v)).collect::<Vec<_>>(),
+            }),
+            GeometryDesc::Triangles { positions, indices } => json!({
+                "type": "triangles",
+                "positions": positions.iter().map(|&v| vec3(v)).collect::<Vec<_>>(),
+                "indices": indices,
+            }),
+            GeometryDesc::Disk {
+                center,
+                normal,
+                radius,
+            } => json!({
+                "type": "disk", "center": vec3(*center), "normal": vec3(*normal), "radius": radius,
+            }),
+            GeometryDesc::Sphere { center, radius } => json!({
+                "type": "sphere", "center": vec3(*center), "radius": radius,
+            }),
+            GeometryDesc::Box {
+                min,
+                max,
+                rotate_y_deg,
+                translate,
+            } => json!({
+                "type": "box", "min": vec3(*min), "max": vec3(*max),
+                "rotate_y_deg": rotate_y_deg, "translate": vec3(*translate),
+            }),
+        };
+        if let Some(i) = shape.material {
+            obj["material"] = json!(self.materials[i].name);
+        }
+        if shape.emission != DVec3::ZERO {
+            obj["emission"] = vec3(shape.emission);
+        }
+        obj
+    }
+}
+
+fn material_json(m: &NamedMaterial) -> Value {
+    let mut obj = match &m.material {
+        MaterialDesc::Diffuse { albedo } => json!({"type": "diffuse", "albedo": vec3(*albedo)}),
+        MaterialDesc::Conductor { alpha, fresnel } => match fresnel {
+            FresnelDesc::Complex { eta, k } => json!({
+                "type": "conductor", "alpha": alpha, "eta": vec3(*eta), "k": vec3(*k),
+            }),
+            FresnelDesc::Reflectance(r) => {
+                json!({"type": "conductor", "alpha": alpha, "reflectance": vec3(*r)})
+            }
+        },
+        MaterialDesc::Plastic {
+            albedo,
+            alpha,
+            ior,
+            specular,
+        } => json!({
+            "type": "plastic", "albedo": vec3(*albedo), "alpha": alpha,
+            "ior": ior, "specular": vec3(*specular),
+        }),
+    };
+    if !m.two_sided {
+        obj["two_sided"] = json!(false);
+    }
+    obj
+}
+
+fn vec3(v: DVec3) -> Value {
+    json!([v.x, v.y, v.z])
+}

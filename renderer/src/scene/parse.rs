@@ -1,0 +1,296 @@
+//! Parsing and validating a scene file into a [`SceneDesc`]: the entry points, the root object
+//! and the camera. Materials and shapes live in `parse_materials.rs` and `parse_shapes.rs`.
+//!
+//! The JSON is first read into a `serde_json::Value` and then walked by hand rather than derived
+//! with serde, so that every error can name the JSON path of the problem.
+
+use super::desc::{CameraDesc, SceneDesc};
+use super::error::SceneError;
+use super::parse_materials::parse_materials;
+use super::parse_shapes::parse_shapes;
+use super::walk::{Obj, array, check_components, integer, parse_json};
+use glam::DVec3;
+use serde_json::Value;
+use std::path::Path;
+
+/// Largest accepted image width or height: anything above is surely a typo, and would need
+/// gigabytes of accumulation buffers.
+pub const MAX_IMAGE_SIZE: u32 = 16384;
+
+/// Parses and validates scene JSON text.
+pub fn parse_scene(text: &str) -> Result<SceneDesc, SceneError> {
+    parse_scene_value(&parse_json(text)?)
+}
+
+/// Reads, parses and validates a scene file; errors name the file.
+pub fn load_scene(path: &Path) -> Result<SceneDesc, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        SceneError::new("", format!("cannot read the scene file: {e}")).in_file(path)
+    })?;
+    parse_scene(&text).map_err(|e| e.in_file(path))
+}
+
+/// Validates an already parsed JSON value (e.g. one from [`SceneDesc::to_json`]).
+pub fn parse_scene_value(value: &Value) -> Result<SceneDesc, SceneError> {
+    if !value.is_object() {
+        return Err(SceneError::new("", "a scene must be a JSON object"));
+    }
+    let root = Obj::new(value, "")?;
+    root.only_keys(
+        &["camera", "max_depth", "background", "materials", "shapes"],
+        true,
+    )?;
+    let camera = parse_camera(&Obj::new(root.req("camera")?, "camera")?)?;
+
+    let max_depth = match root.get("max_depth") {
+        None => -1,
+        Some(v) => integer(v, "max_depth", -1, i32::MAX as i64)? as i32,
+    };
+    if max_depth == 0 {
+        return Err(SceneError::new(
+            "max_depth",
+            "0 is not allowed: use -1 (unlimited) or at least 1 (1 = emission seen directly)",
+        ));
+    }
+
+    let background = root.opt_vec3("background")?.unwrap_or(DVec3::ZERO);
+    check_components(
+        background,
+        "background",
+        |x| x >= 0.0,
+        "is negative: radiance must be ≥ 0",
+    )?;
+
+    let materials = match root.get("materials") {
+        Some(v) => parse_materials(&Obj::new(v, "materials")?)?,
+        None => Vec::new(),
+    };
+    let mut warnings = Vec::new();
+    let shapes = parse_shapes(
+        array(root.req("shapes")?, "shapes")?,
+        &materials,
+        &mut warnings,
+    )?;
+    Ok(SceneDesc {
+        camera,
+        max_depth,
+        background,
+        materials,
+        shapes,
+        warnings,
+    })
+}
+
+fn parse_camera(obj: &Obj) -> Result<CameraDesc, SceneError> {
+    obj.only_keys(&["from", "to", "up", "vfov_deg", "width", "height"], false)?;
+    let (from, to, up) = (obj.vec3("from")?, obj.vec3("to")?, obj.vec3("up")?);
+
+    // Relative to the coordinates' magnitude, so a camera 1e5 units out still works.
+    let view = to - from;
+    let scale = from.abs().max(to.abs()).max_element();
+    if view.length() <= 1e-12 * scale || view == DVec3::ZERO {
+        return Err(SceneError::new(
+            obj.at("to"),
+            "`to` equals `from`, so the view direction is undefined",
+        ));
+    }
+    if up == DVec3::ZERO {
+        return Err(SceneError::new(obj.at("up"), "`up` has zero length"));
+    }
+    // sin(angle) below 1e-6: the image's horizontal axis `cross(forward, up)` would be noise.
+    if view.normalize().cross(up.normalize()).length() < 1e-6 {
+        return Err(SceneError::new(
+            obj.at("up"),
+            "`up` is parallel to the view direction `to - from`",
+        ));
+    }
+
+    let vfov_deg = obj.number("vfov_deg")?;
+    if !(vfov_deg > 0.0 && vfov_deg < 180.0) {
+        return Err(SceneError::new(
+            obj.at("vfov_deg"),
+            format!("field of view {vfov_deg}° is outside (0, 180)"),
+        ));
+    }
+    let size = |key: &str| -> Result<u32, SceneError> {
+        Ok(integer(obj.req(key)?, &obj.at(key), 1, MAX_IMAGE_SIZE as i64)? as u32)
+    };
+    let (width, height) = (size("width")?, size("height")?);
+    Ok(CameraDesc {
+        from,
+        to,
+        up,
+        vfov_deg,
+        width,
+        height,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::tests::{base, expect_err};
+    use serde_json::json;
+
+    #[test]
+    fn root_rules() {
+        expect_err(&json!([1, 2]), "", "must be a JSON object");
+        let mut s = base();
+        s["lights"] = json!([]);
+        expect_err(&s, "lights", "unknown key `lights`");
+        let mut s = base();
+        s["comment"] = json!("fine");
+        s["name"] = json!("fine too");
+        assert!(parse_scene_value(&s).is_ok());
+        s["name"] = json!(3);
+        expect_err(&s, "name", "expected a string");
+        let mut s = base();
+        s.as_object_mut().unwrap().remove("camera");
+        expect_err(&s, "camera", "missing required key");
+        let mut s = base();
+        s.as_object_mut().unwrap().remove("shapes");
+        expect_err(&s, "shapes", "missing required key");
+        let mut s = base();
+        s["shapes"] = json!({});
+        expect_err(&s, "shapes", "expected an array, found an object");
+    }
+
+    #[test]
+    fn defaults() {
+        let mut s = base();
+        for key in ["max_depth", "background", "materials"] {
+            s.as_object_mut().unwrap().remove(key);
+        }
+        s["shapes"] = json!([{"type": "sphere", "center": [0, 0, 0], "radius": 1}]);
+        let d = parse_scene_value(&s).unwrap();
+        assert_eq!((d.max_depth, d.background), (-1, DVec3::ZERO));
+        assert!(d.materials.is_empty() && d.warnings.is_empty());
+        assert_eq!(
+            (d.shapes[0].material, d.shapes[0].emission),
+            (None, DVec3::ZERO)
+        );
+    }
+
+    #[test]
+    fn max_depth_rules() {
+        for (bad, fragment) in [(json!(0), "0 is not allowed"), (json!(-2), "out of range")] {
+            let mut s = base();
+            s["max_depth"] = bad;
+            expect_err(&s, "max_depth", fragment);
+        }
+        let mut s = base();
+        s["max_depth"] = json!(2.5);
+        expect_err(&s, "max_depth", "expected an integer");
+        s["max_depth"] = json!(1);
+        assert_eq!(parse_scene_value(&s).unwrap().max_depth, 1);
+    }
+
+    #[test]
+    fn negative_background() {
+        let mut s = base();
+        s["background"] = json!([0.1, -0.5, 0]);
+        expect_err(&s, "background[1]", "negative");
+    }
+
+    #[test]
+    fn camera_rules() {
+        let cases = [
+            ("from", json!([0, 1, 0]), "camera.to", "`to` equals `from`"),
+            (
+                "up",
+                json!([0, 0, 2]),
+                "camera.up",
+                "parallel to the view direction",
+            ),
+            ("up", json!([0, 0, 0]), "camera.up", "zero length"),
+            (
+                "vfov_deg",
+                json!(180),
+                "camera.vfov_deg",
+                "outside (0, 180)",
+            ),
+            ("vfov_deg", json!(0), "camera.vfov_deg", "outside (0, 180)"),
+            ("width", json!(0), "camera.width", "out of range [1, 16384]"),
+            (
+                "height",
+                json!(16385),
+                "camera.height",
+                "out of range [1, 16384]",
+            ),
+            ("width", json!(64.5), "camera.width", "expected an integer"),
+            ("fov", json!(40), "camera.fov", "unknown key `fov`"),
+            ("comment", json!("x"), "camera.comment", "unknown key"),
+            (
+                "from",
+                json!([0, 1]),
+                "camera.from",
+                "expected 3 numbers, found 2",
+            ),
+            (
+                "from",
+                json!("origin"),
+                "camera.from",
+                "expected an array of 3 numbers",
+            ),
+            (
+                "up",
+                json!([0, "1", 0]),
+                "camera.up[1]",
+                "expected a number, found a string",
+            ),
+        ];
+        for (key, value, path, fragment) in cases {
+            let mut s = base();
+            s["camera"][key] = value;
+            expect_err(&s, path, fragment);
+        }
+        let mut s = base();
+        s["camera"].as_object_mut().unwrap().remove("vfov_deg");
+        expect_err(&s, "camera.vfov_deg", "missing required key `vfov_deg`");
+        // Integral floats are integers; huge but distinct positions are fine.
+        let mut s = base();
+        s["camera"]["width"] = json!(64.0);
+        s["camera"]["from"] = json!([1e5, 1e5, 1e5]);
+        s["camera"]["to"] = json!([1e5, 1e5, 100000.01]);
+        assert!(parse_scene_value(&s).is_ok());
+    }
+
+    #[test]
+    fn json_syntax_errors_have_line_and_column() {
+        let e = parse_scene("{\n  \"camera\": {,\n}").unwrap_err();
+        assert_eq!(e.path, "");
+        assert!(e.message.contains("line 2 column 14"), "{e}");
+        let e = parse_scene("{\"max_depth\": 1e999}").unwrap_err();
+        assert!(e.message.contains("number out of range at line 1"), "{e}");
+        let e = parse_scene("{\"max_depth\": 1, \"max_depth\": 2}").unwrap_err();
+        assert!(
+            e.message.contains("duplicate key `max_depth` at line 1"),
+            "{e}"
+        );
+        let e = parse_scene("{} trailing").unwrap_err();
+        assert!(e.message.contains("trailing characters"), "{e}");
+    }
+
+    #[test]
+    fn load_scene_names_the_file() {
+        let missing = Path::new("/nonexistent/scene.json");
+        let e = load_scene(missing).unwrap_err();
+        assert_eq!(e.file.as_deref(), Some(missing));
+        assert!(
+            e.to_string()
+                .starts_with("/nonexistent/scene.json: cannot read"),
+            "{e}"
+        );
+        let dir = std::env::temp_dir().join(format!("lumis-scene-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("bad.json");
+        std::fs::write(&file, r#"{"camera": 1, "shapes": []}"#).unwrap();
+        let e = load_scene(&file).unwrap_err();
+        std::fs::remove_dir_all(&dir).unwrap();
+        let expected = format!(
+            "{}: camera: expected an object, found a number",
+            file.display()
+        );
+        assert_eq!(e.to_string(), expected);
+    }
+}

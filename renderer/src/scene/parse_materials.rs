@@ -1,0 +1,268 @@
+//! The `materials` map: diffuse, conductor and plastic, with their range rules.
+
+use super::desc::{FresnelDesc, MaterialDesc, NamedMaterial};
+use super::error::SceneError;
+use super::walk::{Obj, check_components};
+use glam::DVec3;
+
+/// Every material of the map, sorted by name (the map's order).
+pub(crate) fn parse_materials(obj: &Obj) -> Result<Vec<NamedMaterial>, SceneError> {
+    obj.map()
+        .iter()
+        .map(|(name, value)| {
+            let m = Obj::new(value, obj.at(name))?;
+            if name.is_empty() {
+                return Err(SceneError::new(m.path, "a material name must not be empty"));
+            }
+            parse_material(name, &m)
+        })
+        .collect()
+}
+
+fn parse_material(name: &str, obj: &Obj) -> Result<NamedMaterial, SceneError> {
+    let kind = obj.string("type")?;
+    let material = match kind {
+        "diffuse" => {
+            obj.only_keys(&["type", "albedo", "two_sided"], true)?;
+            MaterialDesc::Diffuse {
+                albedo: unit_color(obj, "albedo")?,
+            }
+        }
+        "conductor" => {
+            obj.only_keys(
+                &["type", "alpha", "eta", "k", "reflectance", "two_sided"],
+                true,
+            )?;
+            MaterialDesc::Conductor {
+                alpha: alpha(obj)?,
+                fresnel: fresnel(obj)?,
+            }
+        }
+        "plastic" => {
+            obj.only_keys(
+                &["type", "albedo", "alpha", "ior", "specular", "two_sided"],
+                true,
+            )?;
+            let ior = obj.opt_number("ior")?.unwrap_or(1.5);
+            if ior <= 1.0 {
+                let msg = format!("ior {ior} must be greater than 1");
+                return Err(SceneError::new(obj.at("ior"), msg));
+            }
+            let specular = match obj.get("specular") {
+                Some(_) => unit_color(obj, "specular")?,
+                None => DVec3::ONE,
+            };
+            let (albedo, alpha) = (unit_color(obj, "albedo")?, alpha(obj)?);
+            MaterialDesc::Plastic {
+                albedo,
+                alpha,
+                ior,
+                specular,
+            }
+        }
+        other => {
+            return Err(SceneError::new(
+                obj.at("type"),
+                format!("unknown material type `{other}` (expected diffuse, conductor or plastic)"),
+            ));
+        }
+    };
+    let two_sided = obj.opt_bool("two_sided")?.unwrap_or(true);
+    Ok(NamedMaterial {
+        name: name.to_owned(),
+        material,
+        two_sided,
+    })
+}
+
+/// A required colour with every channel in [0, 1] (reflectances: more would create energy).
+fn unit_color(obj: &Obj, key: &str) -> Result<DVec3, SceneError> {
+    let c = obj.vec3(key)?;
+    check_components(
+        c,
+        &obj.at(key),
+        |x| (0.0..=1.0).contains(&x),
+        "is outside [0, 1]",
+    )
+}
+
+/// The required GGX α in [0, 1].
+fn alpha(obj: &Obj) -> Result<f64, SceneError> {
+    let a = obj.number("alpha")?;
+    if !(0.0..=1.0).contains(&a) {
+        return Err(SceneError::new(
+            obj.at("alpha"),
+            format!("alpha {a} is outside [0, 1]"),
+        ));
+    }
+    Ok(a)
+}
+
+/// Either `eta` + `k` or `reflectance`, never both or a half.
+fn fresnel(obj: &Obj) -> Result<FresnelDesc, SceneError> {
+    let (eta, k, refl) = (obj.get("eta"), obj.get("k"), obj.get("reflectance"));
+    match (eta.is_some(), k.is_some(), refl.is_some()) {
+        (true, true, false) => {
+            let eta = obj.vec3("eta")?;
+            check_components(eta, &obj.at("eta"), |x| x > 0.0, "must be positive")?;
+            let k = obj.vec3("k")?;
+            check_components(k, &obj.at("k"), |x| x >= 0.0, "must not be negative")?;
+            Ok(FresnelDesc::Complex { eta, k })
+        }
+        (false, false, true) => Ok(FresnelDesc::Reflectance(unit_color(obj, "reflectance")?)),
+        (true, false, false) => Err(SceneError::new(obj.at("k"), "`eta` is given without `k`")),
+        (false, true, false) => Err(SceneError::new(obj.at("eta"), "`k` is given without `eta`")),
+        (false, false, false) => Err(SceneError::new(
+            obj.path.clone(),
+            "a conductor needs either `eta` and `k`, or `reflectance`",
+        )),
+        (_, _, true) => Err(SceneError::new(
+            obj.at("reflectance"),
+            "give either `eta` and `k`, or `reflectance`, not both",
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::desc::{FresnelDesc, MaterialDesc};
+    use crate::scene::parse::parse_scene_value;
+    use crate::scene::tests::{base, expect_err};
+    use glam::DVec3;
+    use serde_json::{Value, json};
+
+    /// The base scene with material `m` replaced by `value`.
+    fn with(m: &str, value: Value) -> Value {
+        let mut s = base();
+        s["materials"][m] = value;
+        s
+    }
+
+    #[test]
+    fn parsed_with_defaults_and_sorted() {
+        let d = parse_scene_value(&base()).unwrap();
+        let names: Vec<_> = d.materials.iter().map(|m| m.name.as_str()).collect();
+        assert_eq!(names, ["copper", "metal", "plastic", "white"]);
+        let plastic = &d.materials[2];
+        assert!(plastic.two_sided);
+        assert_eq!(
+            plastic.material,
+            MaterialDesc::Plastic {
+                albedo: DVec3::splat(0.5),
+                alpha: 0.2,
+                ior: 1.5,
+                specular: DVec3::ONE
+            }
+        );
+        assert!(matches!(
+            d.materials[0].material,
+            MaterialDesc::Conductor {
+                fresnel: FresnelDesc::Complex { .. },
+                ..
+            }
+        ));
+        let s = with(
+            "white",
+            json!({"type": "diffuse", "albedo": [1, 0, 0], "two_sided": false}),
+        );
+        assert!(!parse_scene_value(&s).unwrap().materials[3].two_sided);
+    }
+
+    #[test]
+    fn albedo_and_reflectance_outside_unit_interval() {
+        let s = with(
+            "white",
+            json!({"type": "diffuse", "albedo": [0.5, 1.2, 0.5]}),
+        );
+        expect_err(&s, "materials.white.albedo[1]", "outside [0, 1]");
+        let s = with(
+            "white",
+            json!({"type": "diffuse", "albedo": [-0.1, 0.5, 0.5]}),
+        );
+        expect_err(&s, "materials.white.albedo[0]", "outside [0, 1]");
+        let s = with(
+            "metal",
+            json!({"type": "conductor", "alpha": 0, "reflectance": [1, 1, 2]}),
+        );
+        expect_err(&s, "materials.metal.reflectance[2]", "outside [0, 1]");
+        let s = with(
+            "plastic",
+            json!({"type": "plastic", "albedo": [0.5, 0.5, 0.5], "alpha": 0, "specular": [1.5, 1, 1]}),
+        );
+        expect_err(&s, "materials.plastic.specular[0]", "outside [0, 1]");
+    }
+
+    #[test]
+    fn alpha_outside_unit_interval() {
+        let s = with(
+            "metal",
+            json!({"type": "conductor", "alpha": 1.5, "reflectance": [1, 1, 1]}),
+        );
+        expect_err(&s, "materials.metal.alpha", "alpha 1.5 is outside [0, 1]");
+        let s = with(
+            "plastic",
+            json!({"type": "plastic", "albedo": [0, 0, 0], "alpha": -0.1}),
+        );
+        expect_err(&s, "materials.plastic.alpha", "outside [0, 1]");
+    }
+
+    #[test]
+    fn ior_must_exceed_one() {
+        let s = with(
+            "plastic",
+            json!({"type": "plastic", "albedo": [0, 0, 0], "alpha": 0, "ior": 1}),
+        );
+        expect_err(&s, "materials.plastic.ior", "greater than 1");
+    }
+
+    #[test]
+    fn conductor_fresnel_rules() {
+        let m = |v: Value| with("copper", v);
+        let c = "materials.copper";
+        let s = m(json!({"type": "conductor", "alpha": 0, "eta": [1, 1, 1]}));
+        expect_err(&s, &format!("{c}.k"), "`eta` is given without `k`");
+        let s = m(json!({"type": "conductor", "alpha": 0, "k": [1, 1, 1]}));
+        expect_err(&s, &format!("{c}.eta"), "without `eta`");
+        let s = m(json!({"type": "conductor", "alpha": 0}));
+        expect_err(&s, c, "needs either");
+        let s = m(
+            json!({"type": "conductor", "alpha": 0, "eta": [1, 1, 1], "k": [1, 1, 1],
+                         "reflectance": [1, 1, 1]}),
+        );
+        expect_err(&s, &format!("{c}.reflectance"), "not both");
+        let s = m(json!({"type": "conductor", "alpha": 0, "eta": [1, 0, 1], "k": [1, 1, 1]}));
+        expect_err(&s, &format!("{c}.eta[1]"), "must be positive");
+        let s = m(json!({"type": "conductor", "alpha": 0, "eta": [1, 1, 1], "k": [1, 1, -1]}));
+        expect_err(&s, &format!("{c}.k[2]"), "must not be negative");
+    }
+
+    #[test]
+    fn structure_rules() {
+        let s = with("white", json!({"type": "lambert", "albedo": [0, 0, 0]}));
+        expect_err(
+            &s,
+            "materials.white.type",
+            "unknown material type `lambert`",
+        );
+        let s = with("white", json!({"albedo": [0, 0, 0]}));
+        expect_err(&s, "materials.white.type", "missing required key `type`");
+        let s = with(
+            "white",
+            json!({"type": "diffuse", "albedo": [0, 0, 0], "roughness": 1}),
+        );
+        expect_err(&s, "materials.white.roughness", "unknown key `roughness`");
+        let s = with("white", json!({"type": "diffuse"}));
+        expect_err(&s, "materials.white.albedo", "missing required key");
+        let s = with(
+            "white",
+            json!({"type": "diffuse", "albedo": [0, 0, 0], "two_sided": 0}),
+        );
+        expect_err(&s, "materials.white.two_sided", "expected true or false");
+        let s = with("white", json!([]));
+        expect_err(&s, "materials.white", "expected an object");
+        let s = with("", json!({"type": "diffuse", "albedo": [0, 0, 0]}));
+        expect_err(&s, "materials.", "must not be empty");
+        let ok = json!({"type": "diffuse", "albedo": [0, 0, 0], "comment": "x", "name": "White"});
+        assert!(parse_scene_value(&with("white", ok)).is_ok());
+    }
+}

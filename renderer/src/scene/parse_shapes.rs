@@ -1,0 +1,330 @@
+//! The `shapes` list: each shape's geometry, material reference and emission.
+
+use super::desc::{GeometryDesc, NamedMaterial, ShapeDesc};
+use super::error::SceneError;
+use super::parse_mesh::{DEGENERATE_TRIANGLE, polygon, triangles};
+use super::walk::{Obj, check_components};
+use glam::DVec3;
+use serde_json::Value;
+
+/// Every shape, in file order; degenerate non-emitting triangles are dropped into `warnings`.
+pub(crate) fn parse_shapes(
+    items: &[Value],
+    materials: &[NamedMaterial],
+    warnings: &mut Vec<String>,
+) -> Result<Vec<ShapeDesc>, SceneError> {
+    items
+        .iter()
+        .enumerate()
+        .map(|(i, v)| parse_shape(&Obj::new(v, format!("shapes[{i}]"))?, materials, warnings))
+        .collect()
+}
+
+fn parse_shape(
+    obj: &Obj,
+    materials: &[NamedMaterial],
+    warnings: &mut Vec<String>,
+) -> Result<ShapeDesc, SceneError> {
+    let kind = obj.string("type")?;
+    let fields: &[&str] = match kind {
+        "quad" => &["corner", "edge_u", "edge_v"],
+        "polygon" => &["vertices"],
+        "triangles" => &["positions", "indices"],
+        "disk" => &["center", "normal", "radius"],
+        "sphere" => &["center", "radius"],
+        "box" => &["min", "max", "rotate_y_deg", "translate"],
+        other => {
+            return Err(SceneError::new(
+                obj.at("type"),
+                format!(
+                    "unknown shape type `{other}` \
+                     (expected quad, polygon, triangles, disk, sphere or box)"
+                ),
+            ));
+        }
+    };
+    let mut allowed = vec!["type", "material", "emission"];
+    allowed.extend(fields);
+    obj.only_keys(&allowed, true)?;
+
+    let material = match obj.get("material") {
+        None => None,
+        Some(_) => Some(material_index(obj, materials)?),
+    };
+    let emission = obj.opt_vec3("emission")?.unwrap_or(DVec3::ZERO);
+    check_components(
+        emission,
+        &obj.at("emission"),
+        |x| x >= 0.0,
+        "is negative: radiance must be ≥ 0",
+    )?;
+
+    let geometry = match kind {
+        "quad" => quad(obj)?,
+        "polygon" => polygon(obj)?,
+        "triangles" => triangles(obj, emission != DVec3::ZERO, warnings)?,
+        "disk" => {
+            let normal = obj.vec3("normal")?;
+            if normal == DVec3::ZERO {
+                return Err(SceneError::new(obj.at("normal"), "zero-length normal"));
+            }
+            let (center, radius) = (obj.vec3("center")?, radius(obj)?);
+            GeometryDesc::Disk {
+                center,
+                normal: unit(normal),
+                radius,
+            }
+        }
+        "sphere" => GeometryDesc::Sphere {
+            center: obj.vec3("center")?,
+            radius: radius(obj)?,
+        },
+        _ => boxed(obj)?,
+    };
+    Ok(ShapeDesc {
+        geometry,
+        material,
+        emission,
+        json_path: obj.path.clone(),
+    })
+}
+
+fn material_index(obj: &Obj, materials: &[NamedMaterial]) -> Result<usize, SceneError> {
+    let name = obj.string("material")?;
+    materials
+        .iter()
+        .position(|m| m.name == name)
+        .ok_or_else(|| {
+            let known: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
+            let known = if known.is_empty() {
+                "no materials are defined".to_owned()
+            } else {
+                format!("defined: {}", known.join(", "))
+            };
+            SceneError::new(
+                obj.at("material"),
+                format!("unknown material `{name}` ({known})"),
+            )
+        })
+}
+
+/// `v / |v|`, but unchanged when `v` is already unit to rounding, so that normalising is
+/// idempotent and a saved and reloaded scene compares equal.
+fn unit(v: DVec3) -> DVec3 {
+    let len = v.length();
+    if (len - 1.0).abs() <= 4.0 * f64::EPSILON {
+        v
+    } else {
+        v / len
+    }
+}
+
+fn radius(obj: &Obj) -> Result<f64, SceneError> {
+    let r = obj.number("radius")?;
+    if r <= 0.0 {
+        return Err(SceneError::new(
+            obj.at("radius"),
+            format!("radius must be positive, found {r}"),
+        ));
+    }
+    Ok(r)
+}
+
+fn quad(obj: &Obj) -> Result<GeometryDesc, SceneError> {
+    let (corner, edge_u, edge_v) = (
+        obj.vec3("corner")?,
+        obj.vec3("edge_u")?,
+        obj.vec3("edge_v")?,
+    );
+    for (key, edge) in [("edge_u", edge_u), ("edge_v", edge_v)] {
+        if edge == DVec3::ZERO {
+            return Err(SceneError::new(
+                obj.at(key),
+                "zero-length edge: the quad has no area",
+            ));
+        }
+    }
+    if edge_u.cross(edge_v).length() <= DEGENERATE_TRIANGLE * edge_u.length() * edge_v.length() {
+        return Err(SceneError::new(
+            obj.at("edge_v"),
+            "`edge_v` is parallel to `edge_u`: the quad has no area",
+        ));
+    }
+    Ok(GeometryDesc::Quad {
+        corner,
+        edge_u,
+        edge_v,
+    })
+}
+
+fn boxed(obj: &Obj) -> Result<GeometryDesc, SceneError> {
+    let (min, max) = (obj.vec3("min")?, obj.vec3("max")?);
+    if let Some(axis) = (0..3).find(|&a| min[a] >= max[a]) {
+        let name = ["x", "y", "z"][axis];
+        return Err(SceneError::new(
+            obj.at("max"),
+            format!(
+                "max must exceed min on every axis, but on {name}: max {} ≤ min {}",
+                max[axis], min[axis]
+            ),
+        ));
+    }
+    let rotate_y_deg = obj.opt_number("rotate_y_deg")?.unwrap_or(0.0);
+    let translate = obj.opt_vec3("translate")?.unwrap_or(DVec3::ZERO);
+    Ok(GeometryDesc::Box {
+        min,
+        max,
+        rotate_y_deg,
+        translate,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::desc::GeometryDesc;
+    use crate::scene::parse::parse_scene_value;
+    use crate::scene::tests::{base, expect_err};
+    use glam::DVec3;
+    use serde_json::{Value, json};
+
+    /// The base scene with shape `i` replaced by `value`.
+    fn with(i: usize, value: Value) -> Value {
+        let mut s = base();
+        s["shapes"][i] = value;
+        s
+    }
+
+    #[test]
+    fn every_shape_type_parses() {
+        let d = parse_scene_value(&base()).unwrap();
+        assert!(d.warnings.is_empty(), "{:?}", d.warnings);
+        assert_eq!(d.shapes.len(), 6);
+        assert_eq!(d.shapes[5].json_path, "shapes[5]");
+        assert_eq!(d.shapes[0].material, Some(3)); // "white", the last in name order
+        assert!(
+            matches!(&d.shapes[1].geometry, GeometryDesc::Polygon { vertices } if vertices.len() == 6)
+        );
+        assert_eq!(d.shapes[1].emission, DVec3::splat(4.0));
+        let GeometryDesc::Disk { normal, .. } = d.shapes[3].geometry else {
+            panic!()
+        };
+        assert_eq!(normal, DVec3::new(0.0, -1.0, 0.0)); // normalised from [0, -2, 0]
+        let GeometryDesc::Box {
+            rotate_y_deg,
+            translate,
+            ..
+        } = d.shapes[5].geometry
+        else {
+            panic!()
+        };
+        assert_eq!((rotate_y_deg, translate), (0.0, DVec3::ZERO));
+    }
+
+    #[test]
+    fn structure_rules() {
+        let s = with(4, json!({"type": "cone", "center": [0, 0, 0], "radius": 1}));
+        expect_err(&s, "shapes[4].type", "unknown shape type `cone`");
+        let s = with(4, json!({"center": [0, 0, 0], "radius": 1}));
+        expect_err(&s, "shapes[4].type", "missing required key `type`");
+        let s = with(
+            4,
+            json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "normal": [0, 1, 0]}),
+        );
+        expect_err(&s, "shapes[4].normal", "unknown key `normal`");
+        let s = with(4, json!({"type": "sphere", "center": [0, 0, 0]}));
+        expect_err(&s, "shapes[4].radius", "missing required key `radius`");
+        let s = with(
+            4,
+            json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "comment": "x", "name": "s"}),
+        );
+        assert!(parse_scene_value(&s).is_ok());
+        let s = with(4, json!("sphere"));
+        expect_err(&s, "shapes[4]", "expected an object, found a string");
+    }
+
+    #[test]
+    fn unknown_material_name() {
+        let s = with(
+            4,
+            json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "gold"}),
+        );
+        expect_err(
+            &s,
+            "shapes[4].material",
+            "unknown material `gold` (defined: copper, metal",
+        );
+        let s = with(
+            4,
+            json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": 3}),
+        );
+        expect_err(&s, "shapes[4].material", "expected a string");
+    }
+
+    #[test]
+    fn negative_emission() {
+        let s = with(
+            4,
+            json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "emission": [1, 1, -1]}),
+        );
+        expect_err(&s, "shapes[4].emission[2]", "negative");
+    }
+
+    #[test]
+    fn radius_must_be_positive() {
+        for r in [0.0, -1.0] {
+            let s = with(
+                4,
+                json!({"type": "sphere", "center": [0, 0, 0], "radius": r}),
+            );
+            expect_err(&s, "shapes[4].radius", "radius must be positive");
+            let s = with(
+                3,
+                json!({"type": "disk", "center": [0, 0, 0], "normal": [0, 1, 0], "radius": r}),
+            );
+            expect_err(&s, "shapes[3].radius", "radius must be positive");
+        }
+    }
+
+    #[test]
+    fn zero_length_disk_normal() {
+        let s = with(
+            3,
+            json!({"type": "disk", "center": [0, 0, 0], "normal": [0, 0, 0], "radius": 1}),
+        );
+        expect_err(&s, "shapes[3].normal", "zero-length normal");
+    }
+
+    #[test]
+    fn degenerate_quad() {
+        let q = |u: [f64; 3], v: [f64; 3]| {
+            with(
+                0,
+                json!({"type": "quad", "corner": [0, 0, 0], "edge_u": u, "edge_v": v}),
+            )
+        };
+        expect_err(
+            &q([0., 0., 0.], [1., 0., 0.]),
+            "shapes[0].edge_u",
+            "zero-length edge",
+        );
+        expect_err(
+            &q([1., 0., 0.], [-3., 0., 0.]),
+            "shapes[0].edge_v",
+            "parallel",
+        );
+    }
+
+    #[test]
+    fn box_needs_min_below_max() {
+        let s = with(
+            5,
+            json!({"type": "box", "min": [0, 2, 0], "max": [1, 2, 1]}),
+        );
+        expect_err(&s, "shapes[5].max", "on y: max 2 ≤ min 2");
+        let s = with(
+            5,
+            json!({"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "rotate_y_deg": "10"}),
+        );
+        expect_err(&s, "shapes[5].rotate_y_deg", "expected a number");
+    }
+}
