@@ -1,1 +1,184 @@
-//! TODO
+//! The progressive CPU engine: renders whole sample passes over the image with rayon and
+//! accumulates them in f64.
+//!
+//! Each (pixel, sample index) pair draws from its own counter-based random stream and each pixel's
+//! samples are added in sample order by one thread, so the image for a given seed and sample count
+//! is bit-identical for any thread count.
+
+use crate::integrator::{Settings, radiance};
+use crate::rng::Rng;
+use crate::scene::Scene;
+use glam::Vec3;
+use rayon::prelude::*;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+
+/// Running sums for one pixel.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PixelSums {
+    /// Σ x over all samples.
+    pub sum: [f64; 3],
+    /// Σ x² (for the per-pixel variance).
+    pub sum_sq: [f64; 3],
+    /// Σ x over even-numbered samples (half-buffer A; B = sum − A).
+    pub sum_even: [f64; 3],
+}
+
+/// The accumulated image.
+#[derive(Clone, Debug)]
+pub struct Film {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Per-pixel sums, row-major, row 0 at the top.
+    pub pixels: Vec<PixelSums>,
+    /// Samples per pixel accumulated so far.
+    pub spp: u32,
+    /// Samples discarded because they were NaN or infinite (each counts as a zero sample).
+    pub nonfinite: u64,
+}
+
+impl Film {
+    /// An empty film.
+    pub fn new(width: u32, height: u32) -> Film {
+        Film { width, height, pixels: vec![PixelSums::default(); (width * height) as usize], spp: 0, nonfinite: 0 }
+    }
+
+    /// The running mean (the image).
+    pub fn mean(&self) -> Vec<Vec3> {
+        let inv = if self.spp > 0 { 1.0 / self.spp as f64 } else { 0.0 };
+        self.pixels.iter().map(|p| to_vec3(p.sum, inv)).collect()
+    }
+
+    /// Means of the even- and odd-numbered samples: two independent images whose difference
+    /// estimates the noise without a reference (`E[(A−B)²]/4` = variance of the full mean).
+    pub fn half_means(&self) -> (Vec<Vec3>, Vec<Vec3>) {
+        let n_even = self.spp.div_ceil(2) as f64;
+        let n_odd = (self.spp / 2) as f64;
+        let inv = |n: f64| if n > 0.0 { 1.0 / n } else { 0.0 };
+        let a = self.pixels.iter().map(|p| to_vec3(p.sum_even, inv(n_even))).collect();
+        let b = self
+            .pixels
+            .iter()
+            .map(|p| to_vec3(std::array::from_fn(|c| p.sum[c] - p.sum_even[c]), inv(n_odd)))
+            .collect();
+        (a, b)
+    }
+
+    /// Per-pixel, per-channel variance of the mean, from the sample variance (`s² / n`).
+    pub fn variance_of_mean(&self) -> Vec<[f64; 3]> {
+        let n = self.spp as f64;
+        self.pixels
+            .iter()
+            .map(|p| {
+                std::array::from_fn(|c| {
+                    if n < 2.0 {
+                        return f64::INFINITY;
+                    }
+                    let mean = p.sum[c] / n;
+                    let s2 = ((p.sum_sq[c] - n * mean * mean) / (n - 1.0)).max(0.0);
+                    s2 / n
+                })
+            })
+            .collect()
+    }
+}
+
+fn to_vec3(s: [f64; 3], scale: f64) -> Vec3 {
+    Vec3::new((s[0] * scale) as f32, (s[1] * scale) as f32, (s[2] * scale) as f32)
+}
+
+/// A progressive render of one scene with one set of settings.
+pub struct Progressive {
+    scene: Arc<Scene>,
+    settings: Settings,
+    seed: u32,
+    film: Film,
+    cancel: Arc<AtomicBool>,
+}
+
+impl Progressive {
+    /// A new, empty render.
+    pub fn new(scene: Arc<Scene>, settings: Settings, seed: u32) -> Progressive {
+        let film = Film::new(scene.camera.width, scene.camera.height);
+        Progressive { scene, settings, seed, film, cancel: Arc::new(AtomicBool::new(false)) }
+    }
+
+    /// The accumulated image.
+    pub fn film(&self) -> &Film {
+        &self.film
+    }
+
+    /// The scene.
+    pub fn scene(&self) -> &Arc<Scene> {
+        &self.scene
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// A flag that, once set, makes the running pass stop early (its partial results are then
+    /// dropped: the film keeps only complete passes). Cleared by [`Progressive::restart`].
+    pub fn cancel_flag(&self) -> Arc<AtomicBool> {
+        self.cancel.clone()
+    }
+
+    /// Drops the accumulation and starts over with new settings (same scene and seed).
+    pub fn restart(&mut self, settings: Settings) {
+        self.settings = settings;
+        self.film = Film::new(self.scene.camera.width, self.scene.camera.height);
+        self.cancel.store(false, Ordering::Relaxed);
+    }
+
+    /// Renders `n` more samples per pixel. Returns `false` if cancelled (nothing was added).
+    pub fn render_pass(&mut self, n: u32) -> bool {
+        let width = self.film.width as usize;
+        let first = self.film.spp;
+        let scene = &*self.scene;
+        let settings = &self.settings;
+        let seed = self.seed;
+        let cancel = &*self.cancel;
+        let nonfinite = AtomicU64::new(0);
+        let mut pixels = self.film.pixels.clone();
+        pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
+            if cancel.load(Ordering::Relaxed) {
+                return;
+            }
+            let mut bad = 0u64;
+            for (x, px) in row.iter_mut().enumerate() {
+                let pixel_index = (y * width + x) as u32;
+                for s in first..first + n {
+                    let mut rng = Rng::new(seed, pixel_index, s);
+                    let jitter = rng.next_2d();
+                    let ray = scene.camera.ray(x as f32 + jitter.x, y as f32 + jitter.y);
+                    let l = radiance(scene, ray, &mut rng, settings);
+                    if !l.is_finite() {
+                        bad += 1;
+                        continue;
+                    }
+                    let l = [l.x as f64, l.y as f64, l.z as f64];
+                    for c in 0..3 {
+                        px.sum[c] += l[c];
+                        px.sum_sq[c] += l[c] * l[c];
+                        if s % 2 == 0 {
+                            px.sum_even[c] += l[c];
+                        }
+                    }
+                }
+            }
+            if bad > 0 {
+                nonfinite.fetch_add(bad, Ordering::Relaxed);
+            }
+        });
+        if cancel.load(Ordering::Relaxed) {
+            return false;
+        }
+        self.film.pixels = pixels;
+        self.film.spp += n;
+        self.film.nonfinite += nonfinite.into_inner();
+        true
+    }
+}

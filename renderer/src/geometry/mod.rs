@@ -1,2 +1,13 @@
-//! Geometry.
+//! Geometry: rays, the shapes that can be hit, robust ray offsets, and the BVH.
+
+pub mod bvh;
+pub mod disk;
 pub mod polygon;
+pub mod primitive;
+pub mod ray;
+pub mod sphere;
+pub mod triangle;
+
+pub use bvh::Accel;
+pub use primitive::{Primitive, Shape};
+pub use ray::{Ray, SurfaceHit};

@@ -1,1 +1,70 @@
-//! Integrators.
+//! Integrators: the unidirectional path tracer and the four ways it can estimate direct light.
+
+pub mod mis;
+pub mod path;
+
+pub use mis::Heuristic;
+pub use path::radiance;
+
+use crate::lights::LightSampling;
+
+/// How each path vertex estimates the light arriving directly from emitters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Strategy {
+    /// Next-event estimation only: BSDF-sampled rays that hit an emitter add nothing, except after
+    /// a delta bounce and for the camera ray.
+    Light,
+    /// BSDF sampling only: emission counts when a BSDF-sampled ray hits it.
+    Bsdf,
+    /// Veach's one-sample model: at each vertex the direct-light direction is drawn from the mixture
+    /// `w·p_light + (1−w)·p_bsdf` (light sampling with probability `w`, else the BSDF sample) and
+    /// divided by that mixture pdf. The path always continues by BSDF sampling, so indirect light
+    /// stays unbiased for every `w` in `[0, 1]`; `w = 0` equals `Bsdf` and `w = 1` equals `Light`.
+    /// (The original program continued the path along the mixture direction, which loses all
+    /// indirect light at `w = 1`.)
+    Mixture {
+        /// Probability `w` of light sampling.
+        light_weight: f32,
+    },
+    /// Next-event estimation plus BSDF sampling, weighted by a multiple-importance heuristic.
+    Mis {
+        /// Balance or power heuristic.
+        heuristic: Heuristic,
+    },
+}
+
+impl Strategy {
+    /// The strategy's name as the CLI spells it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Strategy::Light => "light",
+            Strategy::Bsdf => "bsdf",
+            Strategy::Mixture { .. } => "mixture",
+            Strategy::Mis { .. } => "mis",
+        }
+    }
+}
+
+/// Everything that controls the estimator besides the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    /// Direct-lighting strategy.
+    pub strategy: Strategy,
+    /// How lights are sampled.
+    pub light_sampling: LightSampling,
+    /// Overrides the scene's `max_depth` (`-1` = unlimited) when set.
+    pub max_depth: Option<i32>,
+    /// Path length (in segments) from which Russian roulette may end paths.
+    pub rr_depth: u32,
+}
+
+impl Default for Settings {
+    fn default() -> Settings {
+        Settings {
+            strategy: Strategy::Mis { heuristic: Heuristic::Power },
+            light_sampling: LightSampling::SolidAngle,
+            max_depth: None,
+            rr_depth: 5,
+        }
+    }
+}

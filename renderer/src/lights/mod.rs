@@ -1,1 +1,151 @@
-//! Lights.
+//! Lights: every emitting shape is a one-sided area light; a constant background is an environment
+//! light. Each light samples a point (by area, or by solid angle where that is better) and reports
+//! the solid-angle pdf of any direction, so every strategy and MIS can weigh the same events.
+
+pub mod background;
+pub mod disk;
+pub mod light_sampler;
+pub mod polygon;
+pub mod quad;
+pub mod sphere;
+pub mod triangle;
+
+pub use background::BackgroundLight;
+pub use disk::DiskLight;
+pub use light_sampler::LightSampler;
+pub use polygon::PolygonLight;
+pub use quad::QuadLight;
+pub use sphere::SphereLight;
+pub use triangle::TriangleLight;
+
+use crate::geometry::ray::gamma;
+use glam::{Vec2, Vec3};
+
+/// How lights pick the point to sample.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum LightSampling {
+    /// Uniform by area, pdf converted to solid angle (`d² / (|cos| · A)`).
+    Area,
+    /// Uniform by solid angle where a shape supports it (spherical triangles and rectangles, cones
+    /// for spheres), by area elsewhere and where the solid angle is too small or too large for the
+    /// spherical warps to be accurate.
+    #[default]
+    SolidAngle,
+}
+
+/// A point sampled on a light, as seen from a reference point.
+#[derive(Clone, Copy, Debug)]
+pub struct LightSample {
+    /// Point on the light (meaningless for the background).
+    pub p: Vec3,
+    /// Error bound of `p`.
+    pub p_error: Vec3,
+    /// Unit normal of the light at `p` (towards its emitting side).
+    pub n: Vec3,
+    /// Unit direction from the reference point to `p`.
+    pub wi: Vec3,
+    /// Solid-angle pdf of `wi` (light selection not included).
+    pub pdf: f32,
+    /// Radiance arriving along `-wi`.
+    pub le: Vec3,
+    /// Whether this is the background (shadow ray to infinity).
+    pub infinite: bool,
+}
+
+/// Every kind of light. The variant order is mirrored by the GPU backend's `switch`.
+#[derive(Clone, Debug)]
+pub enum Light {
+    /// An emitting triangle (from `triangles` shapes).
+    Triangle(TriangleLight),
+    /// An emitting planar polygon, convex or not.
+    Polygon(PolygonLight),
+    /// An emitting parallelogram.
+    Quad(QuadLight),
+    /// An emitting disk.
+    Disk(DiskLight),
+    /// An emitting sphere (outwards).
+    Sphere(SphereLight),
+    /// The constant background.
+    Background(BackgroundLight),
+}
+
+impl Light {
+    /// Samples a direction towards the light from `p`; `None` when it contributes nothing from `p`
+    /// (behind a one-sided emitter, a degenerate configuration).
+    pub fn sample(&self, p: Vec3, u: Vec2, method: LightSampling) -> Option<LightSample> {
+        let s = match self {
+            Light::Triangle(l) => l.sample(p, u, method),
+            Light::Polygon(l) => l.sample(p, u, method),
+            Light::Quad(l) => l.sample(p, u, method),
+            Light::Disk(l) => l.sample(p, u),
+            Light::Sphere(l) => l.sample(p, u, method),
+            Light::Background(l) => l.sample(u),
+        }?;
+        (s.pdf > 0.0 && s.pdf.is_finite() && s.le.cmpgt(Vec3::ZERO).any()).then_some(s)
+    }
+
+    /// Solid-angle pdf with which [`Light::sample`] from `p` yields direction `wi` hitting the light
+    /// at `y` with normal `ny` (`y`, `ny` unused for the background).
+    pub fn pdf(&self, p: Vec3, wi: Vec3, y: Vec3, ny: Vec3, method: LightSampling) -> f32 {
+        match self {
+            Light::Triangle(l) => l.pdf(p, wi, y, ny, method),
+            Light::Polygon(l) => l.pdf(p, wi, y, ny, method),
+            Light::Quad(l) => l.pdf(p, wi, y, ny, method),
+            Light::Disk(l) => area_to_solid_angle(1.0 / l.disk.area(), p, y, ny),
+            Light::Sphere(l) => l.pdf(p, y, ny, method),
+            Light::Background(_) => crate::sampling::uniform_sphere_pdf(),
+        }
+    }
+
+    /// Emitted power (luminance), used to pick lights in proportion to it.
+    pub fn power(&self) -> f32 {
+        let area_power = |area: f32, le: Vec3| std::f32::consts::PI * area * crate::math::luminance(le);
+        match self {
+            Light::Triangle(l) => area_power(l.area, l.le),
+            Light::Polygon(l) => area_power(l.area, l.le),
+            Light::Quad(l) => area_power(l.area, l.le),
+            Light::Disk(l) => area_power(l.disk.area(), l.le),
+            Light::Sphere(l) => area_power(l.sphere.area(), l.le),
+            Light::Background(l) => l.power(),
+        }
+    }
+
+    /// Radiance the light emits along `-w_in` at a point with normal `n` (one-sided).
+    pub fn radiance(&self, n: Vec3, w_in: Vec3) -> Vec3 {
+        let le = match self {
+            Light::Triangle(l) => l.le,
+            Light::Polygon(l) => l.le,
+            Light::Quad(l) => l.le,
+            Light::Disk(l) => l.le,
+            Light::Sphere(l) => l.le,
+            Light::Background(l) => return l.le,
+        };
+        if n.dot(w_in) < 0.0 { le } else { Vec3::ZERO }
+    }
+}
+
+/// Converts an area density at `y` (normal `ny`) to a solid-angle density seen from `p`:
+/// `pdf_A · d² / |cos θ_y|`. Zero where the conversion is singular (grazing or coincident points),
+/// which only happens on sets of measure zero.
+#[inline]
+pub fn area_to_solid_angle(pdf_area: f32, p: Vec3, y: Vec3, ny: Vec3) -> f32 {
+    let d = y - p;
+    let dist2 = d.length_squared();
+    let cos = ny.dot(d).abs() / dist2.sqrt();
+    let pdf = pdf_area * dist2 / cos;
+    if pdf.is_finite() && dist2 > 0.0 { pdf } else { 0.0 }
+}
+
+/// Builds a light sample for a point `y` (normal `ny`) chosen with area density `pdf_area`.
+#[inline]
+pub(crate) fn area_sample(p: Vec3, y: Vec3, ny: Vec3, pdf_area: f32, le: Vec3) -> Option<LightSample> {
+    let d = y - p;
+    let dist = d.length();
+    let wi = d / dist;
+    // One-sided: the light must face p.
+    if !(ny.dot(wi) < 0.0) {
+        return None;
+    }
+    let pdf = area_to_solid_angle(pdf_area, p, y, ny);
+    Some(LightSample { p: y, p_error: gamma(6) * y.abs(), n: ny, wi, pdf, le, infinite: false })
+}

@@ -14,7 +14,7 @@ mod parse_materials;
 mod parse_mesh;
 mod parse_shapes;
 mod walk;
-// pub mod build; (enabled once lights compile)
+pub mod build;
 
 #[cfg(test)]
 mod tests;
@@ -22,6 +22,6 @@ mod tests;
 pub use desc::{
     CameraDesc, FresnelDesc, GeometryDesc, MaterialDesc, NamedMaterial, SceneDesc, ShapeDesc,
 };
-// pub use build::Scene;
+pub use build::Scene;
 pub use error::SceneError;
 pub use parse::{load_scene, parse_scene, parse_scene_value};

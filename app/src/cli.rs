@@ -1,0 +1,141 @@
+//! Command-line arguments.
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use lumis::integrator::{Heuristic, Settings, Strategy};
+use lumis::lights::LightSampling;
+use std::path::PathBuf;
+
+/// lumis: an interactive, progressive, physically based path tracer.
+#[derive(Parser, Debug)]
+#[command(name = "lumis", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Subcommands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render a scene headless to an image file.
+    Render(RenderArgs),
+    /// Print the relMSE and RMSE of an image against a reference.
+    Compare(CompareArgs),
+}
+
+/// Direct-lighting strategy names.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StrategyArg {
+    /// Next-event estimation only.
+    Light,
+    /// BSDF sampling only.
+    Bsdf,
+    /// One-sample mixture of light and BSDF sampling with weight --mix-weight.
+    Mixture,
+    /// Light + BSDF sampling with multiple importance sampling.
+    Mis,
+}
+
+/// MIS heuristics.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HeuristicArg {
+    /// Balance heuristic.
+    Balance,
+    /// Power heuristic (exponent 2).
+    Power,
+}
+
+/// Light sampling methods.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightSamplingArg {
+    /// Uniform by area.
+    Area,
+    /// Uniform by solid angle where the shape allows it.
+    SolidAngle,
+}
+
+/// Estimator options shared by every command that renders.
+#[derive(Args, Debug, Clone)]
+pub struct EstimatorArgs {
+    /// Direct-lighting strategy.
+    #[arg(long, value_enum, default_value = "mis")]
+    pub strategy: StrategyArg,
+    /// Probability of light sampling in the `mixture` strategy, in [0, 1].
+    #[arg(long, default_value_t = 0.5)]
+    pub mix_weight: f32,
+    /// MIS heuristic for the `mis` strategy.
+    #[arg(long, value_enum, default_value = "power")]
+    pub heuristic: HeuristicArg,
+    /// How points on lights are chosen.
+    #[arg(long, value_enum, default_value = "solid-angle")]
+    pub light_sampling: LightSamplingArg,
+    /// Override the scene's max_depth (-1 = unlimited).
+    #[arg(long, allow_negative_numbers = true)]
+    pub max_depth: Option<i32>,
+}
+
+impl EstimatorArgs {
+    /// The renderer settings these options describe.
+    pub fn settings(&self) -> anyhow::Result<Settings> {
+        if !(0.0..=1.0).contains(&self.mix_weight) {
+            anyhow::bail!("--mix-weight must be in [0, 1], got {}", self.mix_weight);
+        }
+        if let Some(d) = self.max_depth
+            && (d == 0 || d < -1)
+        {
+            anyhow::bail!("--max-depth must be -1 or at least 1, got {d}");
+        }
+        let heuristic = match self.heuristic {
+            HeuristicArg::Balance => Heuristic::Balance,
+            HeuristicArg::Power => Heuristic::Power,
+        };
+        let strategy = match self.strategy {
+            StrategyArg::Light => Strategy::Light,
+            StrategyArg::Bsdf => Strategy::Bsdf,
+            StrategyArg::Mixture => Strategy::Mixture { light_weight: self.mix_weight },
+            StrategyArg::Mis => Strategy::Mis { heuristic },
+        };
+        let light_sampling = match self.light_sampling {
+            LightSamplingArg::Area => LightSampling::Area,
+            LightSamplingArg::SolidAngle => LightSampling::SolidAngle,
+        };
+        Ok(Settings { strategy, light_sampling, max_depth: self.max_depth, ..Settings::default() })
+    }
+}
+
+/// `lumis render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Scene file (JSON).
+    pub scene: PathBuf,
+    /// Samples per pixel.
+    #[arg(long)]
+    pub spp: u32,
+    /// Random seed.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u32,
+    /// Estimator options.
+    #[command(flatten)]
+    pub estimator: EstimatorArgs,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Stop after this many seconds even if --spp is not reached.
+    #[arg(long)]
+    pub time_limit: Option<f64>,
+    /// Exposure in stops for PNG output.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// Output image: .exr or .pfm (linear float RGB) or .png (sRGB).
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+}
+
+/// `lumis compare`.
+#[derive(Args, Debug)]
+pub struct CompareArgs {
+    /// Image to judge (EXR or PFM).
+    pub image: PathBuf,
+    /// Reference image (EXR or PFM).
+    pub reference: PathBuf,
+}

@@ -1,0 +1,90 @@
+//! `lumis render` and `lumis compare`.
+
+use crate::cli::{CompareArgs, RenderArgs};
+use anyhow::{Context, bail};
+use indicatif::{ProgressBar, ProgressStyle};
+use lumis::engine::Progressive;
+use lumis::image_io::Image;
+use lumis::metrics::{relmse, rmse};
+use lumis::scene::Scene;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Renders a scene headless and writes the image.
+pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
+    let settings = args.estimator.settings()?;
+    if args.spp == 0 {
+        bail!("--spp must be at least 1");
+    }
+    check_output_extension(&args.output)?;
+    let scene = Arc::new(Scene::load(&args.scene)?);
+    let threads = args.threads.unwrap_or(0);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().context("starting worker threads")?;
+    let mut render = Progressive::new(scene, settings, args.seed);
+    let bar = ProgressBar::new(args.spp as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} spp  {elapsed_precise} (eta {eta})")
+            .expect("valid progress template"),
+    );
+    let start = Instant::now();
+    let mut pass = 1u32;
+    while render.film().spp < args.spp {
+        if let Some(limit) = args.time_limit
+            && start.elapsed().as_secs_f64() >= limit
+        {
+            break;
+        }
+        let n = pass.min(args.spp - render.film().spp);
+        let t = Instant::now();
+        pool.install(|| render.render_pass(n));
+        bar.set_position(render.film().spp as u64);
+        // Aim for passes of about a quarter second: responsive to the time limit, cheap to schedule.
+        let dt = t.elapsed().as_secs_f64().max(1e-6);
+        pass = ((n as f64 * 0.25 / dt).clamp(1.0, 4096.0)) as u32;
+        if let Some(limit) = args.time_limit {
+            let left = limit - start.elapsed().as_secs_f64();
+            pass = pass.min(((left / dt) * n as f64).max(1.0) as u32);
+        }
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let film = render.film();
+    let img = Image { width: film.width, height: film.height, data: film.mean() };
+    img.write(&args.output, args.exposure)?;
+    let samples = film.spp as f64 * film.width as f64 * film.height as f64;
+    println!(
+        "spp={} seconds={:.3} samples_per_second={:.4e} nonfinite={}",
+        film.spp,
+        seconds,
+        samples / seconds,
+        film.nonfinite
+    );
+    Ok(())
+}
+
+fn check_output_extension(path: &std::path::Path) -> anyhow::Result<()> {
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    if !matches!(ext.as_str(), "exr" | "pfm" | "png") {
+        bail!("{}: output must end in .exr, .pfm or .png", path.display());
+    }
+    Ok(())
+}
+
+/// Prints the relMSE and RMSE of an image against a reference.
+pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
+    let img = Image::read(&args.image)?;
+    let reference = Image::read(&args.reference)?;
+    if (img.width, img.height) != (reference.width, reference.height) {
+        bail!(
+            "{} is {}x{} but {} is {}x{}",
+            args.image.display(),
+            img.width,
+            img.height,
+            args.reference.display(),
+            reference.width,
+            reference.height
+        );
+    }
+    println!("relmse={:.6e} rmse={:.6e}", relmse(&img.data, &reference.data), rmse(&img.data, &reference.data));
+    Ok(())
+}

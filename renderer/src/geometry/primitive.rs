@@ -1,0 +1,93 @@
+//! A primitive: one hittable shape with its material and, if it emits, its light.
+
+use super::disk::Disk;
+use super::ray::{Ray, SurfaceHit};
+use super::sphere::Sphere;
+use super::triangle::{intersect_triangle, triangle_normal, triangle_point};
+use glam::Vec3;
+
+/// Marks "no light" / "no material".
+pub const NONE: u32 = u32::MAX;
+
+/// The shapes the BVH holds. Quads, polygons and boxes are triangulated; disks and spheres stay
+/// analytic.
+#[derive(Clone, Copy, Debug)]
+pub enum Shape {
+    /// A flat triangle with its right-hand-rule normal.
+    Triangle {
+        /// Vertices.
+        v: [Vec3; 3],
+        /// Unit normal.
+        n: Vec3,
+    },
+    /// A disk.
+    Disk(Disk),
+    /// A sphere.
+    Sphere(Sphere),
+}
+
+impl Shape {
+    /// A triangle shape, or `None` if it is degenerate.
+    pub fn triangle(v: [Vec3; 3]) -> Option<Shape> {
+        triangle_normal(&v).map(|n| Shape::Triangle { v, n })
+    }
+
+    /// Axis-aligned bounds.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        match self {
+            Shape::Triangle { v, .. } => (v[0].min(v[1]).min(v[2]), v[0].max(v[1]).max(v[2])),
+            Shape::Disk(d) => d.bounds(),
+            Shape::Sphere(s) => (s.center - s.radius, s.center + s.radius),
+        }
+    }
+
+    /// Ray parameter of the nearest hit in `(0, ray.t_max)`.
+    #[inline]
+    pub fn intersect_t(&self, ray: &Ray) -> Option<f32> {
+        match self {
+            Shape::Triangle { v, .. } => intersect_triangle(ray, v).map(|h| h.t),
+            Shape::Disk(d) => d.intersect(ray),
+            Shape::Sphere(s) => s.intersect(ray),
+        }
+    }
+
+    /// Full hit record for a hit at parameter `t` (found by [`Shape::intersect_t`]).
+    pub fn surface_hit(&self, ray: &Ray, t: f32, prim: u32) -> SurfaceHit {
+        match self {
+            Shape::Triangle { v, n } => {
+                // Recompute barycentrics; this runs once per closest hit, not per candidate.
+                let b = intersect_triangle(&Ray { t_max: f32::INFINITY, ..*ray }, v)
+                    .map(|h| h.b)
+                    .unwrap_or([1.0 / 3.0; 3]);
+                let (p, p_error) = triangle_point(v, b);
+                SurfaceHit { t, p, p_error, n: *n, prim }
+            }
+            Shape::Disk(d) => {
+                let (p, p_error) = d.surface_point(ray, t);
+                SurfaceHit { t, p, p_error, n: d.n, prim }
+            }
+            Shape::Sphere(s) => {
+                let (p, p_error, n) = s.surface_point(ray, t);
+                SurfaceHit { t, p, p_error, n, prim }
+            }
+        }
+    }
+}
+
+/// A shape with its material index and light index ([`NONE`] if it does not emit).
+#[derive(Clone, Copy, Debug)]
+pub struct Primitive {
+    /// Geometry.
+    pub shape: Shape,
+    /// Index into the scene's materials.
+    pub material: u32,
+    /// Index into the scene's lights, or [`NONE`].
+    pub light: u32,
+}
+
+impl obvhs::Boundable for Primitive {
+    fn aabb(&self) -> obvhs::aabb::Aabb {
+        let (lo, hi) = self.shape.bounds();
+        obvhs::aabb::Aabb::new(lo.into(), hi.into())
+    }
+}

@@ -1,0 +1,212 @@
+//! The unidirectional path tracer. One function, one loop: it follows a camera path, gathers
+//! emission seen along it, and estimates direct light at each vertex with the chosen [`Strategy`].
+//!
+//! Path length follows Mitsuba's `max_depth`: a path of `k` segments ends at its `k`-th vertex, so
+//! `1` keeps only emission seen by the camera and `2` adds direct lighting.
+
+use super::{Heuristic, Settings, Strategy};
+use crate::geometry::primitive::NONE;
+use crate::geometry::ray::{Ray, spawn_ray, spawn_ray_to};
+use crate::math::{Frame, max_component};
+use crate::rng::Rng;
+use crate::scene::Scene;
+use glam::Vec3;
+
+/// How emission found by the next BSDF-sampled ray is weighted.
+#[derive(Clone, Copy, Debug)]
+enum EmissionWeight {
+    /// Full weight: camera rays, delta bounces, BSDF-only sampling.
+    One,
+    /// Zero: light sampling already accounted for this light.
+    Zero,
+    /// MIS weight of the BSDF sample with this pdf against light sampling.
+    Mis { p_bsdf: f32, heuristic: Heuristic },
+    /// One-sample mixture, BSDF branch: `p_bsdf / (w·p_light + (1−w)·p_bsdf)`.
+    Mixture { p_bsdf: f32, light_weight: f32 },
+}
+
+/// Radiance arriving at the camera along `ray` (one sample of the estimator).
+pub fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng, settings: &Settings) -> Vec3 {
+    let max_depth = settings.max_depth.unwrap_or(scene.max_depth);
+    let mut l = Vec3::ZERO;
+    let mut beta = Vec3::ONE;
+    let mut weight_rule = EmissionWeight::One;
+    let mut prev_p = ray.o;
+    let mut depth: i32 = 0;
+    loop {
+        depth += 1;
+        let Some(hit) = scene.accel.intersect(&ray) else {
+            if let Some(bg) = scene.background_light {
+                let light = &scene.lights[bg as usize];
+                let w = emission_weight(scene, settings, weight_rule, bg, || {
+                    light.pdf(prev_p, ray.d, Vec3::ZERO, Vec3::ZERO, settings.light_sampling)
+                });
+                l += beta * light.radiance(Vec3::ZERO, ray.d) * w;
+            }
+            break;
+        };
+        let prim = &scene.accel.primitives()[hit.prim as usize];
+        if prim.light != NONE {
+            let light = &scene.lights[prim.light as usize];
+            let le = light.radiance(hit.n, ray.d);
+            if le != Vec3::ZERO {
+                let w = emission_weight(scene, settings, weight_rule, prim.light, || {
+                    light.pdf(prev_p, ray.d.normalize(), hit.p, hit.n, settings.light_sampling)
+                });
+                l += beta * le * w;
+            }
+        }
+        if max_depth >= 0 && depth >= max_depth {
+            break;
+        }
+        let material = &scene.materials[prim.material as usize];
+        let wo_world = -ray.d.normalize();
+        let mut n = hit.n;
+        if n.dot(wo_world) < 0.0 {
+            if !scene.two_sided[prim.material as usize] {
+                break;
+            }
+            n = -n;
+        }
+        let frame = Frame::from_normal(n);
+        let wo = frame.to_local(wo_world);
+        if wo.z <= 0.0 {
+            break;
+        }
+
+        // Direct light by light sampling, and the rule for emission the BSDF sample will find.
+        let smooth = material.has_smooth_part() && scene.light_sampler.is_some();
+        let mut do_nee = false;
+        let mut nee_mixture_weight = None;
+        weight_rule = if !smooth {
+            EmissionWeight::One
+        } else {
+            match settings.strategy {
+                Strategy::Light => {
+                    do_nee = true;
+                    EmissionWeight::Zero
+                }
+                Strategy::Bsdf => EmissionWeight::One,
+                Strategy::Mis { heuristic } => {
+                    do_nee = true;
+                    EmissionWeight::Mis { p_bsdf: 0.0, heuristic }
+                }
+                Strategy::Mixture { light_weight } => {
+                    if rng.next_f32() < light_weight {
+                        do_nee = true;
+                        nee_mixture_weight = Some(light_weight);
+                        EmissionWeight::Zero
+                    } else {
+                        EmissionWeight::Mixture { p_bsdf: 0.0, light_weight }
+                    }
+                }
+            }
+        };
+        if do_nee {
+            let u_light = rng.next_f32();
+            let u = rng.next_2d();
+            l += beta * direct_light(scene, settings, &hit, n, &frame, wo, material, u_light, u, nee_mixture_weight);
+        }
+
+        // Continue the path by BSDF sampling.
+        let Some(bs) = material.sample(wo, rng.next_f32(), rng.next_2d()) else { break };
+        if bs.delta {
+            weight_rule = EmissionWeight::One;
+        } else {
+            match &mut weight_rule {
+                EmissionWeight::Mis { p_bsdf, .. } | EmissionWeight::Mixture { p_bsdf, .. } => *p_bsdf = bs.pdf,
+                _ => {}
+            }
+        }
+        beta *= bs.weight;
+        if beta == Vec3::ZERO {
+            break;
+        }
+        let wi = frame.to_world(bs.wi);
+        prev_p = hit.p;
+        ray = spawn_ray(hit.p, hit.p_error, n, wi);
+
+        if depth as u32 >= settings.rr_depth {
+            let q = max_component(beta).min(0.95);
+            if rng.next_f32() >= q {
+                break;
+            }
+            beta /= q;
+        }
+    }
+    l
+}
+
+/// Weight of emission from light `light` found by a BSDF-sampled ray; `light_pdf` is the
+/// solid-angle pdf with which light sampling at the previous vertex would have chosen the same
+/// direction (light selection not included).
+#[inline]
+fn emission_weight(
+    scene: &Scene,
+    settings: &Settings,
+    rule: EmissionWeight,
+    light: u32,
+    light_pdf: impl FnOnce() -> f32,
+) -> f32 {
+    let pmf = || scene.light_sampler.as_ref().map_or(0.0, |s| s.pmf(light as usize));
+    let _ = settings;
+    match rule {
+        EmissionWeight::One => 1.0,
+        EmissionWeight::Zero => 0.0,
+        EmissionWeight::Mis { p_bsdf, heuristic } => heuristic.weight(p_bsdf, pmf() * light_pdf()),
+        EmissionWeight::Mixture { p_bsdf, light_weight } => {
+            let p_light = pmf() * light_pdf();
+            let w = p_bsdf / (light_weight * p_light + (1.0 - light_weight) * p_bsdf);
+            if w.is_finite() { w } else { 0.0 }
+        }
+    }
+}
+
+/// Next-event estimation: picks a light by power, samples it, traces a shadow ray, and returns the
+/// contribution (without the path throughput). `mixture` holds the mixture's light probability
+/// when this is the light branch of the one-sample mixture.
+#[allow(clippy::too_many_arguments)]
+fn direct_light(
+    scene: &Scene,
+    settings: &Settings,
+    hit: &crate::geometry::SurfaceHit,
+    n: Vec3,
+    frame: &Frame,
+    wo: Vec3,
+    material: &crate::materials::Material,
+    u_light: f32,
+    u: glam::Vec2,
+    mixture: Option<f32>,
+) -> Vec3 {
+    let Some(sampler) = &scene.light_sampler else { return Vec3::ZERO };
+    let (index, pmf) = sampler.sample(u_light);
+    let light = &scene.lights[index];
+    let Some(ls) = light.sample(hit.p, u, settings.light_sampling) else { return Vec3::ZERO };
+    let wi = frame.to_local(ls.wi);
+    if wi.z <= 0.0 {
+        return Vec3::ZERO;
+    }
+    let f = material.eval(wo, wi);
+    if f == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    let shadow = if ls.infinite {
+        spawn_ray(hit.p, hit.p_error, n, ls.wi)
+    } else {
+        spawn_ray_to(hit.p, hit.p_error, n, ls.p, ls.p_error, ls.n)
+    };
+    if scene.accel.occluded(&shadow) {
+        return Vec3::ZERO;
+    }
+    let p_light = pmf * ls.pdf;
+    let weight = match (settings.strategy, mixture) {
+        (_, Some(w)) => {
+            // One-sample estimator: divide by the mixture pdf (selection probability included).
+            let p_mix = w * p_light + (1.0 - w) * material.pdf(wo, wi);
+            return f * ls.le / p_mix;
+        }
+        (Strategy::Mis { heuristic }, None) => heuristic.weight(p_light, material.pdf(wo, wi)),
+        _ => 1.0,
+    };
+    f * ls.le * (weight / p_light)
+}

@@ -1,0 +1,79 @@
+//! Emitting spheres (outwards): area sampling of the whole surface, or uniform sampling of the cone
+//! of directions the sphere subtends (pbrt-v4's construction, with a Taylor expansion for tiny cones).
+
+use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
+use crate::geometry::ray::gamma;
+use crate::geometry::sphere::Sphere;
+use crate::math::{Frame, safe_sqrt};
+use crate::sampling::sample_uniform_sphere;
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+
+/// Below sin²θ_max = sin²(1.5°), `1 − cos θ_max` is computed as `sin²θ_max / 2` to keep precision.
+const SMALL_CONE_SIN2: f32 = 0.000_685_23;
+
+/// A sphere that emits outwards.
+#[derive(Clone, Debug)]
+pub struct SphereLight {
+    /// The sphere.
+    pub sphere: Sphere,
+    /// Emitted radiance.
+    pub le: Vec3,
+}
+
+impl SphereLight {
+    /// `(sin²θ_max, 1 − cos θ_max)` of the cone from `p`, or `None` if `p` is inside the sphere
+    /// (an outward emitter sends nothing inwards).
+    fn cone(&self, p: Vec3) -> Option<(f32, f32)> {
+        let d2 = (p - self.sphere.center).length_squared();
+        let r2 = self.sphere.radius * self.sphere.radius;
+        if d2 <= r2 {
+            return None;
+        }
+        let sin2 = r2 / d2;
+        let one_minus_cos = if sin2 < SMALL_CONE_SIN2 { 0.5 * sin2 } else { 1.0 - safe_sqrt(1.0 - sin2) };
+        Some((sin2, one_minus_cos))
+    }
+
+    /// Samples a point as seen from `p`.
+    pub fn sample(&self, p: Vec3, u: Vec2, method: LightSampling) -> Option<LightSample> {
+        let (sin2_max, one_minus_cos_max) = self.cone(p)?;
+        let c = self.sphere.center;
+        let r = self.sphere.radius;
+        if method == LightSampling::Area {
+            let n = sample_uniform_sphere(u);
+            return area_sample(p, c + r * n, n, 1.0 / self.sphere.area(), self.le);
+        }
+        // cos θ uniform in [cos θ_max, 1]; for tiny cones sample sin²θ directly.
+        let (sin2, cos) = if sin2_max < SMALL_CONE_SIN2 {
+            let s2 = sin2_max * u.x;
+            (s2, safe_sqrt(1.0 - s2))
+        } else {
+            let cos = 1.0 - u.x * one_minus_cos_max;
+            ((1.0 - cos * cos).max(0.0), cos)
+        };
+        // Angle α at the centre between the axis to p and the sampled surface point.
+        let sin_max = sin2_max.sqrt();
+        let cos_alpha = sin2 / sin_max + cos * safe_sqrt(1.0 - sin2 / sin2_max);
+        let sin_alpha = safe_sqrt(1.0 - cos_alpha * cos_alpha);
+        let phi = 2.0 * PI * u.y;
+        let frame = Frame::from_normal((p - c).normalize());
+        let n = frame.to_world(Vec3::new(sin_alpha * phi.cos(), sin_alpha * phi.sin(), cos_alpha));
+        let y = c + r * n;
+        let wi = (y - p).normalize();
+        if !(n.dot(wi) < 0.0) {
+            return None;
+        }
+        let pdf = 1.0 / (2.0 * PI * one_minus_cos_max);
+        Some(LightSample { p: y, p_error: gamma(5) * (r * n).abs() + gamma(2) * y.abs(), n, wi, pdf, le: self.le, infinite: false })
+    }
+
+    /// Solid-angle pdf of hitting `y` (normal `ny`) from `p`.
+    pub fn pdf(&self, p: Vec3, y: Vec3, ny: Vec3, method: LightSampling) -> f32 {
+        let Some((_, one_minus_cos_max)) = self.cone(p) else { return 0.0 };
+        match method {
+            LightSampling::Area => area_to_solid_angle(1.0 / self.sphere.area(), p, y, ny),
+            LightSampling::SolidAngle => 1.0 / (2.0 * PI * one_minus_cos_max),
+        }
+    }
+}

@@ -1,0 +1,76 @@
+//! Emitting triangles: area sampling (uniform barycentrics) or solid-angle sampling of the
+//! spherical triangle (Arvo 1995).
+
+use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
+use crate::geometry::ray::gamma;
+use crate::sampling::{
+    MAX_SPHERICAL_SAMPLE_AREA, MIN_SPHERICAL_SAMPLE_AREA, sample_spherical_triangle,
+    sample_uniform_triangle, spherical_triangle_area,
+};
+use glam::{Vec2, Vec3};
+
+/// A one-sided emitting triangle.
+#[derive(Clone, Debug)]
+pub struct TriangleLight {
+    /// Vertices.
+    pub v: [Vec3; 3],
+    /// Unit normal (right-hand rule); emits on this side.
+    pub n: Vec3,
+    /// Area.
+    pub area: f32,
+    /// Emitted radiance.
+    pub le: Vec3,
+}
+
+/// Solid angle of triangle `v` seen from `p`.
+pub(crate) fn triangle_solid_angle(v: &[Vec3; 3], p: Vec3) -> f32 {
+    let a = (v[0] - p).normalize_or_zero();
+    let b = (v[1] - p).normalize_or_zero();
+    let c = (v[2] - p).normalize_or_zero();
+    spherical_triangle_area(a, b, c)
+}
+
+/// Whether the spherical warp is accurate for this solid angle (pbrt-v4's limits).
+#[inline]
+pub(crate) fn spherical_ok(omega: f32) -> bool {
+    (MIN_SPHERICAL_SAMPLE_AREA..=MAX_SPHERICAL_SAMPLE_AREA).contains(&omega)
+}
+
+impl TriangleLight {
+    /// `p` is strictly on the emitting side of the plane.
+    #[inline]
+    fn faces(&self, p: Vec3) -> bool {
+        (p - self.v[0]).dot(self.n) > 0.0
+    }
+
+    /// Samples a point as seen from `p`.
+    pub fn sample(&self, p: Vec3, u: Vec2, method: LightSampling) -> Option<LightSample> {
+        if !self.faces(p) {
+            return None;
+        }
+        if method == LightSampling::SolidAngle && spherical_ok(triangle_solid_angle(&self.v, p)) {
+            let s = sample_spherical_triangle(&self.v, p, u)?;
+            let b = s.barycentrics;
+            let y = b[0] * self.v[0] + b[1] * self.v[1] + b[2] * self.v[2];
+            let err = gamma(6) * ((b[0] * self.v[0]).abs() + (b[1] * self.v[1]).abs() + (b[2] * self.v[2]).abs());
+            return Some(LightSample { p: y, p_error: err, n: self.n, wi: s.dir, pdf: s.pdf, le: self.le, infinite: false });
+        }
+        let b = sample_uniform_triangle(u);
+        let y = b[0] * self.v[0] + b[1] * self.v[1] + b[2] * self.v[2];
+        area_sample(p, y, self.n, 1.0 / self.area, self.le)
+    }
+
+    /// Solid-angle pdf of hitting `y` (normal `ny`) from `p` along `wi`.
+    pub fn pdf(&self, p: Vec3, _wi: Vec3, y: Vec3, ny: Vec3, method: LightSampling) -> f32 {
+        if !self.faces(p) {
+            return 0.0;
+        }
+        if method == LightSampling::SolidAngle {
+            let omega = triangle_solid_angle(&self.v, p);
+            if spherical_ok(omega) {
+                return 1.0 / omega;
+            }
+        }
+        area_to_solid_angle(1.0 / self.area, p, y, ny)
+    }
+}

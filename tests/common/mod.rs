@@ -1,0 +1,77 @@
+//! Helpers shared by the integration tests: loading the copied scenes and references, rendering
+//! with a given strategy, and the block z-test against a reference.
+
+#![allow(dead_code)]
+
+use lumis::engine::Progressive;
+use lumis::image_io::Image;
+use lumis::integrator::Settings;
+use lumis::metrics::{BlockTest, ImageWithVariance, block_z_test};
+use lumis::scene::Scene;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// `tests/data` of the workspace.
+pub fn data_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../tests/data")
+}
+
+/// Loads `tests/data/scenes/NAME.json`.
+pub fn scene(name: &str) -> Arc<Scene> {
+    let path = data_dir().join("scenes").join(format!("{name}.json"));
+    Arc::new(Scene::load(&path).unwrap_or_else(|e| panic!("{e}")))
+}
+
+/// Reads `tests/data/refs/FILE`.
+pub fn reference(file: &str) -> Image {
+    Image::read(&data_dir().join("refs").join(file)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Renders `spp` samples per pixel.
+pub fn render(scene: &Arc<Scene>, settings: Settings, spp: u32, seed: u32) -> Progressive {
+    let mut r = Progressive::new(scene.clone(), settings, seed);
+    // Several passes, like the progressive viewer; the result does not depend on the split.
+    let pass = spp.div_ceil(4);
+    while r.film().spp < spp {
+        assert!(r.render_pass(pass.min(spp - r.film().spp)));
+    }
+    r
+}
+
+/// The block z-test of a render against a reference image with its variance image (or none, for
+/// closed-form images): 32×32 blocks, family-wise α = 0.01 (Šidák over blocks and channels).
+pub fn test_against(render: &Progressive, reference: &Image, reference_var: Option<&Image>) -> BlockTest {
+    let film = render.film();
+    let mean = film.mean();
+    let var = film.variance_of_mean();
+    let ref_var: Vec<[f64; 3]> = match reference_var {
+        Some(v) => v.data.iter().map(|c| [c.x as f64, c.y as f64, c.z as f64]).collect(),
+        None => vec![[0.0; 3]; reference.data.len()],
+    };
+    assert_eq!((film.width, film.height), (reference.width, reference.height));
+    block_z_test(
+        film.width,
+        film.height,
+        &ImageWithVariance { mean: &mean, var: &var },
+        &ImageWithVariance { mean: &reference.data, var: &ref_var },
+        32,
+        0.01,
+    )
+}
+
+/// Panics with the worst blocks if the test found a bias.
+pub fn assert_unbiased(what: &str, test: &BlockTest) {
+    let failures = test.failures();
+    if !failures.is_empty() {
+        let mut msg = format!("{what}: {} of {} blocks differ (|z| > {:.2}):\n", failures.len(), test.blocks.len(), test.critical);
+        for b in failures.iter().take(8) {
+            msg += &format!(
+                "  block ({},{}) ch {}: mean {:.5} vs reference {:.5} (z = {:.2})\n",
+                b.x, b.y, b.channel, b.mean, b.reference, b.z
+            );
+        }
+        panic!("{msg}");
+    }
+    let w = test.worst().expect("at least one block");
+    eprintln!("{what}: ok, {} blocks, worst |z| = {:.2} (critical {:.2})", test.blocks.len(), w.z.abs(), test.critical);
+}
