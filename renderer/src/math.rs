@@ -75,13 +75,11 @@ pub fn reflect(w: Vec3, n: Vec3) -> Vec3 {
     2.0 * w.dot(n) * n - w
 }
 
-/// `a * b - c * d` without catastrophic cancellation (Kahan's algorithm with an FMA).
+/// `a * b - c * d` without catastrophic cancellation: the products of two f32 are exact in f64, so
+/// this rounds once (Kahan's FMA trick gives the same accuracy but needs hardware FMA to be fast).
 #[inline]
 pub fn difference_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
-    let cd = c * d;
-    let err = (-c).mul_add(d, cd);
-    let dop = a.mul_add(b, -cd);
-    dop + err
+    (a as f64 * b as f64 - c as f64 * d as f64) as f32
 }
 
 #[cfg(test)]

@@ -111,8 +111,8 @@ pub fn block_z_test(
         for bx in (0..width).step_by(block as usize) {
             for c in 0..3 {
                 let (mut sa, mut sb, mut va, mut vb, mut n) = (0.0, 0.0, 0.0, 0.0, 0.0f64);
-                for y in by..(by + block).min(height) {
-                    for x in bx..(bx + block).min(width) {
+                for y in by..by.saturating_add(block).min(height) {
+                    for x in bx..bx.saturating_add(block).min(width) {
                         let i = (y * width + x) as usize;
                         sa += a.mean[i][c] as f64;
                         sb += b.mean[i][c] as f64;

@@ -39,8 +39,9 @@ pub fn render(scene: &Arc<Scene>, settings: Settings, spp: u32, seed: u32) -> Pr
 }
 
 /// The block z-test of a render against a reference image with its variance image (or none, for
-/// closed-form images): 32×32 blocks, family-wise α = 0.01 (Šidák over blocks and channels).
-pub fn test_against(render: &Progressive, reference: &Image, reference_var: Option<&Image>) -> BlockTest {
+/// closed-form images): `block`×`block` pixels, family-wise α = 0.01 (Šidák over blocks and
+/// channels).
+pub fn test_against(render: &Progressive, reference: &Image, reference_var: Option<&Image>, block: u32) -> BlockTest {
     let film = render.film();
     let mean = film.mean();
     let var = film.variance_of_mean();
@@ -54,24 +55,34 @@ pub fn test_against(render: &Progressive, reference: &Image, reference_var: Opti
         film.height,
         &ImageWithVariance { mean: &mean, var: &var },
         &ImageWithVariance { mean: &reference.data, var: &ref_var },
-        32,
+        block,
         0.01,
     )
 }
 
-/// Panics with the worst blocks if the test found a bias.
-pub fn assert_unbiased(what: &str, test: &BlockTest) {
+/// `Err` with the worst blocks if the test found a bias; prints the worst block either way.
+pub fn check_unbiased(what: &str, test: &BlockTest) -> Result<(), String> {
     let failures = test.failures();
     if !failures.is_empty() {
-        let mut msg = format!("{what}: {} of {} blocks differ (|z| > {:.2}):\n", failures.len(), test.blocks.len(), test.critical);
+        let mut msg =
+            format!("{what}: {} of {} blocks differ (|z| > {:.2}):\n", failures.len(), test.blocks.len(), test.critical);
         for b in failures.iter().take(8) {
             msg += &format!(
                 "  block ({},{}) ch {}: mean {:.5} vs reference {:.5} (z = {:.2})\n",
                 b.x, b.y, b.channel, b.mean, b.reference, b.z
             );
         }
-        panic!("{msg}");
+        eprintln!("{msg}");
+        return Err(msg);
     }
     let w = test.worst().expect("at least one block");
     eprintln!("{what}: ok, {} blocks, worst |z| = {:.2} (critical {:.2})", test.blocks.len(), w.z.abs(), test.critical);
+    Ok(())
+}
+
+/// Panics with the worst blocks if the test found a bias.
+pub fn assert_unbiased(what: &str, test: &BlockTest) {
+    if let Err(msg) = check_unbiased(what, test) {
+        panic!("{msg}");
+    }
 }

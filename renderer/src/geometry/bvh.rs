@@ -4,6 +4,7 @@
 
 use super::primitive::Primitive;
 use super::ray::{Ray, SurfaceHit};
+use super::triangle::TriangleRay;
 use glam::Vec3;
 use obvhs::cwbvh::CwBvh;
 use obvhs::{BvhBuildParams, cwbvh::builder::build_cwbvh};
@@ -39,13 +40,14 @@ impl Accel {
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
         let mut best_t = ray.t_max;
         let mut best = u32::MAX;
+        let tri = TriangleRay::new(ray);
         match &self.bvh {
             Some(bvh) => {
                 let r = obvhs::ray::Ray::new(ray.o.into(), ray.d.into(), 0.0, ray.t_max);
                 let mut hit = obvhs::ray::RayHit::none();
                 bvh.ray_traverse(r, &mut hit, |r, id| {
                     let local = Ray { t_max: r.tmax, ..*ray };
-                    match self.prims[id].shape.intersect_t(&local) {
+                    match self.prims[id].shape.intersect_t(&local, &tri) {
                         Some(t) => {
                             if t < best_t {
                                 best_t = t;
@@ -59,7 +61,7 @@ impl Accel {
             }
             None => {
                 for (id, p) in self.prims.iter().enumerate() {
-                    if let Some(t) = p.shape.intersect_t(&Ray { t_max: best_t, ..*ray }) {
+                    if let Some(t) = p.shape.intersect_t(&Ray { t_max: best_t, ..*ray }, &tri) {
                         best_t = t;
                         best = id as u32;
                     }
@@ -71,14 +73,15 @@ impl Accel {
 
     /// Whether anything blocks `ray` within `(0, ray.t_max)`; stops at the first blocker.
     pub fn occluded(&self, ray: &Ray) -> bool {
+        let tri = TriangleRay::new(ray);
         match &self.bvh {
             Some(bvh) => {
                 let r = obvhs::ray::Ray::new(ray.o.into(), ray.d.into(), 0.0, ray.t_max);
                 !bvh.ray_traverse_miss(r, |_, id| {
-                    self.prims[id].shape.intersect_t(ray).unwrap_or(f32::INFINITY)
+                    self.prims[id].shape.intersect_t(ray, &tri).unwrap_or(f32::INFINITY)
                 })
             }
-            None => self.prims.iter().any(|p| p.shape.intersect_t(ray).is_some()),
+            None => self.prims.iter().any(|p| p.shape.intersect_t(ray, &tri).is_some()),
         }
     }
 

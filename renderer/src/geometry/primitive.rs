@@ -3,7 +3,7 @@
 use super::disk::Disk;
 use super::ray::{Ray, SurfaceHit};
 use super::sphere::Sphere;
-use super::triangle::{intersect_triangle, triangle_normal, triangle_point};
+use super::triangle::{TriangleRay, intersect_triangle, intersect_triangle_prepared, triangle_normal, triangle_point};
 use glam::Vec3;
 
 /// Marks "no light" / "no material".
@@ -41,11 +41,11 @@ impl Shape {
         }
     }
 
-    /// Ray parameter of the nearest hit in `(0, ray.t_max)`.
+    /// Ray parameter of the nearest hit in `(0, ray.t_max)`; `tri` is `ray` prepared for triangles.
     #[inline]
-    pub fn intersect_t(&self, ray: &Ray) -> Option<f32> {
+    pub fn intersect_t(&self, ray: &Ray, tri: &TriangleRay) -> Option<f32> {
         match self {
-            Shape::Triangle { v, .. } => intersect_triangle(ray, v).map(|h| h.t),
+            Shape::Triangle { v, .. } => intersect_triangle_prepared(tri, v, ray.t_max).map(|h| h.t),
             Shape::Disk(d) => d.intersect(ray),
             Shape::Sphere(s) => s.intersect(ray),
         }

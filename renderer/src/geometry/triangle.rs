@@ -3,7 +3,7 @@
 
 use super::ray::{Ray, gamma};
 use crate::math::difference_of_products;
-use glam::{DVec3, Vec3};
+use glam::{Vec3, Vec3Swizzles};
 
 /// A triangle hit: parameter and barycentrics of `v[0], v[1], v[2]`.
 #[derive(Clone, Copy, Debug)]
@@ -26,48 +26,70 @@ pub fn triangle_normal(v: &[Vec3; 3]) -> Option<Vec3> {
     (len > 0.0 && len.is_finite()).then(|| n / len)
 }
 
+/// The ray-dependent part of the watertight test (axis permutation and shear), computed once per
+/// ray and shared by every triangle it is tested against.
+#[derive(Clone, Copy, Debug)]
+pub struct TriangleRay {
+    o: Vec3,
+    /// Index of the direction's largest axis, which becomes z.
+    kz: u8,
+    /// Shear coefficients `(−d_x/d_z, −d_y/d_z, 1/d_z)` in permuted coordinates.
+    s: Vec3,
+}
+
+impl TriangleRay {
+    /// Prepares `ray` for triangle tests.
+    #[inline]
+    pub fn new(ray: &Ray) -> TriangleRay {
+        let ad = ray.d.abs();
+        let kz = if ad.x > ad.y {
+            if ad.x > ad.z { 0 } else { 2 }
+        } else if ad.y > ad.z {
+            1
+        } else {
+            2
+        };
+        let d = permute(ray.d, kz);
+        TriangleRay { o: ray.o, kz, s: Vec3::new(-d.x / d.z, -d.y / d.z, 1.0 / d.z) }
+    }
+}
+
+/// Cyclic permutation that moves axis `kz` to z (keeps the handedness).
 #[inline]
-fn permute(v: Vec3, kx: usize, ky: usize, kz: usize) -> Vec3 {
-    Vec3::new(v[kx], v[ky], v[kz])
+fn permute(v: Vec3, kz: u8) -> Vec3 {
+    match kz {
+        0 => v.yzx(),
+        1 => v.zxy(),
+        _ => v,
+    }
 }
 
 /// Watertight ray–triangle test: no ray slips between two triangles sharing an edge, and the hit is
-/// reported only if `t` is provably positive (within the ray's `t_max`).
+/// reported only if `t` is provably positive (and below the ray's `t_max`).
+#[inline]
 pub fn intersect_triangle(ray: &Ray, v: &[Vec3; 3]) -> Option<TriangleHit> {
-    let mut p0t = v[0] - ray.o;
-    let mut p1t = v[1] - ray.o;
-    let mut p2t = v[2] - ray.o;
-    // Permute so the ray direction's largest component is z.
-    let ad = ray.d.abs();
-    let kz = if ad.x > ad.y { if ad.x > ad.z { 0 } else { 2 } } else if ad.y > ad.z { 1 } else { 2 };
-    let kx = (kz + 1) % 3;
-    let ky = (kx + 1) % 3;
-    let d = permute(ray.d, kx, ky, kz);
-    p0t = permute(p0t, kx, ky, kz);
-    p1t = permute(p1t, kx, ky, kz);
-    p2t = permute(p2t, kx, ky, kz);
-    // Shear so the ray runs along +z.
-    let sx = -d.x / d.z;
-    let sy = -d.y / d.z;
-    let sz = 1.0 / d.z;
-    p0t.x += sx * p0t.z;
-    p0t.y += sy * p0t.z;
-    p1t.x += sx * p1t.z;
-    p1t.y += sy * p1t.z;
-    p2t.x += sx * p2t.z;
-    p2t.y += sy * p2t.z;
+    intersect_triangle_prepared(&TriangleRay::new(ray), v, ray.t_max)
+}
 
-    let mut e0 = difference_of_products(p1t.x, p2t.y, p1t.y, p2t.x);
-    let mut e1 = difference_of_products(p2t.x, p0t.y, p2t.y, p0t.x);
-    let mut e2 = difference_of_products(p0t.x, p1t.y, p0t.y, p1t.x);
-    // An edge function of exactly 0 is where f32 cannot decide the side: redo it in f64.
-    if e0 == 0.0 || e1 == 0.0 || e2 == 0.0 {
-        let (a, b, c) = (p0t.as_dvec3(), p1t.as_dvec3(), p2t.as_dvec3());
-        let ef = |p: DVec3, q: DVec3| (p.x * q.y - p.y * q.x) as f32;
-        e0 = ef(b, c);
-        e1 = ef(c, a);
-        e2 = ef(a, b);
-    }
+/// [`intersect_triangle`] with the per-ray work done once ([`TriangleRay`]).
+#[inline]
+pub fn intersect_triangle_prepared(r: &TriangleRay, v: &[Vec3; 3], t_max: f32) -> Option<TriangleHit> {
+    // Translate to the ray origin, permute, and shear so the ray runs along +z.
+    let mut p0t = permute(v[0] - r.o, r.kz);
+    let mut p1t = permute(v[1] - r.o, r.kz);
+    let mut p2t = permute(v[2] - r.o, r.kz);
+    p0t.x += r.s.x * p0t.z;
+    p0t.y += r.s.y * p0t.z;
+    p1t.x += r.s.x * p1t.z;
+    p1t.y += r.s.y * p1t.z;
+    p2t.x += r.s.x * p2t.z;
+    p2t.y += r.s.y * p2t.z;
+
+    // Edge functions, each rounded once (exact products in f64), so their signs are consistent
+    // across triangles that share an edge.
+    let e0 = difference_of_products(p1t.x, p2t.y, p1t.y, p2t.x);
+    let e1 = difference_of_products(p2t.x, p0t.y, p2t.y, p0t.x);
+    let e2 = difference_of_products(p0t.x, p1t.y, p0t.y, p1t.x);
     if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
         return None;
     }
@@ -75,14 +97,14 @@ pub fn intersect_triangle(ray: &Ray, v: &[Vec3; 3]) -> Option<TriangleHit> {
     if det == 0.0 {
         return None;
     }
-    p0t.z *= sz;
-    p1t.z *= sz;
-    p2t.z *= sz;
+    p0t.z *= r.s.z;
+    p1t.z *= r.s.z;
+    p2t.z *= r.s.z;
     let t_scaled = e0 * p0t.z + e1 * p1t.z + e2 * p2t.z;
-    if det < 0.0 && (t_scaled >= 0.0 || t_scaled < ray.t_max * det) {
+    if det < 0.0 && (t_scaled >= 0.0 || t_scaled < t_max * det) {
         return None;
     }
-    if det > 0.0 && (t_scaled <= 0.0 || t_scaled > ray.t_max * det) {
+    if det > 0.0 && (t_scaled <= 0.0 || t_scaled > t_max * det) {
         return None;
     }
     let inv_det = 1.0 / det;

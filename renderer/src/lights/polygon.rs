@@ -6,16 +6,20 @@
 //! disjoint spherical triangles, so the result is uniform over the polygon's solid angle with
 //! pdf `1 / Σ Ω_i`.
 
-use super::triangle::{spherical_ok, triangle_solid_angle};
+use super::triangle::spherical_ok;
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
 use crate::geometry::ray::gamma;
-use crate::sampling::{DiscreteDistribution, sample_spherical_triangle, sample_uniform_triangle};
+use crate::sampling::{DiscreteDistribution, sample_spherical_triangle, sample_uniform_triangle, spherical_triangle_area};
 use glam::{Vec2, Vec3};
 
 /// A one-sided emitting polygon.
 #[derive(Clone, Debug)]
 pub struct PolygonLight {
-    /// Triangles of the polygon's triangulation, wound like the polygon.
+    /// The polygon's vertices.
+    pub vertices: Vec<Vec3>,
+    /// Its triangulation (indices into `vertices`), wound like the polygon.
+    pub indices: Vec<[u32; 3]>,
+    /// The same triangles as vertex positions.
     pub triangles: Vec<[Vec3; 3]>,
     /// Unit normal (Newell); emits on this side.
     pub n: Vec3,
@@ -33,13 +37,15 @@ pub struct PolygonLight {
 const MAX_SOLID_ANGLE_TRIANGLES: usize = 64;
 
 impl PolygonLight {
-    /// A polygon light from its triangulation; `None` if it has no area.
-    pub fn new(triangles: Vec<[Vec3; 3]>, n: Vec3, le: Vec3) -> Option<PolygonLight> {
+    /// A polygon light from its vertices and triangulation; `None` if it has no area.
+    pub fn new(vertices: Vec<Vec3>, indices: Vec<[u32; 3]>, n: Vec3, le: Vec3) -> Option<PolygonLight> {
+        let triangles: Vec<[Vec3; 3]> =
+            indices.iter().map(|t| t.map(|i| vertices[i as usize])).collect();
         let areas: Vec<f32> = triangles.iter().map(crate::geometry::triangle::triangle_area).collect();
         let by_area = DiscreteDistribution::new(&areas)?;
         let area = areas.iter().sum();
         let origin = triangles.first()?[0];
-        Some(PolygonLight { triangles, n, origin, area, le, by_area })
+        Some(PolygonLight { vertices, indices, triangles, n, origin, area, le, by_area })
     }
 
     #[inline]
@@ -47,13 +53,23 @@ impl PolygonLight {
         (p - self.origin).dot(self.n) > 0.0
     }
 
-    /// Solid angles of the triangles from `p` and their sum, if solid-angle sampling applies.
-    fn solid_angles(&self, p: Vec3) -> Option<(Vec<f32>, f32)> {
+    /// Solid angles of the triangles from `p` (in a fixed array: no allocation per sample) and their
+    /// sum, if solid-angle sampling applies. Each polygon vertex's direction is normalised once and
+    /// shared by the triangles that use it.
+    fn solid_angles(&self, p: Vec3) -> Option<([f32; MAX_SOLID_ANGLE_TRIANGLES], f32)> {
         if self.triangles.len() > MAX_SOLID_ANGLE_TRIANGLES {
             return None;
         }
-        let omegas: Vec<f32> = self.triangles.iter().map(|t| triangle_solid_angle(t, p)).collect();
-        let total: f32 = omegas.iter().sum();
+        let mut dirs = [Vec3::ZERO; MAX_SOLID_ANGLE_TRIANGLES + 2];
+        for (d, v) in dirs.iter_mut().zip(&self.vertices) {
+            *d = (*v - p).normalize_or_zero();
+        }
+        let mut omegas = [0.0f32; MAX_SOLID_ANGLE_TRIANGLES];
+        let mut total = 0.0;
+        for (o, t) in omegas.iter_mut().zip(&self.indices) {
+            *o = spherical_triangle_area(dirs[t[0] as usize], dirs[t[1] as usize], dirs[t[2] as usize]);
+            total += *o;
+        }
         spherical_ok(total).then_some((omegas, total))
     }
 
@@ -65,8 +81,7 @@ impl PolygonLight {
         if method == LightSampling::SolidAngle
             && let Some((omegas, total)) = self.solid_angles(p)
         {
-            let dist = DiscreteDistribution::new(&omegas)?;
-            let (i, _, ux) = dist.sample(u.x);
+            let (i, ux) = pick(&omegas[..self.triangles.len()], total, u.x)?;
             let v = &self.triangles[i];
             let s = sample_spherical_triangle(v, p, Vec2::new(ux, u.y))?;
             let b = s.barycentrics;
@@ -92,5 +107,42 @@ impl PolygonLight {
             return 1.0 / total;
         }
         area_to_solid_angle(1.0 / self.area, p, y, ny)
+    }
+}
+
+/// Picks an entry in proportion to `weights` (summing to `total`) and remaps `u` to `[0, 1)` within
+/// it; never an entry of zero weight.
+fn pick(weights: &[f32], total: f32, u: f32) -> Option<(usize, f32)> {
+    let target = u * total;
+    let mut acc = 0.0;
+    let mut last = None;
+    for (i, &w) in weights.iter().enumerate() {
+        if w <= 0.0 {
+            continue;
+        }
+        if target < acc + w {
+            return Some((i, ((target - acc) / w).clamp(0.0, crate::sampling::ONE_MINUS_EPSILON)));
+        }
+        acc += w;
+        last = Some(i);
+    }
+    // Rounding left `target` past the last positive entry.
+    last.map(|i| (i, crate::sampling::ONE_MINUS_EPSILON))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pick_follows_weights_and_skips_zeros() {
+        let w = [0.0, 1.0, 0.0, 3.0];
+        assert_eq!(pick(&w, 4.0, 0.0).unwrap().0, 1);
+        assert_eq!(pick(&w, 4.0, 0.24).unwrap().0, 1);
+        let (i, u) = pick(&w, 4.0, 0.5).unwrap();
+        assert_eq!(i, 3);
+        assert!((u - 1.0 / 3.0).abs() < 1e-6);
+        assert_eq!(pick(&w, 4.0, 0.999_999_9).unwrap().0, 3);
+        assert!(pick(&[0.0, 0.0], 0.0, 0.5).is_none());
     }
 }
