@@ -15,15 +15,23 @@ use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSampling;
 
 fn settings(strategy: Strategy, light_sampling: LightSampling) -> Settings {
-    Settings { strategy, light_sampling, ..Settings::default() }
+    Settings {
+        strategy,
+        light_sampling,
+        ..Settings::default()
+    }
 }
 
 const STRATEGIES: [Strategy; 5] = [
     Strategy::Light,
     Strategy::Bsdf,
     Strategy::Mixture { light_weight: 0.5 },
-    Strategy::Mis { heuristic: Heuristic::Power },
-    Strategy::Mis { heuristic: Heuristic::Balance },
+    Strategy::Mis {
+        heuristic: Heuristic::Power,
+    },
+    Strategy::Mis {
+        heuristic: Heuristic::Balance,
+    },
 ];
 
 /// Samples per pixel per scene and strategy: enough for a block standard error well under 0.5%.
@@ -58,9 +66,23 @@ fn check_scene(name: &str, light_sampling: LightSampling) {
     let reference_var = reference_var_image(name);
     let mut failures = Vec::new();
     for (i, strategy) in STRATEGIES.into_iter().enumerate() {
-        let r = render(&scene, settings(strategy, light_sampling), spp(name, strategy), 1000 + i as u32);
-        assert_eq!(r.film().nonfinite, 0, "{name} {strategy:?}: non-finite samples");
-        let t = test_against(&r, &reference, Some(&reference_var), block_size(name, strategy));
+        let r = render(
+            &scene,
+            settings(strategy, light_sampling),
+            spp(name, strategy),
+            1000 + i as u32,
+        );
+        assert_eq!(
+            r.film().nonfinite,
+            0,
+            "{name} {strategy:?}: non-finite samples"
+        );
+        let t = test_against(
+            &r,
+            &reference,
+            Some(&reference_var),
+            block_size(name, strategy),
+        );
         // Test every strategy before failing, so one report shows all of them.
         if let Err(msg) = check_unbiased(&format!("{name} {strategy:?} {light_sampling:?}"), &t) {
             failures.push(msg);
@@ -92,8 +114,18 @@ fn seed_cornell_matches_reference() {
 #[test]
 fn seed_cornell_area_sampling_matches_reference() {
     let scene = scene("seed_cornell");
-    let s = settings(Strategy::Mis { heuristic: Heuristic::Power }, LightSampling::Area);
-    let t = test_against(&render(&scene, s, 128, 77), &reference("seed_cornell.exr"), Some(&reference_var_image("seed_cornell")), 32);
+    let s = settings(
+        Strategy::Mis {
+            heuristic: Heuristic::Power,
+        },
+        LightSampling::Area,
+    );
+    let t = test_against(
+        &render(&scene, s, 128, 77),
+        &reference("seed_cornell.exr"),
+        Some(&reference_var_image("seed_cornell")),
+        32,
+    );
     assert_unbiased("seed_cornell mis area", &t);
 }
 
@@ -105,8 +137,18 @@ fn veach_mis_matches_reference() {
 #[test]
 fn veach_mis_area_sampling_matches_reference() {
     let scene = scene("veach_mis");
-    let s = settings(Strategy::Mis { heuristic: Heuristic::Power }, LightSampling::Area);
-    let t = test_against(&render(&scene, s, 128, 78), &reference("veach_mis.exr"), Some(&reference_var_image("veach_mis")), 32);
+    let s = settings(
+        Strategy::Mis {
+            heuristic: Heuristic::Power,
+        },
+        LightSampling::Area,
+    );
+    let t = test_against(
+        &render(&scene, s, 128, 78),
+        &reference("veach_mis.exr"),
+        Some(&reference_var_image("veach_mis")),
+        32,
+    );
     assert_unbiased("veach_mis mis area", &t);
 }
 
@@ -119,7 +161,10 @@ fn analytic_scenes_match_closed_form() {
         let exact = reference(&format!("{name}.exact.exr"));
         for ls in [LightSampling::SolidAngle, LightSampling::Area] {
             let r = render(&scene, settings(Strategy::Light, ls), 64, 5);
-            assert_unbiased(&format!("{name} light {ls:?} vs closed form"), &test_against(&r, &exact, None, 32));
+            assert_unbiased(
+                &format!("{name} light {ls:?} vs closed form"),
+                &test_against(&r, &exact, None, 32),
+            );
         }
     }
 }
@@ -127,24 +172,47 @@ fn analytic_scenes_match_closed_form() {
 /// The test has the power it claims: the same render scaled by 1.02 fails on every scene.
 #[test]
 fn biased_render_is_detected() {
-    for name in ["analytic_polygon", "analytic_disk", "seed_cornell", "veach_mis"] {
+    for name in [
+        "analytic_polygon",
+        "analytic_disk",
+        "seed_cornell",
+        "veach_mis",
+    ] {
         let scene = scene(name);
-        let r = render(&scene, settings(STRATEGIES[3], LightSampling::SolidAngle), spp(name, STRATEGIES[3]), 3);
+        let r = render(
+            &scene,
+            settings(STRATEGIES[3], LightSampling::SolidAngle),
+            spp(name, STRATEGIES[3]),
+            3,
+        );
         let reference = reference(&format!("{name}.exr"));
         let var = reference_var_image(name);
         let film = r.film().clone();
         let biased: Vec<_> = film.mean().iter().map(|c| *c * 1.02).collect();
         let varm = film.variance_of_mean();
-        let refvar: Vec<[f64; 3]> = var.data.iter().map(|c| [c.x as f64, c.y as f64, c.z as f64]).collect();
+        let refvar: Vec<[f64; 3]> = var
+            .data
+            .iter()
+            .map(|c| [c.x as f64, c.y as f64, c.z as f64])
+            .collect();
         let t = lumis::metrics::block_z_test(
             film.width,
             film.height,
-            &lumis::metrics::ImageWithVariance { mean: &biased, var: &varm },
-            &lumis::metrics::ImageWithVariance { mean: &reference.data, var: &refvar },
+            &lumis::metrics::ImageWithVariance {
+                mean: &biased,
+                var: &varm,
+            },
+            &lumis::metrics::ImageWithVariance {
+                mean: &reference.data,
+                var: &refvar,
+            },
             32,
             0.01,
         );
-        assert!(!t.failures().is_empty(), "{name}: a 2% bias went undetected");
+        assert!(
+            !t.failures().is_empty(),
+            "{name}: a 2% bias went undetected"
+        );
     }
 }
 
@@ -153,7 +221,15 @@ fn biased_render_is_detected() {
 fn image_is_independent_of_thread_count() {
     let scene = scene("seed_cornell");
     let s = Settings::default();
-    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap().install(|| render(&scene, s, 2, 9));
-    let two = rayon::ThreadPoolBuilder::new().num_threads(3).build().unwrap().install(|| render(&scene, s, 2, 9));
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(|| render(&scene, s, 2, 9));
+    let two = rayon::ThreadPoolBuilder::new()
+        .num_threads(3)
+        .build()
+        .unwrap()
+        .install(|| render(&scene, s, 2, 9));
     assert_eq!(one.film().mean(), two.film().mean());
 }

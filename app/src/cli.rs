@@ -92,14 +92,21 @@ impl EstimatorArgs {
         let strategy = match self.strategy {
             StrategyArg::Light => Strategy::Light,
             StrategyArg::Bsdf => Strategy::Bsdf,
-            StrategyArg::Mixture => Strategy::Mixture { light_weight: self.mix_weight },
+            StrategyArg::Mixture => Strategy::Mixture {
+                light_weight: self.mix_weight,
+            },
             StrategyArg::Mis => Strategy::Mis { heuristic },
         };
         let light_sampling = match self.light_sampling {
             LightSamplingArg::Area => LightSampling::Area,
             LightSamplingArg::SolidAngle => LightSampling::SolidAngle,
         };
-        Ok(Settings { strategy, light_sampling, max_depth: self.max_depth, ..Settings::default() })
+        Ok(Settings {
+            strategy,
+            light_sampling,
+            max_depth: self.max_depth,
+            ..Settings::default()
+        })
     }
 }
 

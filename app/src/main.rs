@@ -4,9 +4,24 @@ mod cli;
 mod render_cmd;
 
 use clap::Parser;
+use clap::error::ErrorKind;
 
 fn main() {
-    let args = cli::Cli::parse();
+    let args = match cli::Cli::try_parse() {
+        Ok(args) => args,
+        // --help and --version (stdout, exit 0), and a bare `lumis` (help on stderr, exit 2).
+        Err(e)
+            if !e.use_stderr()
+                || e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand =>
+        {
+            e.exit()
+        }
+        // Usage errors follow the one-line `lumis: ` convention too (clap's own text is several lines).
+        Err(e) => {
+            eprintln!("lumis: {}", one_line(&e.to_string()));
+            std::process::exit(e.exit_code());
+        }
+    };
     let result = match args.command {
         cli::Command::Render(a) => render_cmd::render(&a),
         cli::Command::Compare(a) => render_cmd::compare(&a),
@@ -15,4 +30,16 @@ fn main() {
         eprintln!("lumis: {e:#}");
         std::process::exit(1);
     }
+}
+
+/// clap's multi-line error text as one line, without its usage and `--help` hints.
+fn one_line(text: &str) -> String {
+    text.lines()
+        .map(str::trim)
+        .filter(|l| {
+            !l.is_empty() && !l.starts_with("Usage:") && !l.starts_with("For more information")
+        })
+        .map(|l| l.strip_prefix("error: ").unwrap_or(l))
+        .collect::<Vec<_>>()
+        .join(" ")
 }

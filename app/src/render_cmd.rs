@@ -17,9 +17,23 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
         bail!("--spp must be at least 1");
     }
     check_output_extension(&args.output)?;
+    // Fail before rendering, not after, when the image could never be written.
+    if let Some(dir) = args.output.parent()
+        && !dir.as_os_str().is_empty()
+        && !dir.is_dir()
+    {
+        bail!(
+            "{}: the directory {} does not exist",
+            args.output.display(),
+            dir.display()
+        );
+    }
     let scene = Arc::new(Scene::load(&args.scene)?);
     let threads = args.threads.unwrap_or(0);
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().context("starting worker threads")?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .context("starting worker threads")?;
     let mut render = Progressive::new(scene, settings, args.seed);
     let bar = ProgressBar::new(args.spp as u64);
     bar.set_style(
@@ -29,7 +43,9 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
     let start = Instant::now();
     let mut pass = 1u32;
     while render.film().spp < args.spp {
+        // The time limit never stops the first pass: a 0-spp image would be silently black.
         if let Some(limit) = args.time_limit
+            && render.film().spp > 0
             && start.elapsed().as_secs_f64() >= limit
         {
             break;
@@ -49,7 +65,11 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
     let film = render.film();
-    let img = Image { width: film.width, height: film.height, data: film.mean() };
+    let img = Image {
+        width: film.width,
+        height: film.height,
+        data: film.mean(),
+    };
     img.write(&args.output, args.exposure)?;
     let samples = film.spp as f64 * film.width as f64 * film.height as f64;
     println!(
@@ -63,7 +83,11 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
 }
 
 fn check_output_extension(path: &std::path::Path) -> anyhow::Result<()> {
-    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
     if !matches!(ext.as_str(), "exr" | "pfm" | "png") {
         bail!("{}: output must end in .exr, .pfm or .png", path.display());
     }
@@ -85,6 +109,10 @@ pub fn compare(args: &CompareArgs) -> anyhow::Result<()> {
             reference.height
         );
     }
-    println!("relmse={:.6e} rmse={:.6e}", relmse(&img.data, &reference.data), rmse(&img.data, &reference.data));
+    println!(
+        "relmse={:.6e} rmse={:.6e}",
+        relmse(&img.data, &reference.data),
+        rmse(&img.data, &reference.data)
+    );
     Ok(())
 }

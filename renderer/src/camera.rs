@@ -29,7 +29,16 @@ impl Camera {
         let up = right.cross(forward);
         let tan_y = (vfov_deg.to_radians() * 0.5).tan();
         let tan_x = tan_y * width as f32 / height as f32;
-        Camera { origin: from, forward, right, up, tan_x, tan_y, width, height }
+        Camera {
+            origin: from,
+            forward,
+            right,
+            up,
+            tan_x,
+            tan_y,
+            width,
+            height,
+        }
     }
 
     /// The ray through continuous film position `(x, y)` in pixels (0..width, 0..height, y down).
@@ -50,7 +59,10 @@ impl Camera {
         }
         let sx = v.dot(self.right) / (z * self.tan_x);
         let sy = v.dot(self.up) / (z * self.tan_y);
-        Some(((sx + 1.0) * 0.5 * self.width as f32, (1.0 - sy) * 0.5 * self.height as f32))
+        Some((
+            (sx + 1.0) * 0.5 * self.width as f32,
+            (1.0 - sy) * 0.5 * self.height as f32,
+        ))
     }
 }
 
@@ -60,13 +72,23 @@ mod tests {
 
     #[test]
     fn orientation_and_projection_round_trip() {
-        let c = Camera::new(Vec3::new(0.0, 1.0, -4.5), Vec3::new(0.0, 0.35, 0.0), Vec3::Y, 50.0, 256, 128);
+        let c = Camera::new(
+            Vec3::new(0.0, 1.0, -4.5),
+            Vec3::new(0.0, 0.35, 0.0),
+            Vec3::Y,
+            50.0,
+            256,
+            128,
+        );
         // the centre pixel looks at `to`
         let r = c.ray(128.0, 64.0);
         assert!((r.d - (Vec3::new(0.0, 0.35, 0.0) - c.origin).normalize()).length() < 1e-6);
         // left edge of the image is to the left: cross(forward, up) with forward≈+z, up=+y is -x
         let left = c.ray(0.0, 64.0);
-        assert!(left.d.x > 0.0, "Mitsuba look_at: image x runs along cross(forward, up) = -x here");
+        assert!(
+            left.d.x > 0.0,
+            "Mitsuba look_at: image x runs along cross(forward, up) = -x here"
+        );
         // top row looks up
         assert!(c.ray(128.0, 0.0).d.y > r.d.y);
         let p = c.origin + c.ray(37.25, 101.5).d * 3.0;

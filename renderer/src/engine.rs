@@ -42,12 +42,22 @@ pub struct Film {
 impl Film {
     /// An empty film.
     pub fn new(width: u32, height: u32) -> Film {
-        Film { width, height, pixels: vec![PixelSums::default(); (width * height) as usize], spp: 0, nonfinite: 0 }
+        Film {
+            width,
+            height,
+            pixels: vec![PixelSums::default(); (width * height) as usize],
+            spp: 0,
+            nonfinite: 0,
+        }
     }
 
     /// The running mean (the image).
     pub fn mean(&self) -> Vec<Vec3> {
-        let inv = if self.spp > 0 { 1.0 / self.spp as f64 } else { 0.0 };
+        let inv = if self.spp > 0 {
+            1.0 / self.spp as f64
+        } else {
+            0.0
+        };
         self.pixels.iter().map(|p| to_vec3(p.sum, inv)).collect()
     }
 
@@ -57,11 +67,20 @@ impl Film {
         let n_even = self.spp.div_ceil(2) as f64;
         let n_odd = (self.spp / 2) as f64;
         let inv = |n: f64| if n > 0.0 { 1.0 / n } else { 0.0 };
-        let a = self.pixels.iter().map(|p| to_vec3(p.sum_even, inv(n_even))).collect();
+        let a = self
+            .pixels
+            .iter()
+            .map(|p| to_vec3(p.sum_even, inv(n_even)))
+            .collect();
         let b = self
             .pixels
             .iter()
-            .map(|p| to_vec3(std::array::from_fn(|c| p.sum[c] - p.sum_even[c]), inv(n_odd)))
+            .map(|p| {
+                to_vec3(
+                    std::array::from_fn(|c| p.sum[c] - p.sum_even[c]),
+                    inv(n_odd),
+                )
+            })
             .collect();
         (a, b)
     }
@@ -86,7 +105,11 @@ impl Film {
 }
 
 fn to_vec3(s: [f64; 3], scale: f64) -> Vec3 {
-    Vec3::new((s[0] * scale) as f32, (s[1] * scale) as f32, (s[2] * scale) as f32)
+    Vec3::new(
+        (s[0] * scale) as f32,
+        (s[1] * scale) as f32,
+        (s[2] * scale) as f32,
+    )
 }
 
 /// A progressive render of one scene with one set of settings.
@@ -102,7 +125,13 @@ impl Progressive {
     /// A new, empty render.
     pub fn new(scene: Arc<Scene>, settings: Settings, seed: u32) -> Progressive {
         let film = Film::new(scene.camera.width, scene.camera.height);
-        Progressive { scene, settings, seed, film, cancel: Arc::new(AtomicBool::new(false)) }
+        Progressive {
+            scene,
+            settings,
+            seed,
+            film,
+            cancel: Arc::new(AtomicBool::new(false)),
+        }
     }
 
     /// The accumulated image.
@@ -143,36 +172,39 @@ impl Progressive {
         let cancel = &*self.cancel;
         let nonfinite = AtomicU64::new(0);
         let mut pixels = self.film.pixels.clone();
-        pixels.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
-            if cancel.load(Ordering::Relaxed) {
-                return;
-            }
-            let mut bad = 0u64;
-            for (x, px) in row.iter_mut().enumerate() {
-                let pixel_index = (y * width + x) as u32;
-                for s in first..first + n {
-                    let mut rng = Rng::new(seed, pixel_index, s);
-                    let jitter = rng.next_2d();
-                    let ray = scene.camera.ray(x as f32 + jitter.x, y as f32 + jitter.y);
-                    let l = radiance(scene, ray, &mut rng, settings);
-                    if !l.is_finite() {
-                        bad += 1;
-                        continue;
-                    }
-                    let l = [l.x as f64, l.y as f64, l.z as f64];
-                    for c in 0..3 {
-                        px.sum[c] += l[c];
-                        px.sum_sq[c] += l[c] * l[c];
-                        if s % 2 == 0 {
-                            px.sum_even[c] += l[c];
+        pixels
+            .par_chunks_mut(width)
+            .enumerate()
+            .for_each(|(y, row)| {
+                if cancel.load(Ordering::Relaxed) {
+                    return;
+                }
+                let mut bad = 0u64;
+                for (x, px) in row.iter_mut().enumerate() {
+                    let pixel_index = (y * width + x) as u32;
+                    for s in first..first + n {
+                        let mut rng = Rng::new(seed, pixel_index, s);
+                        let jitter = rng.next_2d();
+                        let ray = scene.camera.ray(x as f32 + jitter.x, y as f32 + jitter.y);
+                        let l = radiance(scene, ray, &mut rng, settings);
+                        if !l.is_finite() {
+                            bad += 1;
+                            continue;
+                        }
+                        let l = [l.x as f64, l.y as f64, l.z as f64];
+                        for (c, v) in l.into_iter().enumerate() {
+                            px.sum[c] += v;
+                            px.sum_sq[c] += v * v;
+                            if s % 2 == 0 {
+                                px.sum_even[c] += v;
+                            }
                         }
                     }
                 }
-            }
-            if bad > 0 {
-                nonfinite.fetch_add(bad, Ordering::Relaxed);
-            }
-        });
+                if bad > 0 {
+                    nonfinite.fetch_add(bad, Ordering::Relaxed);
+                }
+            });
         if cancel.load(Ordering::Relaxed) {
             return false;
         }
@@ -180,5 +212,69 @@ impl Progressive {
         self.film.spp += n;
         self.film.nonfinite += nonfinite.into_inner();
         true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::parse_scene;
+
+    fn small_scene() -> Arc<Scene> {
+        let json = r#"{
+            "camera": {"from": [0, 1, -3], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 60, "width": 12, "height": 8},
+            "materials": {"white": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
+            "shapes": [
+                {"type": "quad", "corner": [-2, 0, -2], "edge_u": [0, 0, 4], "edge_v": [4, 0, 0], "material": "white"},
+                {"type": "disk", "center": [0, 1.5, 0], "normal": [0, -1, 0], "radius": 0.5, "emission": [4, 4, 4]}
+            ]
+        }"#;
+        Arc::new(Scene::from_desc(&parse_scene(json).unwrap()).unwrap())
+    }
+
+    #[test]
+    fn passes_accumulate_like_one_render() {
+        let scene = small_scene();
+        let mut a = Progressive::new(scene.clone(), Settings::default(), 3);
+        assert!(a.render_pass(3) && a.render_pass(5));
+        let mut b = Progressive::new(scene, Settings::default(), 3);
+        assert!(b.render_pass(8));
+        assert_eq!(a.film().spp, 8);
+        assert_eq!(a.film().mean(), b.film().mean());
+        // The halves average to the mean; the variance is finite and non-negative.
+        let (ha, hb) = a.film().half_means();
+        for ((m, x), y) in a.film().mean().iter().zip(&ha).zip(&hb) {
+            assert!((*m - (*x + *y) * 0.5).abs().max_element() < 1e-5);
+        }
+        assert!(
+            a.film()
+                .variance_of_mean()
+                .iter()
+                .flatten()
+                .all(|v| v.is_finite() && *v >= 0.0)
+        );
+        assert!(
+            a.film().mean().iter().any(|c| c.x > 0.0),
+            "the lit floor is visible"
+        );
+    }
+
+    #[test]
+    fn cancel_drops_the_pass_and_restart_clears() {
+        let mut r = Progressive::new(small_scene(), Settings::default(), 1);
+        assert!(r.render_pass(2));
+        let before = r.film().mean();
+        r.cancel_flag().store(true, Ordering::Relaxed);
+        assert!(!r.render_pass(4), "a cancelled pass reports it");
+        assert_eq!(r.film().spp, 2);
+        assert_eq!(r.film().mean(), before, "a cancelled pass adds nothing");
+        let settings = Settings {
+            max_depth: Some(1),
+            ..Settings::default()
+        };
+        r.restart(settings);
+        assert_eq!(r.film().spp, 0);
+        assert_eq!(r.settings(), &settings);
+        assert!(r.render_pass(1), "restart clears the cancel flag");
     }
 }

@@ -26,25 +26,46 @@ pub struct ImageError {
 }
 
 fn err(path: &Path, message: impl ToString) -> ImageError {
-    ImageError { path: path.display().to_string(), message: message.to_string() }
+    ImageError {
+        path: path.display().to_string(),
+        message: message.to_string(),
+    }
 }
 
 /// The sRGB transfer function of a linear value in [0, 1].
 pub fn linear_to_srgb(x: f32) -> f32 {
-    if x <= 0.003_130_8 { 12.92 * x } else { 1.055 * x.powf(1.0 / 2.4) - 0.055 }
+    if x <= 0.003_130_8 {
+        12.92 * x
+    } else {
+        1.055 * x.powf(1.0 / 2.4) - 0.055
+    }
 }
 
 impl Image {
     /// Reads an EXR or PFM file (RGB; alpha and extra channels ignored).
     pub fn read(path: &Path) -> Result<Image, ImageError> {
-        let ext = extension(path);
-        if ext == "pfm" {
-            return read_pfm(path);
+        match extension(path).as_str() {
+            "pfm" => return read_pfm(path),
+            "exr" => {}
+            // PNG and the like hold display-encoded 8-bit values, not linear radiance.
+            other => {
+                return Err(err(
+                    path,
+                    format!("cannot read '.{other}' as linear radiance (use .exr or .pfm)"),
+                ));
+            }
         }
         let img = image::open(path).map_err(|e| err(path, e))?.into_rgb32f();
         let (width, height) = img.dimensions();
-        let data = img.pixels().map(|p| Vec3::new(p.0[0], p.0[1], p.0[2])).collect();
-        Ok(Image { width, height, data })
+        let data = img
+            .pixels()
+            .map(|p| Vec3::new(p.0[0], p.0[1], p.0[2]))
+            .collect();
+        Ok(Image {
+            width,
+            height,
+            data,
+        })
     }
 
     /// Writes by extension: `.exr`, `.pfm` (linear float) or `.png` (sRGB 8-bit after multiplying by
@@ -66,7 +87,11 @@ impl Image {
                     .flat_map(|c| {
                         let c = *c * scale;
                         [c.x, c.y, c.z].map(|x| {
-                            let x = if x.is_finite() { x.clamp(0.0, 1.0) } else { 0.0 };
+                            let x = if x.is_finite() {
+                                x.clamp(0.0, 1.0)
+                            } else {
+                                0.0
+                            };
                             (linear_to_srgb(x) * 255.0 + 0.5) as u8
                         })
                     })
@@ -75,13 +100,19 @@ impl Image {
                     .ok_or_else(|| err(path, "image size mismatch"))?;
                 img.save(path).map_err(|e| err(path, e))
             }
-            other => Err(err(path, format!("unsupported image format '.{other}' (use .exr, .pfm or .png)"))),
+            other => Err(err(
+                path,
+                format!("unsupported image format '.{other}' (use .exr, .pfm or .png)"),
+            )),
         }
     }
 }
 
 fn extension(path: &Path) -> String {
-    path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase()
+    path.extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase()
 }
 
 /// PFM stores rows bottom to top, little-endian when the scale is negative.
@@ -96,12 +127,16 @@ fn write_pfm(img: &Image, path: &Path) -> Result<(), ImageError> {
             }
         }
     }
-    w.write_all(&out).and_then(|_| w.flush()).map_err(|e| err(path, e))
+    w.write_all(&out)
+        .and_then(|_| w.flush())
+        .map_err(|e| err(path, e))
 }
 
 fn read_pfm(path: &Path) -> Result<Image, ImageError> {
     let mut bytes = Vec::new();
-    std::fs::File::open(path).and_then(|mut f| f.read_to_end(&mut bytes)).map_err(|e| err(path, e))?;
+    std::fs::File::open(path)
+        .and_then(|mut f| f.read_to_end(&mut bytes))
+        .map_err(|e| err(path, e))?;
     // Header: three whitespace-separated tokens lines: "PF", "W H", "scale".
     let mut tokens = Vec::new();
     let mut pos = 0;
@@ -129,12 +164,18 @@ fn read_pfm(path: &Path) -> Result<Image, ImageError> {
     let height: u32 = tokens[2].parse().map_err(|_| bad())?;
     let scale: f32 = tokens[3].parse().map_err(|_| bad())?;
     let n = width as usize * height as usize * channels;
-    let body = bytes.get(pos..pos + 4 * n).ok_or_else(|| err(path, "PFM file is truncated"))?;
+    let body = bytes
+        .get(pos..pos + 4 * n)
+        .ok_or_else(|| err(path, "PFM file is truncated"))?;
     let vals: Vec<f32> = body
         .chunks_exact(4)
         .map(|b| {
             let b = [b[0], b[1], b[2], b[3]];
-            if scale < 0.0 { f32::from_le_bytes(b) } else { f32::from_be_bytes(b) }
+            if scale < 0.0 {
+                f32::from_le_bytes(b)
+            } else {
+                f32::from_be_bytes(b)
+            }
         })
         .collect();
     let mut data = vec![Vec3::ZERO; width as usize * height as usize];
@@ -142,11 +183,18 @@ fn read_pfm(path: &Path) -> Result<Image, ImageError> {
         let src_row = height as usize - 1 - y;
         for x in 0..width as usize {
             let i = (src_row * width as usize + x) * channels;
-            data[y * width as usize + x] =
-                if channels == 3 { Vec3::new(vals[i], vals[i + 1], vals[i + 2]) } else { Vec3::splat(vals[i]) };
+            data[y * width as usize + x] = if channels == 3 {
+                Vec3::new(vals[i], vals[i + 1], vals[i + 2])
+            } else {
+                Vec3::splat(vals[i])
+            };
         }
     }
-    Ok(Image { width, height, data })
+    Ok(Image {
+        width,
+        height,
+        data,
+    })
 }
 
 #[cfg(test)]
@@ -154,8 +202,14 @@ mod tests {
     use super::*;
 
     fn sample_image() -> Image {
-        let data = (0..12).map(|i| Vec3::new(i as f32 * 0.25, 1.0 / (i as f32 + 1.0), -(i as f32))).collect();
-        Image { width: 4, height: 3, data }
+        let data = (0..12)
+            .map(|i| Vec3::new(i as f32 * 0.25, 1.0 / (i as f32 + 1.0), -(i as f32)))
+            .collect();
+        Image {
+            width: 4,
+            height: 3,
+            data,
+        }
     }
 
     #[test]
@@ -174,6 +228,8 @@ mod tests {
         // pixel 1 = (0.25, 0.5, -1): sRGB(0.25) = 137, sRGB(0.5) = 188, negative clamps to 0
         assert_eq!(png.get_pixel(1, 0).0, [137, 188, 0]);
         assert!(img.write(&dir.join("a.bmp"), 0.0).is_err());
+        let e = Image::read(&p).unwrap_err().to_string();
+        assert!(e.contains("a.png") && e.contains("linear"), "{e}");
         std::fs::remove_dir_all(&dir).ok();
     }
 }

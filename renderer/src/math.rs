@@ -103,7 +103,9 @@ mod tests {
             let f = Frame::from_normal(n);
             assert!((f.s.length() - 1.0).abs() < 1e-5, "{n}");
             assert!((f.t.length() - 1.0).abs() < 1e-5);
-            assert!(f.s.dot(f.t).abs() < 1e-5 && f.s.dot(n).abs() < 1e-5 && f.t.dot(n).abs() < 1e-5);
+            assert!(
+                f.s.dot(f.t).abs() < 1e-5 && f.s.dot(n).abs() < 1e-5 && f.t.dot(n).abs() < 1e-5
+            );
             assert!((f.s.cross(f.t) - n).length() < 1e-4, "right-handed");
             let v = Vec3::new(0.3, -0.5, 0.8);
             assert!((f.to_world(f.to_local(v)) - v).length() < 1e-5);

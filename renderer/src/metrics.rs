@@ -36,7 +36,11 @@ pub fn normal_two_sided_critical(alpha: f64) -> f64 {
     let (mut lo, mut hi) = (0.0f64, 40.0f64);
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
-        if 2.0 * normal_sf(mid) > alpha { lo = mid } else { hi = mid }
+        if 2.0 * normal_sf(mid) > alpha {
+            lo = mid
+        } else {
+            hi = mid
+        }
     }
     0.5 * (lo + hi)
 }
@@ -75,12 +79,19 @@ pub struct BlockTest {
 impl BlockTest {
     /// Blocks whose `|z|` exceeds the critical value.
     pub fn failures(&self) -> Vec<BlockResult> {
-        self.blocks.iter().copied().filter(|b| b.z.abs() > self.critical).collect()
+        self.blocks
+            .iter()
+            .copied()
+            .filter(|b| b.z.abs() > self.critical)
+            .collect()
     }
 
     /// The block with the largest `|z|`.
     pub fn worst(&self) -> Option<BlockResult> {
-        self.blocks.iter().copied().max_by(|a, b| a.z.abs().total_cmp(&b.z.abs()))
+        self.blocks
+            .iter()
+            .copied()
+            .max_by(|a, b| a.z.abs().total_cmp(&b.z.abs()))
     }
 }
 
@@ -130,7 +141,14 @@ pub fn block_z_test(
                 } else {
                     f64::INFINITY
                 };
-                blocks.push(BlockResult { x: bx, y: by, channel: c, mean: ma, reference: mb, z });
+                blocks.push(BlockResult {
+                    x: bx,
+                    y: by,
+                    channel: c,
+                    mean: ma,
+                    reference: mb,
+                    z,
+                });
             }
         }
     }
@@ -170,7 +188,11 @@ mod tests {
                 .map(|_| {
                     // sum of 12 uniforms − 6 ≈ N(0, 1)
                     let mut g = || (0..12).map(|_| rng.next_f32()).sum::<f32>() - 6.0;
-                    Vec3::new(1.0 + bias + sigma * g(), 1.0 + bias + sigma * g(), 1.0 + bias + sigma * g())
+                    Vec3::new(
+                        1.0 + bias + sigma * g(),
+                        1.0 + bias + sigma * g(),
+                        1.0 + bias + sigma * g(),
+                    )
                 })
                 .collect()
         };
@@ -178,10 +200,33 @@ mod tests {
         let reference = noisy(0.0);
         let same = noisy(0.0);
         let biased = noisy(0.02);
-        let r = ImageWithVariance { mean: &reference, var: &var };
-        let ok = block_z_test(w, h, &ImageWithVariance { mean: &same, var: &var }, &r, 32, 0.01);
+        let r = ImageWithVariance {
+            mean: &reference,
+            var: &var,
+        };
+        let ok = block_z_test(
+            w,
+            h,
+            &ImageWithVariance {
+                mean: &same,
+                var: &var,
+            },
+            &r,
+            32,
+            0.01,
+        );
         assert!(ok.failures().is_empty(), "{:?}", ok.worst());
-        let bad = block_z_test(w, h, &ImageWithVariance { mean: &biased, var: &var }, &r, 32, 0.01);
+        let bad = block_z_test(
+            w,
+            h,
+            &ImageWithVariance {
+                mean: &biased,
+                var: &var,
+            },
+            &r,
+            32,
+            0.01,
+        );
         assert_eq!(bad.failures().len(), bad.blocks.len());
     }
 }

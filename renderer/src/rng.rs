@@ -67,10 +67,22 @@ mod tests {
 
     #[test]
     fn streams_differ_and_repeat() {
-        let a: Vec<u32> = (0..4).map(|_| 0).scan(Rng::new(1, 2, 3), |r, _| Some(r.next_u32())).collect();
-        let b: Vec<u32> = (0..4).map(|_| 0).scan(Rng::new(1, 2, 3), |r, _| Some(r.next_u32())).collect();
-        let c: Vec<u32> = (0..4).map(|_| 0).scan(Rng::new(1, 2, 4), |r, _| Some(r.next_u32())).collect();
-        let d: Vec<u32> = (0..4).map(|_| 0).scan(Rng::new(1, 3, 3), |r, _| Some(r.next_u32())).collect();
+        let a: Vec<u32> = (0..4)
+            .map(|_| 0)
+            .scan(Rng::new(1, 2, 3), |r, _| Some(r.next_u32()))
+            .collect();
+        let b: Vec<u32> = (0..4)
+            .map(|_| 0)
+            .scan(Rng::new(1, 2, 3), |r, _| Some(r.next_u32()))
+            .collect();
+        let c: Vec<u32> = (0..4)
+            .map(|_| 0)
+            .scan(Rng::new(1, 2, 4), |r, _| Some(r.next_u32()))
+            .collect();
+        let d: Vec<u32> = (0..4)
+            .map(|_| 0)
+            .scan(Rng::new(1, 3, 3), |r, _| Some(r.next_u32()))
+            .collect();
         assert_eq!(a, b);
         assert_ne!(a, c);
         assert_ne!(a, d);

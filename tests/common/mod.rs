@@ -41,20 +41,38 @@ pub fn render(scene: &Arc<Scene>, settings: Settings, spp: u32, seed: u32) -> Pr
 /// The block z-test of a render against a reference image with its variance image (or none, for
 /// closed-form images): `block`×`block` pixels, family-wise α = 0.01 (Šidák over blocks and
 /// channels).
-pub fn test_against(render: &Progressive, reference: &Image, reference_var: Option<&Image>, block: u32) -> BlockTest {
+pub fn test_against(
+    render: &Progressive,
+    reference: &Image,
+    reference_var: Option<&Image>,
+    block: u32,
+) -> BlockTest {
     let film = render.film();
     let mean = film.mean();
     let var = film.variance_of_mean();
     let ref_var: Vec<[f64; 3]> = match reference_var {
-        Some(v) => v.data.iter().map(|c| [c.x as f64, c.y as f64, c.z as f64]).collect(),
+        Some(v) => v
+            .data
+            .iter()
+            .map(|c| [c.x as f64, c.y as f64, c.z as f64])
+            .collect(),
         None => vec![[0.0; 3]; reference.data.len()],
     };
-    assert_eq!((film.width, film.height), (reference.width, reference.height));
+    assert_eq!(
+        (film.width, film.height),
+        (reference.width, reference.height)
+    );
     block_z_test(
         film.width,
         film.height,
-        &ImageWithVariance { mean: &mean, var: &var },
-        &ImageWithVariance { mean: &reference.data, var: &ref_var },
+        &ImageWithVariance {
+            mean: &mean,
+            var: &var,
+        },
+        &ImageWithVariance {
+            mean: &reference.data,
+            var: &ref_var,
+        },
         block,
         0.01,
     )
@@ -64,8 +82,12 @@ pub fn test_against(render: &Progressive, reference: &Image, reference_var: Opti
 pub fn check_unbiased(what: &str, test: &BlockTest) -> Result<(), String> {
     let failures = test.failures();
     if !failures.is_empty() {
-        let mut msg =
-            format!("{what}: {} of {} blocks differ (|z| > {:.2}):\n", failures.len(), test.blocks.len(), test.critical);
+        let mut msg = format!(
+            "{what}: {} of {} blocks differ (|z| > {:.2}):\n",
+            failures.len(),
+            test.blocks.len(),
+            test.critical
+        );
         for b in failures.iter().take(8) {
             msg += &format!(
                 "  block ({},{}) ch {}: mean {:.5} vs reference {:.5} (z = {:.2})\n",
@@ -76,7 +98,12 @@ pub fn check_unbiased(what: &str, test: &BlockTest) -> Result<(), String> {
         return Err(msg);
     }
     let w = test.worst().expect("at least one block");
-    eprintln!("{what}: ok, {} blocks, worst |z| = {:.2} (critical {:.2})", test.blocks.len(), w.z.abs(), test.critical);
+    eprintln!(
+        "{what}: ok, {} blocks, worst |z| = {:.2} (critical {:.2})",
+        test.blocks.len(),
+        w.z.abs(),
+        test.critical
+    );
     Ok(())
 }
 

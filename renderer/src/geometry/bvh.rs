@@ -26,9 +26,20 @@ impl Accel {
         if prims.len() <= Self::LINEAR_LIMIT {
             return Accel { prims, bvh: None };
         }
-        let bvh = build_cwbvh(&prims, BvhBuildParams::medium_build(), &mut Duration::default());
-        let prims = bvh.primitive_indices.iter().map(|&i| prims[i as usize]).collect();
-        Accel { prims, bvh: Some(bvh) }
+        let bvh = build_cwbvh(
+            &prims,
+            BvhBuildParams::medium_build(),
+            &mut Duration::default(),
+        );
+        let prims = bvh
+            .primitive_indices
+            .iter()
+            .map(|&i| prims[i as usize])
+            .collect();
+        Accel {
+            prims,
+            bvh: Some(bvh),
+        }
     }
 
     /// The primitives, in the order `SurfaceHit::prim` indexes.
@@ -46,7 +57,10 @@ impl Accel {
                 let r = obvhs::ray::Ray::new(ray.o.into(), ray.d.into(), 0.0, ray.t_max);
                 let mut hit = obvhs::ray::RayHit::none();
                 bvh.ray_traverse(r, &mut hit, |r, id| {
-                    let local = Ray { t_max: r.tmax, ..*ray };
+                    let local = Ray {
+                        t_max: r.tmax,
+                        ..*ray
+                    };
                     match self.prims[id].shape.intersect_t(&local, &tri) {
                         Some(t) => {
                             if t < best_t {
@@ -61,14 +75,24 @@ impl Accel {
             }
             None => {
                 for (id, p) in self.prims.iter().enumerate() {
-                    if let Some(t) = p.shape.intersect_t(&Ray { t_max: best_t, ..*ray }, &tri) {
+                    if let Some(t) = p.shape.intersect_t(
+                        &Ray {
+                            t_max: best_t,
+                            ..*ray
+                        },
+                        &tri,
+                    ) {
                         best_t = t;
                         best = id as u32;
                     }
                 }
             }
         }
-        (best != u32::MAX).then(|| self.prims[best as usize].shape.surface_hit(ray, best_t, best))
+        (best != u32::MAX).then(|| {
+            self.prims[best as usize]
+                .shape
+                .surface_hit(ray, best_t, best)
+        })
     }
 
     /// Whether anything blocks `ray` within `(0, ray.t_max)`; stops at the first blocker.
@@ -78,19 +102,27 @@ impl Accel {
             Some(bvh) => {
                 let r = obvhs::ray::Ray::new(ray.o.into(), ray.d.into(), 0.0, ray.t_max);
                 !bvh.ray_traverse_miss(r, |_, id| {
-                    self.prims[id].shape.intersect_t(ray, &tri).unwrap_or(f32::INFINITY)
+                    self.prims[id]
+                        .shape
+                        .intersect_t(ray, &tri)
+                        .unwrap_or(f32::INFINITY)
                 })
             }
-            None => self.prims.iter().any(|p| p.shape.intersect_t(ray, &tri).is_some()),
+            None => self
+                .prims
+                .iter()
+                .any(|p| p.shape.intersect_t(ray, &tri).is_some()),
         }
     }
 
     /// Bounds of all primitives.
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.prims.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
-            let (a, b) = p.shape.bounds();
-            (lo.min(a), hi.max(b))
-        })
+        self.prims
+            .iter()
+            .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
+                let (a, b) = p.shape.bounds();
+                (lo.min(a), hi.max(b))
+            })
     }
 }
 
@@ -109,7 +141,10 @@ mod tests {
         for i in 0..300 {
             let c = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 10.0;
             let shape = if i % 3 == 0 {
-                Shape::Sphere(Sphere { center: c, radius: 0.3 })
+                Shape::Sphere(Sphere {
+                    center: c,
+                    radius: 0.3,
+                })
             } else {
                 let d = |r: &mut Rng| Vec3::new(r.next_f32(), r.next_f32(), r.next_f32()) - 0.5;
                 match Shape::triangle([c, c + d(&mut rng), c + d(&mut rng)]) {
@@ -117,9 +152,16 @@ mod tests {
                     None => continue,
                 }
             };
-            prims.push(Primitive { shape, material: 0, light: NONE });
+            prims.push(Primitive {
+                shape,
+                material: 0,
+                light: NONE,
+            });
         }
-        let brute = Accel { prims: prims.clone(), bvh: None };
+        let brute = Accel {
+            prims: prims.clone(),
+            bvh: None,
+        };
         let accel = Accel::new(prims);
         for _ in 0..5000 {
             let o = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 12.0 - 1.0;

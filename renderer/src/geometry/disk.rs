@@ -59,10 +59,19 @@ mod tests {
 
     #[test]
     fn hit_and_miss() {
-        let d = Disk { center: Vec3::new(0.0, 2.0, 0.0), n: -Vec3::Y, radius: 1.0 };
-        let t = d.intersect(&Ray::new(Vec3::new(0.5, 0.0, 0.5), Vec3::Y)).unwrap();
+        let d = Disk {
+            center: Vec3::new(0.0, 2.0, 0.0),
+            n: -Vec3::Y,
+            radius: 1.0,
+        };
+        let t = d
+            .intersect(&Ray::new(Vec3::new(0.5, 0.0, 0.5), Vec3::Y))
+            .unwrap();
         assert!((t - 2.0).abs() < 1e-6);
-        assert!(d.intersect(&Ray::new(Vec3::new(0.8, 0.0, 0.8), Vec3::Y)).is_none());
+        assert!(
+            d.intersect(&Ray::new(Vec3::new(0.8, 0.0, 0.8), Vec3::Y))
+                .is_none()
+        );
         let (lo, hi) = d.bounds();
         assert!((hi.x - 1.0).abs() < 1e-6 && hi.y - lo.y < 1e-6);
     }

@@ -3,7 +3,9 @@
 use super::disk::Disk;
 use super::ray::{Ray, SurfaceHit};
 use super::sphere::Sphere;
-use super::triangle::{TriangleRay, intersect_triangle, intersect_triangle_prepared, triangle_normal, triangle_point};
+use super::triangle::{
+    TriangleRay, intersect_triangle, intersect_triangle_prepared, triangle_normal, triangle_point,
+};
 use glam::Vec3;
 
 /// Marks "no light" / "no material".
@@ -45,7 +47,9 @@ impl Shape {
     #[inline]
     pub fn intersect_t(&self, ray: &Ray, tri: &TriangleRay) -> Option<f32> {
         match self {
-            Shape::Triangle { v, .. } => intersect_triangle_prepared(tri, v, ray.t_max).map(|h| h.t),
+            Shape::Triangle { v, .. } => {
+                intersect_triangle_prepared(tri, v, ray.t_max).map(|h| h.t)
+            }
             Shape::Disk(d) => d.intersect(ray),
             Shape::Sphere(s) => s.intersect(ray),
         }
@@ -56,19 +60,43 @@ impl Shape {
         match self {
             Shape::Triangle { v, n } => {
                 // Recompute barycentrics; this runs once per closest hit, not per candidate.
-                let b = intersect_triangle(&Ray { t_max: f32::INFINITY, ..*ray }, v)
-                    .map(|h| h.b)
-                    .unwrap_or([1.0 / 3.0; 3]);
+                let b = intersect_triangle(
+                    &Ray {
+                        t_max: f32::INFINITY,
+                        ..*ray
+                    },
+                    v,
+                )
+                .map(|h| h.b)
+                .unwrap_or([1.0 / 3.0; 3]);
                 let (p, p_error) = triangle_point(v, b);
-                SurfaceHit { t, p, p_error, n: *n, prim }
+                SurfaceHit {
+                    t,
+                    p,
+                    p_error,
+                    n: *n,
+                    prim,
+                }
             }
             Shape::Disk(d) => {
                 let (p, p_error) = d.surface_point(ray, t);
-                SurfaceHit { t, p, p_error, n: d.n, prim }
+                SurfaceHit {
+                    t,
+                    p,
+                    p_error,
+                    n: d.n,
+                    prim,
+                }
             }
             Shape::Sphere(s) => {
                 let (p, p_error, n) = s.surface_point(ray, t);
-                SurfaceHit { t, p, p_error, n, prim }
+                SurfaceHit {
+                    t,
+                    p,
+                    p_error,
+                    n,
+                    prim,
+                }
             }
         }
     }

@@ -28,7 +28,11 @@ pub struct Ray {
 impl Ray {
     /// A ray of unbounded length.
     pub fn new(o: Vec3, d: Vec3) -> Ray {
-        Ray { o, d, t_max: f32::INFINITY }
+        Ray {
+            o,
+            d,
+            t_max: f32::INFINITY,
+        }
     }
 
     /// The point at parameter `t`.
@@ -120,7 +124,11 @@ pub fn spawn_ray_to(
 ) -> Ray {
     let pf = offset_ray_origin(p_from, err_from, n_from, p_to - p_from);
     let pt = offset_ray_origin(p_to, err_to, n_to, pf - p_to);
-    Ray { o: pf, d: pt - pf, t_max: 1.0 - SHADOW_EPSILON }
+    Ray {
+        o: pf,
+        d: pt - pf,
+        t_max: 1.0 - SHADOW_EPSILON,
+    }
 }
 
 #[cfg(test)]

@@ -55,7 +55,11 @@ impl Sphere {
         let local = ray.at(t) - self.center;
         let n = local.normalize_or(Vec3::Z);
         let p = self.center + n * self.radius;
-        (p, gamma(5) * (n * self.radius).abs() + gamma(2) * p.abs(), n)
+        (
+            p,
+            gamma(5) * (n * self.radius).abs() + gamma(2) * p.abs(),
+            n,
+        )
     }
 }
 
@@ -65,14 +69,25 @@ mod tests {
 
     #[test]
     fn hits_from_outside_and_inside() {
-        let s = Sphere { center: Vec3::new(1.0, 2.0, 3.0), radius: 0.5 };
-        let t = s.intersect(&Ray::new(Vec3::new(1.0, 2.0, 0.0), Vec3::Z)).unwrap();
+        let s = Sphere {
+            center: Vec3::new(1.0, 2.0, 3.0),
+            radius: 0.5,
+        };
+        let t = s
+            .intersect(&Ray::new(Vec3::new(1.0, 2.0, 0.0), Vec3::Z))
+            .unwrap();
         assert!((t - 2.5).abs() < 1e-5);
         let t = s.intersect(&Ray::new(s.center, Vec3::X)).unwrap();
         assert!((t - 0.5).abs() < 1e-6);
-        assert!(s.intersect(&Ray::new(Vec3::new(1.6, 2.0, 0.0), Vec3::Z)).is_none());
+        assert!(
+            s.intersect(&Ray::new(Vec3::new(1.6, 2.0, 0.0), Vec3::Z))
+                .is_none()
+        );
         // far away, tiny sphere: the careful form keeps precision
-        let s = Sphere { center: Vec3::new(0.0, 0.0, 1e4), radius: 1e-2 };
+        let s = Sphere {
+            center: Vec3::new(0.0, 0.0, 1e4),
+            radius: 1e-2,
+        };
         let t = s.intersect(&Ray::new(Vec3::ZERO, Vec3::Z)).unwrap();
         assert!((t - (1e4 - 1e-2)).abs() < 2e-3);
     }

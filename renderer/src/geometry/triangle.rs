@@ -50,7 +50,11 @@ impl TriangleRay {
             2
         };
         let d = permute(ray.d, kz);
-        TriangleRay { o: ray.o, kz, s: Vec3::new(-d.x / d.z, -d.y / d.z, 1.0 / d.z) }
+        TriangleRay {
+            o: ray.o,
+            kz,
+            s: Vec3::new(-d.x / d.z, -d.y / d.z, 1.0 / d.z),
+        }
     }
 }
 
@@ -73,7 +77,11 @@ pub fn intersect_triangle(ray: &Ray, v: &[Vec3; 3]) -> Option<TriangleHit> {
 
 /// [`intersect_triangle`] with the per-ray work done once ([`TriangleRay`]).
 #[inline]
-pub fn intersect_triangle_prepared(r: &TriangleRay, v: &[Vec3; 3], t_max: f32) -> Option<TriangleHit> {
+pub fn intersect_triangle_prepared(
+    r: &TriangleRay,
+    v: &[Vec3; 3],
+    t_max: f32,
+) -> Option<TriangleHit> {
     // Translate to the ray origin, permute, and shear so the ray runs along +z.
     let mut p0t = permute(v[0] - r.o, r.kz);
     let mut p1t = permute(v[1] - r.o, r.kz);
@@ -126,7 +134,10 @@ pub fn intersect_triangle_prepared(r: &TriangleRay, v: &[Vec3; 3], t_max: f32) -
     if t <= delta_t {
         return None;
     }
-    Some(TriangleHit { t, b: [e0 * inv_det, e1 * inv_det, e2 * inv_det] })
+    Some(TriangleHit {
+        t,
+        b: [e0 * inv_det, e1 * inv_det, e2 * inv_det],
+    })
 }
 
 /// The hit point from barycentrics (more accurate than `o + t·d`) and its error bound.
@@ -170,7 +181,8 @@ mod tests {
             let on_edge = a + s * (b - a);
             let o = Vec3::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5, 5.0);
             let ray = Ray::new(o, (on_edge - o).normalize());
-            let hit = intersect_triangle(&ray, &t1).is_some() || intersect_triangle(&ray, &t2).is_some();
+            let hit =
+                intersect_triangle(&ray, &t1).is_some() || intersect_triangle(&ray, &t2).is_some();
             assert!(hit, "ray slipped through the shared edge at s={s}");
         }
     }

@@ -42,7 +42,13 @@ mod tests {
     #[test]
     fn weights_sum_to_one() {
         for h in [Heuristic::Balance, Heuristic::Power] {
-            for (a, b) in [(1.0, 1.0), (0.1, 30.0), (1e30, 1e-30), (1e20, 3e20), (0.0, 2.0)] {
+            for (a, b) in [
+                (1.0, 1.0),
+                (0.1, 30.0),
+                (1e30, 1e-30),
+                (1e20, 3e20),
+                (0.0, 2.0),
+            ] {
                 let s = h.weight(a, b) + h.weight(b, a);
                 assert!((s - 1.0).abs() < 1e-6, "{h:?} {a} {b} -> {s}");
             }

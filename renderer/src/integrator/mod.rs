@@ -61,7 +61,9 @@ pub struct Settings {
 impl Default for Settings {
     fn default() -> Settings {
         Settings {
-            strategy: Strategy::Mis { heuristic: Heuristic::Power },
+            strategy: Strategy::Mis {
+                heuristic: Heuristic::Power,
+            },
             light_sampling: LightSampling::SolidAngle,
             max_depth: None,
             rr_depth: 5,

@@ -38,8 +38,14 @@ pub fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng, settings: &Settings)
         let Some(hit) = scene.accel.intersect(&ray) else {
             if let Some(bg) = scene.background_light {
                 let light = &scene.lights[bg as usize];
-                let w = emission_weight(scene, settings, weight_rule, bg, || {
-                    light.pdf(prev_p, ray.d, Vec3::ZERO, Vec3::ZERO, settings.light_sampling)
+                let w = emission_weight(scene, weight_rule, bg, || {
+                    light.pdf(
+                        prev_p,
+                        ray.d,
+                        Vec3::ZERO,
+                        Vec3::ZERO,
+                        settings.light_sampling,
+                    )
                 });
                 l += beta * light.radiance(Vec3::ZERO, ray.d) * w;
             }
@@ -50,8 +56,14 @@ pub fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng, settings: &Settings)
             let light = &scene.lights[prim.light as usize];
             let le = light.radiance(hit.n, ray.d);
             if le != Vec3::ZERO {
-                let w = emission_weight(scene, settings, weight_rule, prim.light, || {
-                    light.pdf(prev_p, ray.d.normalize(), hit.p, hit.n, settings.light_sampling)
+                let w = emission_weight(scene, weight_rule, prim.light, || {
+                    light.pdf(
+                        prev_p,
+                        ray.d.normalize(),
+                        hit.p,
+                        hit.n,
+                        settings.light_sampling,
+                    )
                 });
                 l += beta * le * w;
             }
@@ -89,7 +101,10 @@ pub fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng, settings: &Settings)
                 Strategy::Bsdf => EmissionWeight::One,
                 Strategy::Mis { heuristic } => {
                     do_nee = true;
-                    EmissionWeight::Mis { p_bsdf: 0.0, heuristic }
+                    EmissionWeight::Mis {
+                        p_bsdf: 0.0,
+                        heuristic,
+                    }
                 }
                 Strategy::Mixture { light_weight } => {
                     if rng.next_f32() < light_weight {
@@ -97,7 +112,10 @@ pub fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng, settings: &Settings)
                         nee_mixture_weight = Some(light_weight);
                         EmissionWeight::Zero
                     } else {
-                        EmissionWeight::Mixture { p_bsdf: 0.0, light_weight }
+                        EmissionWeight::Mixture {
+                            p_bsdf: 0.0,
+                            light_weight,
+                        }
                     }
                 }
             }
@@ -105,16 +123,32 @@ pub fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng, settings: &Settings)
         if do_nee {
             let u_light = rng.next_f32();
             let u = rng.next_2d();
-            l += beta * direct_light(scene, settings, &hit, n, &frame, wo, material, u_light, u, nee_mixture_weight);
+            l += beta
+                * direct_light(
+                    scene,
+                    settings,
+                    &hit,
+                    n,
+                    &frame,
+                    wo,
+                    material,
+                    u_light,
+                    u,
+                    nee_mixture_weight,
+                );
         }
 
         // Continue the path by BSDF sampling.
-        let Some(bs) = material.sample(wo, rng.next_f32(), rng.next_2d()) else { break };
+        let Some(bs) = material.sample(wo, rng.next_f32(), rng.next_2d()) else {
+            break;
+        };
         if bs.delta {
             weight_rule = EmissionWeight::One;
         } else {
             match &mut weight_rule {
-                EmissionWeight::Mis { p_bsdf, .. } | EmissionWeight::Mixture { p_bsdf, .. } => *p_bsdf = bs.pdf,
+                EmissionWeight::Mis { p_bsdf, .. } | EmissionWeight::Mixture { p_bsdf, .. } => {
+                    *p_bsdf = bs.pdf
+                }
                 _ => {}
             }
         }
@@ -143,18 +177,24 @@ pub fn radiance(scene: &Scene, mut ray: Ray, rng: &mut Rng, settings: &Settings)
 #[inline]
 fn emission_weight(
     scene: &Scene,
-    settings: &Settings,
     rule: EmissionWeight,
     light: u32,
     light_pdf: impl FnOnce() -> f32,
 ) -> f32 {
-    let pmf = || scene.light_sampler.as_ref().map_or(0.0, |s| s.pmf(light as usize));
-    let _ = settings;
+    let pmf = || {
+        scene
+            .light_sampler
+            .as_ref()
+            .map_or(0.0, |s| s.pmf(light as usize))
+    };
     match rule {
         EmissionWeight::One => 1.0,
         EmissionWeight::Zero => 0.0,
         EmissionWeight::Mis { p_bsdf, heuristic } => heuristic.weight(p_bsdf, pmf() * light_pdf()),
-        EmissionWeight::Mixture { p_bsdf, light_weight } => {
+        EmissionWeight::Mixture {
+            p_bsdf,
+            light_weight,
+        } => {
             let p_light = pmf() * light_pdf();
             let w = p_bsdf / (light_weight * p_light + (1.0 - light_weight) * p_bsdf);
             if w.is_finite() { w } else { 0.0 }
@@ -178,10 +218,14 @@ fn direct_light(
     u: glam::Vec2,
     mixture: Option<f32>,
 ) -> Vec3 {
-    let Some(sampler) = &scene.light_sampler else { return Vec3::ZERO };
+    let Some(sampler) = &scene.light_sampler else {
+        return Vec3::ZERO;
+    };
     let (index, pmf) = sampler.sample(u_light);
     let light = &scene.lights[index];
-    let Some(ls) = light.sample(hit.p, u, settings.light_sampling) else { return Vec3::ZERO };
+    let Some(ls) = light.sample(hit.p, u, settings.light_sampling) else {
+        return Vec3::ZERO;
+    };
     let wi = frame.to_local(ls.wi);
     if wi.z <= 0.0 {
         return Vec3::ZERO;

@@ -17,7 +17,15 @@ impl BackgroundLight {
     /// Samples a direction uniformly on the sphere.
     pub fn sample(&self, u: Vec2) -> Option<LightSample> {
         let wi = sample_uniform_sphere(u);
-        Some(LightSample { p: wi, p_error: Vec3::ZERO, n: -wi, wi, pdf: uniform_sphere_pdf(), le: self.le, infinite: true })
+        Some(LightSample {
+            p: wi,
+            p_error: Vec3::ZERO,
+            n: -wi,
+            wi,
+            pdf: uniform_sphere_pdf(),
+            le: self.le,
+            infinite: true,
+        })
     }
 
     /// Power through a disk of the scene's radius, from all directions (pbrt-v4's `Phi`).

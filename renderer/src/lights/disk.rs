@@ -20,7 +20,11 @@ pub struct DiskLight {
 impl DiskLight {
     /// A disk light.
     pub fn new(disk: Disk, le: Vec3) -> DiskLight {
-        DiskLight { disk, frame: Frame::from_normal(disk.n), le }
+        DiskLight {
+            disk,
+            frame: Frame::from_normal(disk.n),
+            le,
+        }
     }
 
     /// Samples a point uniformly by area.

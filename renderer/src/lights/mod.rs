@@ -99,7 +99,8 @@ impl Light {
 
     /// Emitted power (luminance), used to pick lights in proportion to it.
     pub fn power(&self) -> f32 {
-        let area_power = |area: f32, le: Vec3| std::f32::consts::PI * area * crate::math::luminance(le);
+        let area_power =
+            |area: f32, le: Vec3| std::f32::consts::PI * area * crate::math::luminance(le);
         match self {
             Light::Triangle(l) => area_power(l.area, l.le),
             Light::Polygon(l) => area_power(l.area, l.le),
@@ -133,19 +134,38 @@ pub fn area_to_solid_angle(pdf_area: f32, p: Vec3, y: Vec3, ny: Vec3) -> f32 {
     let dist2 = d.length_squared();
     let cos = ny.dot(d).abs() / dist2.sqrt();
     let pdf = pdf_area * dist2 / cos;
-    if pdf.is_finite() && dist2 > 0.0 { pdf } else { 0.0 }
+    if pdf.is_finite() && dist2 > 0.0 {
+        pdf
+    } else {
+        0.0
+    }
 }
 
 /// Builds a light sample for a point `y` (normal `ny`) chosen with area density `pdf_area`.
 #[inline]
-pub(crate) fn area_sample(p: Vec3, y: Vec3, ny: Vec3, pdf_area: f32, le: Vec3) -> Option<LightSample> {
+pub(crate) fn area_sample(
+    p: Vec3,
+    y: Vec3,
+    ny: Vec3,
+    pdf_area: f32,
+    le: Vec3,
+) -> Option<LightSample> {
     let d = y - p;
     let dist = d.length();
     let wi = d / dist;
     // One-sided: the light must face p.
-    if !(ny.dot(wi) < 0.0) {
+    // Written to also reject NaN.
+    if ny.dot(wi).partial_cmp(&0.0) != Some(std::cmp::Ordering::Less) {
         return None;
     }
     let pdf = area_to_solid_angle(pdf_area, p, y, ny);
-    Some(LightSample { p: y, p_error: gamma(6) * y.abs(), n: ny, wi, pdf, le, infinite: false })
+    Some(LightSample {
+        p: y,
+        p_error: gamma(6) * y.abs(),
+        n: ny,
+        wi,
+        pdf,
+        le,
+        infinite: false,
+    })
 }

@@ -9,7 +9,10 @@
 use super::triangle::spherical_ok;
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
 use crate::geometry::ray::gamma;
-use crate::sampling::{DiscreteDistribution, sample_spherical_triangle, sample_uniform_triangle, spherical_triangle_area};
+use crate::sampling::{
+    DiscreteDistribution, sample_spherical_triangle, sample_uniform_triangle,
+    spherical_triangle_area,
+};
 use glam::{Vec2, Vec3};
 
 /// A one-sided emitting polygon.
@@ -38,14 +41,33 @@ const MAX_SOLID_ANGLE_TRIANGLES: usize = 64;
 
 impl PolygonLight {
     /// A polygon light from its vertices and triangulation; `None` if it has no area.
-    pub fn new(vertices: Vec<Vec3>, indices: Vec<[u32; 3]>, n: Vec3, le: Vec3) -> Option<PolygonLight> {
-        let triangles: Vec<[Vec3; 3]> =
-            indices.iter().map(|t| t.map(|i| vertices[i as usize])).collect();
-        let areas: Vec<f32> = triangles.iter().map(crate::geometry::triangle::triangle_area).collect();
+    pub fn new(
+        vertices: Vec<Vec3>,
+        indices: Vec<[u32; 3]>,
+        n: Vec3,
+        le: Vec3,
+    ) -> Option<PolygonLight> {
+        let triangles: Vec<[Vec3; 3]> = indices
+            .iter()
+            .map(|t| t.map(|i| vertices[i as usize]))
+            .collect();
+        let areas: Vec<f32> = triangles
+            .iter()
+            .map(crate::geometry::triangle::triangle_area)
+            .collect();
         let by_area = DiscreteDistribution::new(&areas)?;
         let area = areas.iter().sum();
         let origin = triangles.first()?[0];
-        Some(PolygonLight { vertices, indices, triangles, n, origin, area, le, by_area })
+        Some(PolygonLight {
+            vertices,
+            indices,
+            triangles,
+            n,
+            origin,
+            area,
+            le,
+            by_area,
+        })
     }
 
     #[inline]
@@ -67,7 +89,11 @@ impl PolygonLight {
         let mut omegas = [0.0f32; MAX_SOLID_ANGLE_TRIANGLES];
         let mut total = 0.0;
         for (o, t) in omegas.iter_mut().zip(&self.indices) {
-            *o = spherical_triangle_area(dirs[t[0] as usize], dirs[t[1] as usize], dirs[t[2] as usize]);
+            *o = spherical_triangle_area(
+                dirs[t[0] as usize],
+                dirs[t[1] as usize],
+                dirs[t[2] as usize],
+            );
             total += *o;
         }
         spherical_ok(total).then_some((omegas, total))
@@ -87,7 +113,15 @@ impl PolygonLight {
             let b = s.barycentrics;
             let y = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
             let err = gamma(6) * ((b[0] * v[0]).abs() + (b[1] * v[1]).abs() + (b[2] * v[2]).abs());
-            return Some(LightSample { p: y, p_error: err, n: self.n, wi: s.dir, pdf: 1.0 / total, le: self.le, infinite: false });
+            return Some(LightSample {
+                p: y,
+                p_error: err,
+                n: self.n,
+                wi: s.dir,
+                pdf: 1.0 / total,
+                le: self.le,
+                infinite: false,
+            });
         }
         let (i, _, ux) = self.by_area.sample(u.x);
         let v = &self.triangles[i];
@@ -121,7 +155,10 @@ fn pick(weights: &[f32], total: f32, u: f32) -> Option<(usize, f32)> {
             continue;
         }
         if target < acc + w {
-            return Some((i, ((target - acc) / w).clamp(0.0, crate::sampling::ONE_MINUS_EPSILON)));
+            return Some((
+                i,
+                ((target - acc) / w).clamp(0.0, crate::sampling::ONE_MINUS_EPSILON),
+            ));
         }
         acc += w;
         last = Some(i);

@@ -28,7 +28,14 @@ impl QuadLight {
     pub fn new(corner: Vec3, edge_u: Vec3, edge_v: Vec3, le: Vec3) -> Option<QuadLight> {
         let c = edge_u.cross(edge_v);
         let area = c.length();
-        (area > 0.0 && area.is_finite()).then(|| QuadLight { corner, edge_u, edge_v, n: c / area, area, le })
+        (area > 0.0 && area.is_finite()).then(|| QuadLight {
+            corner,
+            edge_u,
+            edge_v,
+            n: c / area,
+            area,
+            le,
+        })
     }
 
     #[inline]
@@ -37,7 +44,8 @@ impl QuadLight {
     }
 
     fn spherical(&self, p: Vec3) -> Option<SphericalRectangle> {
-        SphericalRectangle::new(p, self.corner, self.edge_u, self.edge_v).filter(|r| spherical_ok(r.solid_angle()))
+        SphericalRectangle::new(p, self.corner, self.edge_u, self.edge_v)
+            .filter(|r| spherical_ok(r.solid_angle()))
     }
 
     /// Samples a point as seen from `p`.

@@ -31,7 +31,11 @@ impl SphereLight {
             return None;
         }
         let sin2 = r2 / d2;
-        let one_minus_cos = if sin2 < SMALL_CONE_SIN2 { 0.5 * sin2 } else { 1.0 - safe_sqrt(1.0 - sin2) };
+        let one_minus_cos = if sin2 < SMALL_CONE_SIN2 {
+            0.5 * sin2
+        } else {
+            1.0 - safe_sqrt(1.0 - sin2)
+        };
         Some((sin2, one_minus_cos))
     }
 
@@ -58,19 +62,34 @@ impl SphereLight {
         let sin_alpha = safe_sqrt(1.0 - cos_alpha * cos_alpha);
         let phi = 2.0 * PI * u.y;
         let frame = Frame::from_normal((p - c).normalize());
-        let n = frame.to_world(Vec3::new(sin_alpha * phi.cos(), sin_alpha * phi.sin(), cos_alpha));
+        let n = frame.to_world(Vec3::new(
+            sin_alpha * phi.cos(),
+            sin_alpha * phi.sin(),
+            cos_alpha,
+        ));
         let y = c + r * n;
         let wi = (y - p).normalize();
-        if !(n.dot(wi) < 0.0) {
+        // Written to also reject NaN.
+        if n.dot(wi).partial_cmp(&0.0) != Some(std::cmp::Ordering::Less) {
             return None;
         }
         let pdf = 1.0 / (2.0 * PI * one_minus_cos_max);
-        Some(LightSample { p: y, p_error: gamma(5) * (r * n).abs() + gamma(2) * y.abs(), n, wi, pdf, le: self.le, infinite: false })
+        Some(LightSample {
+            p: y,
+            p_error: gamma(5) * (r * n).abs() + gamma(2) * y.abs(),
+            n,
+            wi,
+            pdf,
+            le: self.le,
+            infinite: false,
+        })
     }
 
     /// Solid-angle pdf of hitting `y` (normal `ny`) from `p`.
     pub fn pdf(&self, p: Vec3, y: Vec3, ny: Vec3, method: LightSampling) -> f32 {
-        let Some((_, one_minus_cos_max)) = self.cone(p) else { return 0.0 };
+        let Some((_, one_minus_cos_max)) = self.cone(p) else {
+            return 0.0;
+        };
         match method {
             LightSampling::Area => area_to_solid_angle(1.0 / self.sphere.area(), p, y, ny),
             LightSampling::SolidAngle => 1.0 / (2.0 * PI * one_minus_cos_max),

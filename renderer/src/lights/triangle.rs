@@ -52,8 +52,17 @@ impl TriangleLight {
             let s = sample_spherical_triangle(&self.v, p, u)?;
             let b = s.barycentrics;
             let y = b[0] * self.v[0] + b[1] * self.v[1] + b[2] * self.v[2];
-            let err = gamma(6) * ((b[0] * self.v[0]).abs() + (b[1] * self.v[1]).abs() + (b[2] * self.v[2]).abs());
-            return Some(LightSample { p: y, p_error: err, n: self.n, wi: s.dir, pdf: s.pdf, le: self.le, infinite: false });
+            let err = gamma(6)
+                * ((b[0] * self.v[0]).abs() + (b[1] * self.v[1]).abs() + (b[2] * self.v[2]).abs());
+            return Some(LightSample {
+                p: y,
+                p_error: err,
+                n: self.n,
+                wi: s.dir,
+                pdf: s.pdf,
+                le: self.le,
+                infinite: false,
+            });
         }
         let b = sample_uniform_triangle(u);
         let y = b[0] * self.v[0] + b[1] * self.v[1] + b[2] * self.v[2];

@@ -161,11 +161,17 @@ impl Scene {
                 }
                 GeometryDesc::Polygon { vertices } => {
                     let n = polygon::newell_normal(vertices).normalize().as_vec3();
-                    let indices: Vec<[u32; 3]> =
-                        polygon::triangulate(vertices).iter().map(|t| t.map(|i| i as u32)).collect();
+                    let indices: Vec<[u32; 3]> = polygon::triangulate(vertices)
+                        .iter()
+                        .map(|t| t.map(|i| i as u32))
+                        .collect();
                     let verts: Vec<Vec3> = vertices.iter().map(|p| v(*p)).collect();
-                    let tris: Vec<[Vec3; 3]> = indices.iter().map(|t| t.map(|i| verts[i as usize])).collect();
-                    let light = push_light(PolygonLight::new(verts, indices, n, le).map(Light::Polygon))?;
+                    let tris: Vec<[Vec3; 3]> = indices
+                        .iter()
+                        .map(|t| t.map(|i| verts[i as usize]))
+                        .collect();
+                    let light =
+                        push_light(PolygonLight::new(verts, indices, n, le).map(Light::Polygon))?;
                     push_tris(&tris, light);
                 }
                 GeometryDesc::Triangles { positions, indices } => {

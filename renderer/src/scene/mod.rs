@@ -7,6 +7,7 @@
 //! * [`error`] — [`SceneError`].
 //! * [`build`] — the render-ready [`Scene`] (primitives in a BVH, materials, lights).
 
+pub mod build;
 pub mod desc;
 pub mod error;
 pub mod parse;
@@ -14,14 +15,13 @@ mod parse_materials;
 mod parse_mesh;
 mod parse_shapes;
 mod walk;
-pub mod build;
 
 #[cfg(test)]
 mod tests;
 
+pub use build::Scene;
 pub use desc::{
     CameraDesc, FresnelDesc, GeometryDesc, MaterialDesc, NamedMaterial, SceneDesc, ShapeDesc,
 };
-pub use build::Scene;
 pub use error::SceneError;
 pub use parse::{load_scene, parse_scene, parse_scene_value};

@@ -1,0 +1,604 @@
+//! End-to-end tests of the `lumis` binary: `render` to every output format, determinism, every
+//! estimator option, the time limit, `compare`, and the one-line `lumis: ` error contract.
+//!
+//! Each test renders a tiny scene (16×16, a diffuse quad under a quad light, max_depth 2) with a
+//! few samples per pixel into its own temporary directory.
+
+use lumis::image_io::Image;
+use std::ffi::OsStr;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::time::Instant;
+
+/// A temporary directory, removed when dropped (also when a test fails).
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(name: &str) -> TempDir {
+        let dir = std::env::temp_dir().join(format!("lumis-cli-{}-{}", std::process::id(), name));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("create temp dir");
+        TempDir(dir)
+    }
+
+    fn path(&self, file: &str) -> PathBuf {
+        self.0.join(file)
+    }
+
+    /// Writes `text` to `file` in this directory and returns its path.
+    fn write(&self, file: &str, text: &str) -> PathBuf {
+        let path = self.path(file);
+        std::fs::write(&path, text).expect("write temp file");
+        path
+    }
+
+    /// The standard tiny scene at `width`×`height`.
+    fn scene(&self, width: u32, height: u32) -> PathBuf {
+        self.write(
+            &format!("scene_{width}x{height}.json"),
+            &scene_json(width, height),
+        )
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// A diffuse floor under a downward-facing quad light that the camera does not see directly, so
+/// the image is black at `max_depth` 1 and lit at 2.
+fn scene_json(width: u32, height: u32) -> String {
+    format!(
+        r#"{{
+  "camera": {{"from": [0, 1, -3], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 60,
+              "width": {width}, "height": {height}}},
+  "max_depth": 2,
+  "materials": {{"floor": {{"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}}}},
+  "shapes": [
+    {{"type": "quad", "corner": [-2, 0, -2], "edge_u": [0, 0, 4], "edge_v": [4, 0, 0],
+      "material": "floor"}},
+    {{"type": "quad", "corner": [-0.5, 2, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1],
+      "emission": [5, 5, 5]}}
+  ]
+}}
+"#
+    )
+}
+
+/// Runs `lumis` with `args`.
+fn lumis<I, S>(args: I) -> Output
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<OsStr>,
+{
+    Command::new(env!("CARGO_BIN_EXE_lumis"))
+        .args(args)
+        .output()
+        .expect("run lumis")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// The numbers of `render`'s last stdout line.
+#[derive(Debug)]
+struct Stats {
+    spp: u64,
+    seconds: f64,
+    samples_per_second: f64,
+    nonfinite: u64,
+}
+
+/// Parses `spp=N seconds=T samples_per_second=X nonfinite=K`, exactly those keys in that order.
+fn parse_stats(stdout: &str) -> Stats {
+    let line = stdout
+        .lines()
+        .rev()
+        .find(|l| !l.trim().is_empty())
+        .expect("render prints a summary line");
+    let fields: Vec<(&str, &str)> = line
+        .split(' ')
+        .map(|f| {
+            f.split_once('=')
+                .unwrap_or_else(|| panic!("field {f:?} of {line:?} has no '='"))
+        })
+        .collect();
+    let keys: Vec<&str> = fields.iter().map(|(k, _)| *k).collect();
+    assert_eq!(
+        keys,
+        ["spp", "seconds", "samples_per_second", "nonfinite"],
+        "summary line {line:?}"
+    );
+    let num = |i: usize| -> f64 {
+        fields[i]
+            .1
+            .parse()
+            .unwrap_or_else(|e| panic!("{:?} in {line:?}: {e}", fields[i].1))
+    };
+    let int = |i: usize| -> u64 {
+        fields[i]
+            .1
+            .parse()
+            .unwrap_or_else(|e| panic!("{:?} in {line:?}: {e}", fields[i].1))
+    };
+    Stats {
+        spp: int(0),
+        seconds: num(1),
+        samples_per_second: num(2),
+        nonfinite: int(3),
+    }
+}
+
+/// Renders `scene` to `out` with `extra` options; asserts success and returns the summary.
+fn render(scene: &Path, out: &Path, extra: &[&str]) -> Stats {
+    let mut args: Vec<&OsStr> = vec![OsStr::new("render"), scene.as_os_str()];
+    args.extend(extra.iter().map(OsStr::new));
+    args.extend([OsStr::new("-o"), out.as_os_str()]);
+    let output = lumis(&args);
+    let stderr = text(&output.stderr);
+    assert!(
+        output.status.success(),
+        "lumis {args:?} failed ({}): {stderr}",
+        output.status
+    );
+    // No progress bar when stderr is not a terminal, and nothing else either.
+    assert!(
+        stderr.is_empty(),
+        "lumis {args:?} wrote to stderr: {stderr}"
+    );
+    assert!(
+        out.is_file(),
+        "lumis {args:?} did not write {}",
+        out.display()
+    );
+    let stats = parse_stats(&text(&output.stdout));
+    assert_eq!(stats.nonfinite, 0, "lumis {args:?}: {stats:?}");
+    assert!(
+        stats.seconds.is_finite() && stats.seconds >= 0.0,
+        "{stats:?}"
+    );
+    assert!(
+        stats.samples_per_second.is_finite() && stats.samples_per_second > 0.0,
+        "{stats:?}"
+    );
+    stats
+}
+
+fn read(path: &Path) -> Image {
+    Image::read(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
+}
+
+/// Asserts every pixel is finite and non-negative; returns whether any is non-zero.
+fn check_pixels(img: &Image, width: u32, height: u32) -> bool {
+    assert_eq!((img.width, img.height), (width, height));
+    assert_eq!(img.data.len(), (width * height) as usize);
+    for (i, p) in img.data.iter().enumerate() {
+        assert!(p.is_finite() && p.min_element() >= 0.0, "pixel {i} is {p}");
+    }
+    img.data.iter().any(|p| p.max_element() > 0.0)
+}
+
+/// Asserts `output` is a failure reported as the single line `lumis: …` on stderr containing
+/// every string of `needles`, with no panic; returns that line.
+fn expect_error(output: &Output, needles: &[&str]) -> String {
+    let stderr = text(&output.stderr);
+    assert!(
+        !output.status.success(),
+        "expected a failure, got success; stderr: {stderr}"
+    );
+    assert!(
+        matches!(output.status.code(), Some(c) if c != 0),
+        "expected a non-zero exit code, got {} (killed by a signal?); stderr: {stderr}",
+        output.status
+    );
+    assert!(!stderr.contains("panicked at"), "lumis panicked: {stderr}");
+    let line = stderr.trim_end_matches('\n');
+    assert!(!line.contains('\n'), "error is not one line: {stderr:?}");
+    assert!(
+        line.starts_with("lumis: "),
+        "error does not start with 'lumis: ': {stderr:?}"
+    );
+    for needle in needles {
+        assert!(
+            line.contains(needle),
+            "error {line:?} does not mention {needle:?}"
+        );
+    }
+    line.to_owned()
+}
+
+fn compare(image: &Path, reference: &Path) -> (f64, f64) {
+    let output = lumis([
+        OsStr::new("compare"),
+        image.as_os_str(),
+        reference.as_os_str(),
+    ]);
+    let stderr = text(&output.stderr);
+    assert!(output.status.success(), "compare failed: {stderr}");
+    let stdout = text(&output.stdout);
+    let line = stdout.trim_end();
+    let fields: Vec<(&str, &str)> = line.split(' ').filter_map(|f| f.split_once('=')).collect();
+    assert_eq!(fields.len(), 2, "compare printed {stdout:?}");
+    assert_eq!(
+        (fields[0].0, fields[1].0),
+        ("relmse", "rmse"),
+        "compare printed {stdout:?}"
+    );
+    let num = |s: &str| -> f64 {
+        s.parse()
+            .unwrap_or_else(|e| panic!("{s:?} in {stdout:?}: {e}"))
+    };
+    (num(fields[0].1), num(fields[1].1))
+}
+
+fn repo_file(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(path)
+}
+
+#[test]
+fn render_writes_exr_pfm_and_png() {
+    let dir = TempDir::new("formats");
+    let scene = dir.scene(16, 16);
+
+    let exr = dir.path("out.exr");
+    let pfm = dir.path("out.pfm");
+    let png = dir.path("out.png");
+    for out in [&exr, &pfm, &png] {
+        let stats = render(&scene, out, &["--spp", "3", "--seed", "5"]);
+        assert_eq!(stats.spp, 3, "{}", out.display());
+    }
+
+    let from_exr = read(&exr);
+    let from_pfm = read(&pfm);
+    assert!(check_pixels(&from_exr, 16, 16), "EXR image is black");
+    assert!(check_pixels(&from_pfm, 16, 16), "PFM image is black");
+    // Both are linear float RGB of the same render.
+    assert_eq!(
+        from_exr.data, from_pfm.data,
+        "EXR and PFM of the same render differ"
+    );
+
+    let bytes = std::fs::read(&png).expect("read PNG");
+    assert!(bytes.len() > 33, "PNG is only {} bytes", bytes.len());
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "PNG signature");
+    assert_eq!(
+        &bytes[8..16],
+        b"\0\0\0\x0dIHDR",
+        "first chunk is a 13-byte IHDR"
+    );
+    let be = |i: usize| u32::from_be_bytes(bytes[i..i + 4].try_into().unwrap());
+    assert_eq!((be(16), be(20)), (16, 16), "PNG width and height");
+    assert_eq!(bytes[24], 8, "8 bits per channel");
+
+    // A non-square image keeps width and height apart.
+    let wide = dir.scene(12, 7);
+    let out = dir.path("wide.exr");
+    assert_eq!(render(&wide, &out, &["--spp", "1"]).spp, 1);
+    check_pixels(&read(&out), 12, 7);
+    let out = dir.path("wide.png");
+    render(&wide, &out, &["--spp", "1", "--exposure", "-1"]);
+    let bytes = std::fs::read(&out).expect("read PNG");
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "PNG signature");
+    let be = |i: usize| u32::from_be_bytes(bytes[i..i + 4].try_into().unwrap());
+    assert_eq!((be(16), be(20)), (12, 7), "PNG width and height");
+}
+
+#[test]
+fn same_seed_same_image_for_any_thread_count() {
+    let dir = TempDir::new("determinism");
+    let scene = dir.scene(16, 16);
+    let run = |name: &str, seed: &str, threads: &str| -> PathBuf {
+        let out = dir.path(name);
+        let stats = render(
+            &scene,
+            &out,
+            &["--spp", "4", "--seed", seed, "--threads", threads],
+        );
+        assert_eq!(stats.spp, 4);
+        out
+    };
+    let a = run("a.exr", "7", "2");
+    let b = run("b.exr", "7", "2");
+    let one = run("one.exr", "7", "1");
+    let other = run("other.exr", "8", "2");
+
+    let bytes = |p: &Path| std::fs::read(p).expect("read EXR");
+    assert!(
+        bytes(&a) == bytes(&b),
+        "two renders with the same seed wrote different files"
+    );
+    let (a, one, other) = (read(&a), read(&one), read(&other));
+    assert!(check_pixels(&a, 16, 16), "image is black");
+    assert_eq!(
+        a.data, one.data,
+        "--threads 1 and --threads 2 give different pixels"
+    );
+    assert_ne!(
+        a.data, other.data,
+        "--seed 7 and --seed 8 give the same pixels"
+    );
+}
+
+#[test]
+fn every_estimator_option_is_accepted() {
+    let dir = TempDir::new("options");
+    let scene = dir.scene(16, 16);
+    let cases: &[&[&str]] = &[
+        &["--strategy", "light"],
+        &["--strategy", "bsdf"],
+        &["--strategy", "mixture", "--mix-weight", "0.3"],
+        &["--strategy", "mixture", "--mix-weight", "0"],
+        &["--strategy", "mixture", "--mix-weight", "1"],
+        &["--strategy", "mis", "--heuristic", "balance"],
+        &["--strategy", "mis", "--heuristic", "power"],
+        &["--light-sampling", "area"],
+        &["--light-sampling", "solid-angle"],
+        &["--strategy", "light", "--light-sampling", "area"],
+        &["--max-depth", "3"],
+        &["--max-depth", "-1"],
+    ];
+    for (i, opts) in cases.iter().enumerate() {
+        let out = dir.path(&format!("case{i}.exr"));
+        let mut args = vec!["--spp", "2"];
+        args.extend_from_slice(opts);
+        assert_eq!(render(&scene, &out, &args).spp, 2, "{opts:?}");
+        assert!(
+            check_pixels(&read(&out), 16, 16),
+            "{opts:?} gives a black image"
+        );
+    }
+
+    // --max-depth overrides the scene's 2: at depth 1 only directly seen emission remains, and the
+    // camera does not see the light.
+    let out = dir.path("depth1.exr");
+    render(&scene, &out, &["--spp", "2", "--max-depth", "1"]);
+    assert!(
+        !check_pixels(&read(&out), 16, 16),
+        "--max-depth 1 still shows reflected light"
+    );
+}
+
+#[test]
+fn time_limit_stops_early_but_renders_at_least_one_pass() {
+    let dir = TempDir::new("time-limit");
+    let scene = dir.scene(16, 16);
+    for limit in ["0.0001", "0"] {
+        let out = dir.path(&format!("limit{limit}.exr"));
+        let start = Instant::now();
+        let stats = render(
+            &scene,
+            &out,
+            &["--spp", "1000000000", "--time-limit", limit],
+        );
+        assert!(
+            start.elapsed().as_secs() < 60,
+            "--time-limit {limit} took {:?}",
+            start.elapsed()
+        );
+        assert!(
+            stats.spp >= 1,
+            "--time-limit {limit} wrote an image of 0 spp"
+        );
+        assert!(
+            stats.spp < 1_000_000_000,
+            "--time-limit {limit} did not stop early"
+        );
+        assert!(
+            check_pixels(&read(&out), 16, 16),
+            "--time-limit {limit} wrote a black image"
+        );
+    }
+}
+
+#[test]
+fn compare_prints_relmse_and_rmse() {
+    let dir = TempDir::new("compare");
+    let scene = dir.scene(16, 16);
+    let a = dir.path("a.exr");
+    let a_pfm = dir.path("a.pfm");
+    let b = dir.path("b.exr");
+    render(&scene, &a, &["--spp", "2", "--seed", "1"]);
+    render(&scene, &a_pfm, &["--spp", "2", "--seed", "1"]);
+    render(&scene, &b, &["--spp", "2", "--seed", "2"]);
+
+    assert_eq!(compare(&a, &a), (0.0, 0.0), "an image against itself");
+    assert_eq!(
+        compare(&a_pfm, &a),
+        (0.0, 0.0),
+        "the PFM against the EXR of the same render"
+    );
+    let (relmse, rmse) = compare(&a, &b);
+    assert!(
+        relmse.is_finite() && relmse > 0.0,
+        "relmse of different images is {relmse}"
+    );
+    assert!(
+        rmse.is_finite() && rmse > 0.0,
+        "rmse of different images is {rmse}"
+    );
+
+    // A real scene against its shipped reference.
+    let disk = dir.path("disk.exr");
+    render(
+        &repo_file("tests/data/scenes/analytic_disk.json"),
+        &disk,
+        &["--spp", "4"],
+    );
+    let (relmse, rmse) = compare(&disk, &repo_file("tests/data/refs/analytic_disk.exr"));
+    assert!(
+        relmse.is_finite() && relmse > 0.0 && relmse < 1.0,
+        "analytic_disk at 4 spp: relmse {relmse}"
+    );
+    assert!(
+        rmse.is_finite() && rmse > 0.0,
+        "analytic_disk at 4 spp: rmse {rmse}"
+    );
+
+    // Sizes that differ are an error naming both files.
+    let small = dir.path("small.exr");
+    render(&dir.scene(8, 8), &small, &["--spp", "1"]);
+    let output = lumis([OsStr::new("compare"), a.as_os_str(), small.as_os_str()]);
+    expect_error(
+        &output,
+        &[a.to_str().unwrap(), small.to_str().unwrap(), "16x16", "8x8"],
+    );
+}
+
+#[test]
+fn compare_missing_files_are_named() {
+    let dir = TempDir::new("compare-missing");
+    let a = dir.path("a.exr");
+    render(&dir.scene(16, 16), &a, &["--spp", "1"]);
+    let missing = dir.path("missing.exr");
+    let output = lumis([OsStr::new("compare"), a.as_os_str(), missing.as_os_str()]);
+    expect_error(&output, &[missing.to_str().unwrap()]);
+    let output = lumis([OsStr::new("compare"), missing.as_os_str(), a.as_os_str()]);
+    expect_error(&output, &[missing.to_str().unwrap()]);
+}
+
+#[test]
+fn missing_scene_file_is_named() {
+    let dir = TempDir::new("missing-scene");
+    let scene = dir.path("no-such-scene.json");
+    let out = dir.path("out.exr");
+    let output = lumis([
+        OsStr::new("render"),
+        scene.as_os_str(),
+        OsStr::new("--spp"),
+        OsStr::new("1"),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ]);
+    expect_error(&output, &[scene.to_str().unwrap()]);
+    assert!(!out.exists(), "an image was written for a missing scene");
+}
+
+/// Renders `scene` with 1 spp to `out.exr` in `dir` and expects the error to mention `needles`.
+fn expect_scene_error(dir: &TempDir, scene: &Path, needles: &[&str]) -> String {
+    let out = dir.path("out.exr");
+    let output = lumis([
+        OsStr::new("render"),
+        scene.as_os_str(),
+        OsStr::new("--spp"),
+        OsStr::new("1"),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ]);
+    let line = expect_error(&output, needles);
+    assert!(!out.exists(), "an image was written for a bad scene");
+    line
+}
+
+#[test]
+fn malformed_json_names_line_and_column() {
+    let dir = TempDir::new("bad-json");
+    // A missing comma after line 2's value; serde_json notices on line 3.
+    let scene = dir.write("bad.json", "{\n  \"max_depth\": 2\n  \"camera\": {}\n}\n");
+    expect_scene_error(&dir, &scene, &[scene.to_str().unwrap(), "line 3", "column"]);
+    // Truncated file.
+    let scene = dir.write("truncated.json", &scene_json(16, 16)[..120]);
+    expect_scene_error(&dir, &scene, &[scene.to_str().unwrap(), "line", "column"]);
+}
+
+#[test]
+fn unknown_material_names_json_path() {
+    let dir = TempDir::new("bad-material");
+    let json = scene_json(16, 16).replace(r#""material": "floor""#, r#""material": "flooor""#);
+    assert!(json.contains("flooor"));
+    let scene = dir.write("bad.json", &json);
+    expect_scene_error(
+        &dir,
+        &scene,
+        &[scene.to_str().unwrap(), "shapes[0].material", "flooor"],
+    );
+}
+
+#[test]
+fn unsupported_output_extension_is_rejected() {
+    let dir = TempDir::new("bad-ext");
+    let scene = dir.scene(16, 16);
+    for name in ["x.bmp", "x"] {
+        let out = dir.path(name);
+        let output = lumis([
+            OsStr::new("render"),
+            scene.as_os_str(),
+            OsStr::new("--spp"),
+            OsStr::new("1"),
+            OsStr::new("-o"),
+            out.as_os_str(),
+        ]);
+        expect_error(&output, &[out.to_str().unwrap(), ".exr"]);
+        assert!(!out.exists(), "{name} was written");
+    }
+}
+
+#[test]
+fn unwritable_output_fails_before_rendering() {
+    let dir = TempDir::new("unwritable");
+    let scene = dir.scene(16, 16);
+    let start = Instant::now();
+    // Without the check before rendering this would render for the whole time limit first.
+    let output = lumis([
+        OsStr::new("render"),
+        scene.as_os_str(),
+        OsStr::new("--spp"),
+        OsStr::new("1000000000"),
+        OsStr::new("--time-limit"),
+        OsStr::new("30"),
+        OsStr::new("-o"),
+        OsStr::new("/nonexistent-dir/x.exr"),
+    ]);
+    expect_error(&output, &["/nonexistent-dir/x.exr"]);
+    assert!(
+        start.elapsed().as_secs() < 15,
+        "took {:?}: it rendered before failing",
+        start.elapsed()
+    );
+    assert!(
+        output.stdout.is_empty(),
+        "printed a summary: {}",
+        text(&output.stdout)
+    );
+}
+
+#[test]
+fn invalid_options_are_one_line_errors() {
+    let dir = TempDir::new("bad-options");
+    let scene = dir.scene(16, 16);
+    let out = dir.path("out.exr");
+    let cases: &[(&[&str], &[&str])] = &[
+        (&["--spp", "0"], &["--spp"]),
+        (
+            &["--spp", "1", "--mix-weight", "1.5"],
+            &["--mix-weight", "1.5"],
+        ),
+        (
+            &["--spp", "1", "--mix-weight=-0.1"],
+            &["--mix-weight", "-0.1"],
+        ),
+        (&["--spp", "1", "--mix-weight", "NaN"], &["--mix-weight"]),
+        (&["--spp", "1", "--max-depth", "0"], &["--max-depth", "0"]),
+        (&["--spp", "1", "--max-depth", "-2"], &["--max-depth", "-2"]),
+        // Usage errors from the argument parser follow the same convention.
+        (&["--spp", "1", "--strategy", "foo"], &["--strategy", "foo"]),
+        (&["--spp", "1", "--heuristic", "foo"], &["--heuristic"]),
+        (
+            &["--spp", "1", "--light-sampling", "foo"],
+            &["--light-sampling"],
+        ),
+        (&["--spp", "lots"], &["--spp"]),
+        (&[], &["--spp"]),
+    ];
+    for (opts, needles) in cases {
+        let mut args: Vec<&OsStr> = vec![OsStr::new("render"), scene.as_os_str()];
+        args.extend(opts.iter().map(OsStr::new));
+        args.extend([OsStr::new("-o"), out.as_os_str()]);
+        expect_error(&lumis(&args), needles);
+        assert!(!out.exists(), "{opts:?} wrote an image");
+    }
+    expect_error(&lumis(["frobnicate"]), &["frobnicate"]);
+    expect_error(&lumis(["compare", "only-one.exr"]), &["REFERENCE"]);
+}
