@@ -112,44 +112,29 @@ fn seed_cornell_matches_reference() {
 }
 
 #[test]
-fn seed_cornell_area_sampling_matches_reference() {
-    let scene = scene("seed_cornell");
-    let s = settings(
-        Strategy::Mis {
-            heuristic: Heuristic::Power,
-        },
-        LightSampling::Area,
-    );
-    let t = test_against(
-        &render(&scene, s, 128, 77),
-        &reference("seed_cornell.exr"),
-        Some(&reference_var_image("seed_cornell")),
-        32,
-    );
-    assert_unbiased("seed_cornell mis area", &t);
-}
-
-#[test]
 fn veach_mis_matches_reference() {
     check_scene("veach_mis", LightSampling::SolidAngle);
 }
 
+/// MIS with area sampling on the two full scenes (the strategy loop above uses solid angle there).
 #[test]
-fn veach_mis_area_sampling_matches_reference() {
-    let scene = scene("veach_mis");
-    let s = settings(
-        Strategy::Mis {
-            heuristic: Heuristic::Power,
-        },
-        LightSampling::Area,
-    );
-    let t = test_against(
-        &render(&scene, s, 128, 78),
-        &reference("veach_mis.exr"),
-        Some(&reference_var_image("veach_mis")),
-        32,
-    );
-    assert_unbiased("veach_mis mis area", &t);
+fn full_scenes_with_area_sampling_match_reference() {
+    for (name, seed) in [("seed_cornell", 77), ("veach_mis", 78)] {
+        let s = settings(
+            Strategy::Mis {
+                heuristic: Heuristic::Power,
+            },
+            LightSampling::Area,
+        );
+        let r = render(&scene(name), s, 128, seed);
+        let t = test_against(
+            &r,
+            &reference(&format!("{name}.exr")),
+            Some(&reference_var_image(name)),
+            32,
+        );
+        assert_unbiased(&format!("{name} mis area"), &t);
+    }
 }
 
 /// The closed-form images: light sampling of a polygon and of a disk (Lambert's formula and the

@@ -1,39 +1,15 @@
 //! Lambertian diffuse reflection, sampled by cosine-weighted hemisphere sampling.
 
 use super::BsdfSample;
-use crate::math::safe_sqrt;
+use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use glam::{Vec2, Vec3};
-use std::f32::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4};
+use std::f32::consts::FRAC_1_PI;
 
 /// An ideal diffuse (Lambertian) reflector: f = albedo/π.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Diffuse {
     /// Directional-hemispherical reflectance, each channel in [0, 1].
     pub albedo: Vec3,
-}
-
-/// Shirley–Chiu concentric square-to-disk map (keeps strata compact and the warp continuous).
-// Private copy; `crate::sampling` will own it once both land (the same warp, deduplicated later).
-#[inline]
-pub(crate) fn concentric_disk(u: Vec2) -> Vec2 {
-    let o = 2.0 * u - Vec2::ONE;
-    if o.x == 0.0 && o.y == 0.0 {
-        return Vec2::ZERO;
-    }
-    let (r, theta) = if o.x.abs() > o.y.abs() {
-        (o.x, FRAC_PI_4 * (o.y / o.x))
-    } else {
-        (o.y, FRAC_PI_2 - FRAC_PI_4 * (o.x / o.y))
-    };
-    let (s, c) = theta.sin_cos();
-    r * Vec2::new(c, s)
-}
-
-/// Cosine-weighted direction on the +z hemisphere (Malley's method); pdf = cosθ/π.
-#[inline]
-pub(crate) fn cosine_hemisphere(u: Vec2) -> Vec3 {
-    let d = concentric_disk(u);
-    Vec3::new(d.x, d.y, safe_sqrt(1.0 - d.length_squared()))
 }
 
 impl Diffuse {
@@ -50,7 +26,7 @@ impl Diffuse {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return 0.0;
         }
-        FRAC_1_PI * wi.z
+        cosine_hemisphere_pdf(wi.z)
     }
 
     /// Cosine-weighted sample; the weight f·cos/pdf is exactly the albedo.
@@ -58,7 +34,7 @@ impl Diffuse {
         if wo.z <= 0.0 {
             return None;
         }
-        let wi = cosine_hemisphere(u);
+        let wi = sample_cosine_hemisphere(u);
         // wi.z = 0 only on the disk's rim (u on the square's edge): pdf 0, no sample.
         if wi.z <= 0.0 {
             return None;
@@ -77,25 +53,6 @@ mod tests {
     use super::super::{Material, testing};
     use super::*;
     use crate::rng::Rng;
-
-    #[test]
-    fn cosine_warp_moments() {
-        // E[z] = 2/3, E[z²] = 1/2, E[x] = E[y] = 0 under pdf cosθ/π.
-        let mut rng = Rng::new(3, 1, 4);
-        let n = 200_000;
-        let mut m = [0.0f64; 4];
-        for _ in 0..n {
-            let w = cosine_hemisphere(rng.next_2d());
-            assert!((w.length() - 1.0).abs() < 1e-5 && w.z >= 0.0);
-            for (acc, v) in m.iter_mut().zip([w.x, w.y, w.z, w.z * w.z]) {
-                *acc += v as f64 / n as f64;
-            }
-        }
-        // Each mean has σ ≤ 1/√n ≈ 2.2e-3 at most (≈1e-3 in practice); 5e-3 is ≥ 2σ-safe.
-        for (got, want) in m.iter().zip([0.0, 0.0, 2.0 / 3.0, 0.5]) {
-            assert!((got - want).abs() < 5e-3, "{m:?}");
-        }
-    }
 
     #[test]
     fn diffuse_passes_material_checks() {

@@ -14,9 +14,9 @@
 //! both of its lobes used the full colour, so it reflected more energy than it received.
 
 use super::coat_albedo::CoatAlbedo;
-use super::diffuse::cosine_hemisphere;
 use super::{BsdfSample, fresnel, ggx};
 use crate::math::{luminance, reflect};
+use crate::sampling::sample_cosine_hemisphere;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
@@ -162,7 +162,7 @@ impl Plastic {
             }
             reflect(wo, ggx::sample_visible_normal(self.alpha, wo, u)).normalize()
         } else {
-            cosine_hemisphere(u)
+            sample_cosine_hemisphere(u)
         };
         let (f, pdf) = self.eval_pdf(wo, wi);
         (pdf > 0.0).then(|| BsdfSample {

@@ -109,15 +109,8 @@ pub(crate) fn triangles(
 mod tests {
     use crate::scene::desc::GeometryDesc;
     use crate::scene::parse::parse_scene_value;
-    use crate::scene::tests::{base, expect_err};
+    use crate::scene::tests::{expect_err, with};
     use serde_json::{Value, json};
-
-    /// The base scene with shape `i` replaced by `value`.
-    fn with(i: usize, value: Value) -> Value {
-        let mut s = base();
-        s["shapes"][i] = value;
-        s
-    }
 
     #[test]
     fn concave_polygon_parses() {

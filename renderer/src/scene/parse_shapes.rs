@@ -183,16 +183,9 @@ fn boxed(obj: &Obj) -> Result<GeometryDesc, SceneError> {
 mod tests {
     use crate::scene::desc::GeometryDesc;
     use crate::scene::parse::parse_scene_value;
-    use crate::scene::tests::{base, expect_err};
+    use crate::scene::tests::{base, expect_err, with};
     use glam::DVec3;
-    use serde_json::{Value, json};
-
-    /// The base scene with shape `i` replaced by `value`.
-    fn with(i: usize, value: Value) -> Value {
-        let mut s = base();
-        s["shapes"][i] = value;
-        s
-    }
+    use serde_json::json;
 
     #[test]
     fn every_shape_type_parses() {

@@ -39,6 +39,13 @@ pub(crate) fn base() -> Value {
     })
 }
 
+/// The base scene with shape `i` replaced by `value`.
+pub(crate) fn with(i: usize, value: Value) -> Value {
+    let mut s = base();
+    s["shapes"][i] = value;
+    s
+}
+
 /// Asserts that `scene` is rejected at exactly `path` with a message containing `fragment`,
 /// both as a value and through the text parser.
 #[track_caller]
