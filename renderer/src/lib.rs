@@ -24,3 +24,4 @@ pub mod metrics;
 pub mod rng;
 pub mod sampling;
 pub mod scene;
+pub mod stats;

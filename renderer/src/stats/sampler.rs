@@ -1,0 +1,48 @@
+//! What the χ² test needs from a sampling routine: draw a direction, and evaluate the density it
+//! claims for any direction.
+
+use super::domain::Domain;
+use glam::{Vec2, Vec3};
+
+/// One direction drawn by a [`DirectionalSampler`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirectionSample {
+    /// The direction (unit length).
+    pub w: Vec3,
+    /// The solid-angle pdf the routine reports for `w` (for a delta sample, its discrete
+    /// probability).
+    pub pdf: f32,
+    /// True for a sample from a delta lobe: it has no density, so the histogram skips it and the
+    /// expected counts cover only the non-delta mass.
+    pub delta: bool,
+}
+
+/// A routine that samples directions with a known solid-angle density: the object the χ² test
+/// checks. `pdf` must be the density of the non-delta samples `sample` returns; the samples that
+/// `sample` rejects (`None`) or draws from delta lobes make `∫pdf` less than 1.
+pub trait DirectionalSampler: Sync {
+    /// Draws a direction from the uniforms `u1` (e.g. a lobe or strategy choice) and `u2`;
+    /// `None` when the routine produces no sample.
+    fn sample(&self, u1: f32, u2: Vec2) -> Option<DirectionSample>;
+
+    /// Solid-angle density of the non-delta samples at unit direction `w`.
+    fn pdf(&self, w: Vec3) -> f32;
+
+    /// Where to histogram: the whole sphere by default; adapters with concentrated densities
+    /// (narrow lobes, small lights) override this to zoom in on them.
+    fn domain(&self) -> Domain {
+        Domain::sphere()
+    }
+}
+
+impl<S: DirectionalSampler + ?Sized> DirectionalSampler for Box<S> {
+    fn sample(&self, u1: f32, u2: Vec2) -> Option<DirectionSample> {
+        (**self).sample(u1, u2)
+    }
+    fn pdf(&self, w: Vec3) -> f32 {
+        (**self).pdf(w)
+    }
+    fn domain(&self) -> Domain {
+        (**self).domain()
+    }
+}

@@ -1,0 +1,267 @@
+//! The samplers of the statistical suite, by name: every warp, every material at several
+//! incidence angles, every light shape from several points with both sampling methods, and the
+//! strategy mixture. Each list entry is one line; the tests and `examples/warptest.rs` share them.
+//!
+//! Light geometry: the receiver sits at the origin with normal +z (so BSDF and world frames
+//! coincide for the mixture). Plane lights have circumradius 1, the sphere radius 1.
+
+use super::bsdf_sampler::BsdfSampler;
+use super::light_directions::LightDirections;
+use super::mixture_sampler::Mixture;
+use super::sampler::DirectionalSampler;
+use super::warp_sampler::Warp;
+use crate::lights::LightSampling;
+use crate::materials::{Conductor, ConductorFresnel, Diffuse, Material, Plastic};
+use crate::math::Frame;
+use crate::scene::{Scene, parse_scene};
+use glam::Vec3;
+use serde_json::json;
+use std::f32::consts::TAU;
+use std::sync::Arc;
+
+/// A named sampler of the suite.
+pub struct Case {
+    /// Unique name, e.g. `conductor/a0.05/tint/th60`.
+    pub name: String,
+    /// The sampler.
+    pub sampler: Box<dyn DirectionalSampler + Send>,
+}
+
+fn case(name: String, sampler: impl DirectionalSampler + Send + 'static) -> Case {
+    Case {
+        name,
+        sampler: Box::new(sampler),
+    }
+}
+
+/// Incidence angles every material is tested at (degrees from the normal).
+pub const THETAS_DEG: [f32; 5] = [0.0, 30.0, 60.0, 85.0, 89.0];
+/// Conductor roughnesses.
+pub const CONDUCTOR_ALPHAS: [f32; 6] = [0.01, 0.05, 0.1, 0.3, 0.6, 1.0];
+/// Plastic roughnesses.
+pub const PLASTIC_ALPHAS: [f32; 3] = [0.05, 0.3, 1.0];
+/// Plastic coat IORs.
+pub const PLASTIC_IORS: [f32; 3] = [1.1, 1.5, 3.0];
+/// Mixture weights of light sampling.
+pub const MIX_WEIGHTS: [f32; 4] = [0.0, 0.25, 0.5, 1.0];
+
+/// A gold-like conductor (`complex`) or a tinted one.
+pub fn conductor(alpha: f32, complex: bool) -> Material {
+    let fresnel = if complex {
+        ConductorFresnel::Complex {
+            eta: Vec3::new(0.143, 0.374, 1.442),
+            k: Vec3::new(3.983, 2.385, 1.603),
+        }
+    } else {
+        ConductorFresnel::Tint(Vec3::new(0.95, 0.64, 0.54))
+    };
+    Material::Conductor(Conductor { alpha, fresnel })
+}
+
+/// An orange plastic with a white coat.
+pub fn plastic(alpha: f32, ior: f32) -> Material {
+    Material::Plastic(Plastic::new(
+        Vec3::new(0.8, 0.4, 0.1),
+        alpha,
+        ior,
+        Vec3::ONE,
+    ))
+}
+
+/// A coloured Lambertian.
+pub fn diffuse() -> Material {
+    Material::Diffuse(Diffuse {
+        albedo: Vec3::new(0.8, 0.5, 0.2),
+    })
+}
+
+/// The light shapes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shape {
+    /// Equilateral triangle.
+    Triangle,
+    /// Regular hexagon (convex polygon).
+    Hexagon,
+    /// Five-pointed star (concave polygon).
+    Star,
+    /// Square quad.
+    Quad,
+    /// Disk.
+    Disk,
+    /// Sphere.
+    Sphere,
+}
+
+/// Where the light is, seen from the receiver at the origin.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Placement {
+    /// Distance 1.5 (about the light's size), 20° off the normal, seen 30° off the light's normal.
+    Near,
+    /// Distance 200 (100× the light's size).
+    Far,
+    /// Seen 5° above the light's plane (a sphere: from 1.05 radii, near-tangent directions).
+    Grazing,
+    /// Centred on the receiver's horizon: about half of the light is below it.
+    BelowHorizon,
+}
+
+/// Every shape and placement.
+pub const SHAPES: [Shape; 6] = [
+    Shape::Triangle,
+    Shape::Hexagon,
+    Shape::Star,
+    Shape::Quad,
+    Shape::Disk,
+    Shape::Sphere,
+];
+/// Every placement.
+pub const PLACEMENTS: [Placement; 4] = [
+    Placement::Near,
+    Placement::Far,
+    Placement::Grazing,
+    Placement::BelowHorizon,
+];
+
+/// A scene holding only `shape` as a light, placed as `placement` says.
+pub fn light_scene(shape: Shape, placement: Placement) -> Arc<Scene> {
+    // (angle of the centre from the receiver normal, distance, view angle off the light normal)
+    let (gamma, dist, beta) = match (placement, shape) {
+        (Placement::Near, _) => (20f32, 1.5, 30f32),
+        (Placement::Far, _) => (20.0, 200.0, 30.0),
+        (Placement::Grazing, Shape::Sphere) => (20.0, 1.05, 0.0),
+        (Placement::Grazing, _) => (20.0, 2.0, 85.0),
+        (Placement::BelowHorizon, _) => (90.0, 1.5, 30.0),
+    };
+    let dir = |a: f32| Vec3::new(a.to_radians().sin(), 0.0, a.to_radians().cos());
+    let c = dist * dir(gamma);
+    let n = -dir(gamma + beta);
+    let f = Frame::from_normal(n);
+    let at = |x: f32, y: f32| {
+        let q = c + f.s * x + f.t * y;
+        json!([q.x, q.y, q.z])
+    };
+    // Counter-clockwise about n (s × t = n) so the right-hand rule faces the receiver.
+    let ring = |k: usize, r: &dyn Fn(usize) -> f32| -> Vec<serde_json::Value> {
+        (0..k)
+            .map(|i| {
+                let a = TAU * i as f32 / k as f32 + 0.25 * TAU;
+                at(r(i) * a.cos(), r(i) * a.sin())
+            })
+            .collect()
+    };
+    let e = json!([1.0, 1.0, 1.0]);
+    let shape_json = match shape {
+        Shape::Triangle => json!({"type": "triangles", "positions": ring(3, &|_| 1.0),
+            "indices": [[0, 1, 2]], "emission": e}),
+        Shape::Hexagon => json!({"type": "polygon", "vertices": ring(6, &|_| 1.0), "emission": e}),
+        Shape::Star => json!({"type": "polygon",
+            "vertices": ring(10, &|i| if i % 2 == 0 { 1.0 } else { 0.4 }), "emission": e}),
+        Shape::Quad => {
+            let (u, v) = (1.4 * f.s, 1.4 * f.t);
+            json!({"type": "quad", "corner": at(-0.7, -0.7), "edge_u": [u.x, u.y, u.z],
+                "edge_v": [v.x, v.y, v.z], "emission": e})
+        }
+        Shape::Disk => json!({"type": "disk", "center": [c.x, c.y, c.z],
+            "normal": [n.x, n.y, n.z], "radius": 1.0, "emission": e}),
+        Shape::Sphere => json!({"type": "sphere", "center": [c.x, c.y, c.z], "radius": 1.0,
+            "emission": e}),
+    };
+    let scene = json!({
+        "camera": {"from": [0, -5, 0], "to": [0, 0, 0], "up": [0, 0, 1], "vfov_deg": 40,
+            "width": 2, "height": 2},
+        "shapes": [shape_json],
+    });
+    let desc = parse_scene(&scene.to_string()).unwrap_or_else(|e| panic!("{shape:?}: {e}"));
+    Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{shape:?}: {e}")))
+}
+
+/// Sampling the (only) light of `light_scene(shape, placement)` from the origin.
+pub fn light_sampler(shape: Shape, placement: Placement, method: LightSampling) -> LightDirections {
+    LightDirections {
+        scene: light_scene(shape, placement),
+        light: 0,
+        p: Vec3::ZERO,
+        method,
+    }
+}
+
+/// The warps.
+pub fn warp_cases() -> Vec<Case> {
+    vec![
+        case("warp/cosine_hemisphere".into(), Warp::CosineHemisphere),
+        case("warp/uniform_sphere".into(), Warp::UniformSphere),
+        case("warp/cone_60deg".into(), Warp::Cone(0.5)),
+        case("warp/cone_2deg".into(), Warp::Cone(2f32.to_radians().cos())),
+    ]
+}
+
+/// Every material configuration at every angle of [`THETAS_DEG`].
+pub fn material_cases() -> Vec<Case> {
+    let mut materials = vec![("diffuse".to_string(), diffuse())];
+    for a in CONDUCTOR_ALPHAS {
+        materials.push((format!("conductor/a{a}/complex"), conductor(a, true)));
+        materials.push((format!("conductor/a{a}/tint"), conductor(a, false)));
+    }
+    for a in PLASTIC_ALPHAS {
+        for ior in PLASTIC_IORS {
+            materials.push((format!("plastic/a{a}/ior{ior}"), plastic(a, ior)));
+        }
+    }
+    let mut out = Vec::new();
+    for (name, m) in materials {
+        for th in THETAS_DEG {
+            let s = BsdfSampler::at_angle(m.clone(), th);
+            out.push(case(format!("{name}/th{th}"), s));
+        }
+    }
+    out
+}
+
+/// Every light shape × placement × method.
+pub fn light_cases() -> Vec<Case> {
+    let mut out = Vec::new();
+    for shape in SHAPES {
+        for placement in PLACEMENTS {
+            for method in [LightSampling::Area, LightSampling::SolidAngle] {
+                let name = format!("light/{shape:?}/{placement:?}/{method:?}").to_lowercase();
+                out.push(case(name, light_sampler(shape, placement, method)));
+            }
+        }
+    }
+    out
+}
+
+/// The mixture at every weight, for a rough plastic under a near quad (solid-angle sampling) and
+/// for a diffuse receiver with a star half below its horizon (area sampling).
+pub fn mixture_cases() -> Vec<Case> {
+    let mut out = Vec::new();
+    for w in MIX_WEIGHTS {
+        let m = Mixture {
+            light: light_sampler(Shape::Quad, Placement::Near, LightSampling::SolidAngle),
+            bsdf: BsdfSampler::at_angle(plastic(0.3, 1.5), 30.0),
+            weight: w,
+        };
+        out.push(case(format!("mixture/plastic_quad/w{w}"), m));
+        let m = Mixture {
+            light: light_sampler(Shape::Star, Placement::BelowHorizon, LightSampling::Area),
+            bsdf: BsdfSampler::at_angle(diffuse(), 60.0),
+            weight: w,
+        };
+        out.push(case(format!("mixture/diffuse_star_horizon/w{w}"), m));
+    }
+    out
+}
+
+/// Every case of the suite.
+pub fn all_cases() -> Vec<Case> {
+    let mut v = warp_cases();
+    v.extend(material_cases());
+    v.extend(light_cases());
+    v.extend(mixture_cases());
+    v
+}
+
+/// The case called `name`, if any.
+pub fn case_by_name(name: &str) -> Option<Case> {
+    all_cases().into_iter().find(|c| c.name == name)
+}

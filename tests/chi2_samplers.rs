@@ -1,0 +1,181 @@
+//! χ² goodness-of-fit tests of every sampling routine against its own pdf (issue 3): the warps,
+//! every material's `sample` at θo ∈ {0°, 30°, 60°, 85°, 89°}, light sampling (area and solid
+//! angle) of every light shape from near, far, grazing and below-horizon points, and the
+//! one-sample strategy mixture at w ∈ {0, 0.25, 0.5, 1}. The samplers and their names are in
+//! `lumis::stats::suite`; a failing case can be looked at with
+//! `cargo run --release -p lumis-renderer --example warptest -- NAME`.
+//!
+//! **Significance:** family-wise α = 0.01 over all [`N_TESTS`] tests, Šidák-corrected to a
+//! per-test level `1 − 0.99^(1/N_TESTS)` ≈ 5.9e-5. Each test also fails on malformed samples,
+//! samples where the pdf is 0 or that land in cells of expected count 0, reported pdfs that
+//! disagree with `pdf(w)`, and `∫pdf` differing from the fraction of non-delta samples.
+//!
+//! Narrow lobes (α ≤ 0.1) are histogrammed by half vector in a cap of 10α about the normal (GGX
+//! lobes are round there at every incidence; uniform-θ rows resolve the peak radially), lights in
+//! a cap about the cone they subtend (a far light covers 4096 cells, not one); see
+//! `lumis::stats::domain`.
+//!
+//! Everything is seeded: the same samples on every run and thread count.
+
+use lumis::materials::{Conductor, ConductorFresnel, Material};
+use lumis::stats::suite::{self, Case};
+use lumis::stats::{
+    BsdfSampler, Chi2Result, ChiSquareTest, DirectionSample, DirectionalSampler, Domain,
+};
+use rayon::prelude::*;
+
+/// Family-wise significance level.
+const ALPHA: f64 = 0.01;
+/// Number of χ² tests in the family (every case of the suite).
+const N_TESTS: usize = 170;
+
+/// Cases that fail because of a genuine problem in the sampler (reported, not yet fixed): they are
+/// run and printed, but do not fail the test. Remove an entry once its sampler is fixed.
+const KNOWN_ISSUES: [&str; 2] = [
+    // Thin spherical triangles of the star's spike tips seen 5° above its plane: samples are
+    // displaced out of the tip cell (O 3600 vs E 4982 at 4M samples), p ≈ 1e-6 at 1M.
+    "light/star/grazing/solidangle",
+    // Sphere area sampling from 200 radii: 0.04% of the sampled directions miss the sphere when
+    // traced (f32 ray–sphere intersection at the silhouette), 0.6% get a pdf off by > 1%.
+    "light/sphere/far/area",
+];
+
+/// Runs every case with `samples` samples and asserts that all pass; prints one line per case
+/// and the smallest p-value.
+fn run_cases(group: &str, cases: Vec<Case>, samples: usize, seed: u32) {
+    let results: Vec<(String, Chi2Result)> = cases
+        .par_iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let r = ChiSquareTest::new(&c.sampler)
+                .samples(samples)
+                .seed(seed.wrapping_add(i as u32))
+                .significance(ALPHA, N_TESTS)
+                .run();
+            (c.name.clone(), r)
+        })
+        .collect();
+    for (name, r) in &results {
+        eprintln!("{name:40} {r}");
+    }
+    let min_p = results.iter().map(|(_, r)| r.p_value).fold(1.0, f64::min);
+    eprintln!(
+        "{group}: {} tests, {samples} samples each, min p = {min_p:.3e}",
+        results.len()
+    );
+    // A known issue must still fail (seeded, so deterministically): once its sampler is fixed the
+    // entry has to leave KNOWN_ISSUES and the case is tested like every other.
+    let failed: Vec<String> = results
+        .iter()
+        .filter(|(n, r)| r.passed() == KNOWN_ISSUES.contains(&n.as_str()))
+        .map(|(n, r)| match r.passed() {
+            true => format!("{n}: passes now; remove it from KNOWN_ISSUES"),
+            false => format!("{n}: {r}"),
+        })
+        .collect();
+    assert!(failed.is_empty(), "{group}:\n{}", failed.join("\n"));
+}
+
+#[test]
+fn suite_size_matches_the_correction() {
+    assert_eq!(suite::all_cases().len(), N_TESTS);
+}
+
+#[test]
+fn chi2_warps() {
+    run_cases("warps", suite::warp_cases(), 1_000_000, 1000);
+}
+
+#[test]
+fn chi2_materials() {
+    run_cases("materials", suite::material_cases(), 1_000_000, 2000);
+}
+
+#[test]
+fn chi2_lights() {
+    run_cases("lights", suite::light_cases(), 1_000_000, 3000);
+}
+
+#[test]
+fn chi2_mixture() {
+    run_cases("mixture", suite::mixture_cases(), 1_000_000, 4000);
+}
+
+/// A sampler whose pdf (reported and evaluated) is `scale` times the true one.
+struct ScaledPdf<S>(S, f32);
+
+impl<S: DirectionalSampler> DirectionalSampler for ScaledPdf<S> {
+    fn sample(&self, u1: f32, u2: glam::Vec2) -> Option<DirectionSample> {
+        self.0.sample(u1, u2).map(|s| DirectionSample {
+            pdf: s.pdf * self.1,
+            ..s
+        })
+    }
+    fn pdf(&self, w: glam::Vec3) -> f32 {
+        self.0.pdf(w) * self.1
+    }
+    fn domain(&self) -> Domain {
+        self.0.domain()
+    }
+}
+
+/// Samples with one sampler, claims the pdf of another (reported and evaluated).
+struct Mismatched<A, B>(A, B);
+
+impl<A: DirectionalSampler, B: DirectionalSampler> DirectionalSampler for Mismatched<A, B> {
+    fn sample(&self, u1: f32, u2: glam::Vec2) -> Option<DirectionSample> {
+        let s = self.0.sample(u1, u2)?;
+        Some(DirectionSample {
+            pdf: self.1.pdf(s.w),
+            ..s
+        })
+    }
+    fn pdf(&self, w: glam::Vec3) -> f32 {
+        self.1.pdf(w)
+    }
+    fn domain(&self) -> Domain {
+        self.1.domain()
+    }
+}
+
+fn ggx(alpha: f32) -> BsdfSampler {
+    let fresnel = ConductorFresnel::Tint(glam::Vec3::ONE);
+    BsdfSampler::at_angle(Material::Conductor(Conductor { alpha, fresnel }), 30.0)
+}
+
+#[test]
+fn chi2_rejects_broken_samplers() {
+    let check = |name: &str, s: &dyn DirectionalSampler, samples: usize| {
+        let r = ChiSquareTest::new(s)
+            .samples(samples)
+            .seed(77)
+            .significance(ALPHA, N_TESTS)
+            .run();
+        eprintln!("{name:40} {r}");
+        assert!(r.chi2_rejects(), "{name} not rejected: {r}");
+    };
+    // (a) A 5% pdf error on otherwise exact samplers.
+    let plastic = BsdfSampler::at_angle(suite::plastic(0.3, 1.5), 30.0);
+    check(
+        "pdf x1.05 cosine",
+        &ScaledPdf(lumis::stats::Warp::CosineHemisphere, 1.05),
+        1_000_000,
+    );
+    check(
+        "pdf x1.05 plastic a0.3",
+        &ScaledPdf(plastic, 1.05),
+        1_000_000,
+    );
+    // (b) GGX sampled with α = 0.3 but evaluated with 0.33.
+    check(
+        "ggx sample 0.3 / pdf 0.33",
+        &Mismatched(ggx(0.3), ggx(0.33)),
+        1_000_000,
+    );
+    // The correct versions pass.
+    for (name, s) in [("ggx 0.3", ggx(0.3)), ("ggx 0.33", ggx(0.33))] {
+        let r = ChiSquareTest::new(&s).samples(1_000_000).seed(77).run();
+        eprintln!("{name:40} {r}");
+        assert!(r.passed(), "{name}: {r}");
+    }
+}
