@@ -22,7 +22,8 @@ fn settings(strategy: Strategy, light_sampling: LightSampling) -> Settings {
     }
 }
 
-const STRATEGIES: [Strategy; 5] = [
+/// Every strategy; the mixture at three weights (0.5 is the original program's).
+const STRATEGIES: [Strategy; 7] = [
     Strategy::Light,
     Strategy::Bsdf,
     Strategy::Mixture { light_weight: 0.5 },
@@ -32,6 +33,8 @@ const STRATEGIES: [Strategy; 5] = [
     Strategy::Mis {
         heuristic: Heuristic::Balance,
     },
+    Strategy::Mixture { light_weight: 0.25 },
+    Strategy::Mixture { light_weight: 0.75 },
 ];
 
 /// Samples per pixel per scene and strategy: enough for a block standard error well under 0.5%.
