@@ -31,13 +31,13 @@ const N_TESTS: usize = 170;
 
 /// Cases that fail because of a genuine problem in the sampler (reported, not yet fixed): they are
 /// run and printed, but do not fail the test. Remove an entry once its sampler is fixed.
-const KNOWN_ISSUES: [&str; 2] = [
-    // Thin spherical triangles of the star's spike tips seen 5° above its plane: samples are
-    // displaced out of the tip cell (O 3600 vs E 4982 at 4M samples), p ≈ 1e-6 at 1M.
+const KNOWN_ISSUES: [&str; 1] = [
+    // The *harness's* expected count is wrong here, not the sampler: cell (25, 96) holds the thin
+    // tip of a star spike lying along a φ column; the adaptive Gauss quadrature converges (whole
+    // and quarters agree) to 4982 expected at 4M samples, while a 2000×2000 brute-force integral
+    // gives 3556 and the sampler delivers 3600. Arvo sampling, the solid angles and the traced pdf
+    // were checked against f64 and agree. Fix: a quadrature that cannot be fooled by slivers.
     "light/star/grazing/solidangle",
-    // Sphere area sampling from 200 radii: 0.04% of the sampled directions miss the sphere when
-    // traced (f32 ray–sphere intersection at the silhouette), 0.6% get a pdf off by > 1%.
-    "light/sphere/far/area",
 ];
 
 /// Runs every case with `samples` samples and asserts that all pass; prints one line per case
