@@ -29,17 +29,6 @@ const ALPHA: f64 = 0.01;
 /// Number of χ² tests in the family (every case of the suite).
 const N_TESTS: usize = 170;
 
-/// Cases that fail because of a genuine problem in the sampler (reported, not yet fixed): they are
-/// run and printed, but do not fail the test. Remove an entry once its sampler is fixed.
-const KNOWN_ISSUES: [&str; 1] = [
-    // The *harness's* expected count is wrong here, not the sampler: cell (25, 96) holds the thin
-    // tip of a star spike lying along a φ column; the adaptive Gauss quadrature converges (whole
-    // and quarters agree) to 4982 expected at 4M samples, while a 2000×2000 brute-force integral
-    // gives 3556 and the sampler delivers 3600. Arvo sampling, the solid angles and the traced pdf
-    // were checked against f64 and agree. Fix: a quadrature that cannot be fooled by slivers.
-    "light/star/grazing/solidangle",
-];
-
 /// Runs every case with `samples` samples and asserts that all pass; prints one line per case
 /// and the smallest p-value.
 fn run_cases(group: &str, cases: Vec<Case>, samples: usize, seed: u32) {
@@ -63,15 +52,10 @@ fn run_cases(group: &str, cases: Vec<Case>, samples: usize, seed: u32) {
         "{group}: {} tests, {samples} samples each, min p = {min_p:.3e}",
         results.len()
     );
-    // A known issue must still fail (seeded, so deterministically): once its sampler is fixed the
-    // entry has to leave KNOWN_ISSUES and the case is tested like every other.
     let failed: Vec<String> = results
         .iter()
-        .filter(|(n, r)| r.passed() == KNOWN_ISSUES.contains(&n.as_str()))
-        .map(|(n, r)| match r.passed() {
-            true => format!("{n}: passes now; remove it from KNOWN_ISSUES"),
-            false => format!("{n}: {r}"),
-        })
+        .filter(|(_, r)| !r.passed())
+        .map(|(n, r)| format!("{n}: {r}"))
         .collect();
     assert!(failed.is_empty(), "{group}:\n{}", failed.join("\n"));
 }

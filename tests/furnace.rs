@@ -308,14 +308,10 @@ fn closed_box_coloured() {
 }
 
 /// a = 1: the series does not converge, but `max_depth` 5 is the finite sum `5L`, reached before
-/// Russian roulette may start (`rr_depth` 5), so no strategy can hide a bias behind it.
-///
-/// Ignored while a known bug stands: it measures 4.999771 instead of 5 (z ≈ −6.6), because about
-/// 2.4e-5 of the segments that start within ~1e-5 of an inside edge escape the box (the BVH
-/// traversal misses hits brute force finds, and the watertight test's conservative `delta_t`
-/// rejects true hits at t ≈ 1e-5 relative). Run it with `--ignored` once that is fixed.
+/// Russian roulette may start (`rr_depth` 5), so no strategy can hide a bias behind it. This test
+/// found the energy leak at inside edges (4.999771 instead of 5, z ≈ −6.6): obvhs's fixed node
+/// epsilon and the triangle test's error bound lost walls right next to a path's origin.
 #[test]
-#[ignore = "known energy leak at inside edges (rays starting within ~1e-5 of an edge escape)"]
 fn closed_box_white_depth_5() {
     check_box(
         "box a=1",

@@ -1,6 +1,6 @@
 //! Disks: a circle of radius `r` around `center` in the plane with unit normal `n`.
 
-use super::ray::{Ray, gamma};
+use super::ray::{Ray, crosses_plane_ahead, gamma};
 use glam::Vec3;
 
 /// A disk.
@@ -36,7 +36,8 @@ impl Disk {
         }
         // Reject hits that may lie behind the origin once t's error is accounted for.
         let t_err = gamma(7) * ((self.center - ray.o).abs().dot(self.n.abs()) / denom.abs());
-        (t > t_err).then_some(t)
+        (t > t_err || crosses_plane_ahead(ray.o, ray.d, self.center.as_dvec3(), self.n.as_dvec3()))
+            .then_some(t)
     }
 
     /// Hit point projected back onto the disk's plane, with its error bound.

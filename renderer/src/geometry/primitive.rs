@@ -115,7 +115,9 @@ pub struct Primitive {
 
 impl obvhs::Boundable for Primitive {
     fn aabb(&self) -> obvhs::aabb::Aabb {
+        // Widened by the rounding of the disk and sphere bounds, so the box holds every hit.
         let (lo, hi) = self.shape.bounds();
-        obvhs::aabb::Aabb::new(lo.into(), hi.into())
+        let pad = super::ray::gamma(3) * lo.abs().max(hi.abs());
+        obvhs::aabb::Aabb::new((lo - pad).into(), (hi + pad).into())
     }
 }

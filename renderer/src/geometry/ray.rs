@@ -4,7 +4,7 @@
 //! point (pbrt-v4's `pError`). New rays start just outside that error box, so self-intersection is
 //! avoided at every scene scale without a fixed epsilon.
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 /// `n·ε / (1 − n·ε)` with ε = 2⁻²⁴: the bound on the relative error of n chained f32 operations.
 #[inline]
@@ -77,6 +77,27 @@ pub fn next_float_down(v: f32) -> f32 {
     let v = if v == 0.0 { -0.0 } else { v };
     let bits = v.to_bits();
     f32::from_bits(if v > 0.0 { bits - 1 } else { bits + 1 })
+}
+
+/// Whether the ray `o + t·d` crosses the plane through `p0` with normal `n` at some `t > 0`, decided
+/// in f64 (exact up to ~1e-16) and only when the origin is clearly off the plane: the origin on
+/// one side, the ray heading to the other.
+///
+/// Intersection routines reject hits closer than their `t` error bound, since such a hit might be
+/// the surface the ray just left. This test settles those: rays leaving a surface start on the side
+/// they head to ([`offset_ray_origin`]), so it never accepts the surface a ray left, yet it keeps
+/// the wall next to a floor's edge, which the error bound alone would lose (a path would escape a
+/// closed room through its corners).
+pub fn crosses_plane_ahead(o: Vec3, d: Vec3, p0: DVec3, n: DVec3) -> bool {
+    let rel = o.as_dvec3() - p0;
+    let d = d.as_dvec3();
+    let side = rel.dot(n);
+    let heading = d.dot(n);
+    // Generous bounds on the f64 rounding of both dot products.
+    const TOL: f64 = 1e-13;
+    let off_plane = side.abs() > TOL * rel.length() * n.length();
+    let not_parallel = heading.abs() > TOL * d.length() * n.length();
+    off_plane && not_parallel && (side < 0.0) != (heading < 0.0)
 }
 
 /// Moves `p` (with error bound `p_error`) along the normal `n` to the side `w` points to, far enough

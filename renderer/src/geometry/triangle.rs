@@ -1,7 +1,7 @@
 //! Triangles: watertight ray intersection (Woop, Benthin & Wald 2013, as in pbrt-v4), area and
 //! bounds.
 
-use super::ray::{Ray, gamma};
+use super::ray::{Ray, crosses_plane_ahead, gamma};
 use crate::math::difference_of_products;
 use glam::{Vec3, Vec3Swizzles};
 
@@ -31,6 +31,7 @@ pub fn triangle_normal(v: &[Vec3; 3]) -> Option<Vec3> {
 #[derive(Clone, Copy, Debug)]
 pub struct TriangleRay {
     o: Vec3,
+    d: Vec3,
     /// Index of the direction's largest axis, which becomes z.
     kz: u8,
     /// Shear coefficients `(−d_x/d_z, −d_y/d_z, 1/d_z)` in permuted coordinates.
@@ -52,6 +53,7 @@ impl TriangleRay {
         let d = permute(ray.d, kz);
         TriangleRay {
             o: ray.o,
+            d: ray.d,
             kz,
             s: Vec3::new(-d.x / d.z, -d.y / d.z, 1.0 / d.z),
         }
@@ -131,13 +133,23 @@ pub fn intersect_triangle_prepared(
     let max_e = e0.abs().max(e1.abs()).max(e2.abs());
     let delta_t =
         3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
-    if t <= delta_t {
+    if t <= delta_t && !close_hit_is_real(r, v) {
         return None;
     }
     Some(TriangleHit {
         t,
         b: [e0 * inv_det, e1 * inv_det, e2 * inv_det],
     })
+}
+
+/// Decides a hit too close to the origin for `t`'s error bound (`t ≤ δt`) by the plane test of
+/// [`crosses_plane_ahead`], with the plane's normal from the vertices in f64. Rare, so f64 is
+/// affordable.
+#[cold]
+fn close_hit_is_real(r: &TriangleRay, v: &[Vec3; 3]) -> bool {
+    let v0 = v[0].as_dvec3();
+    let n = (v[1].as_dvec3() - v0).cross(v[2].as_dvec3() - v0);
+    crosses_plane_ahead(r.o, r.d, v0, n)
 }
 
 /// The hit point from barycentrics (more accurate than `o + t·d`) and its error bound.
