@@ -21,6 +21,8 @@ pub enum Command {
     Render(RenderArgs),
     /// Print the relMSE and RMSE of an image against a reference.
     Compare(CompareArgs),
+    /// Measure error against render time for each strategy; write the curves as CSV (and a plot).
+    Bench(BenchArgs),
 }
 
 /// Direct-lighting strategy names.
@@ -60,6 +62,22 @@ pub struct EstimatorArgs {
     /// Direct-lighting strategy.
     #[arg(long, value_enum, default_value = "mis")]
     pub strategy: StrategyArg,
+    /// Everything else about the estimator.
+    #[command(flatten)]
+    pub options: EstimatorOptions,
+}
+
+impl EstimatorArgs {
+    /// The renderer settings these options describe.
+    pub fn settings(&self) -> anyhow::Result<Settings> {
+        self.options.settings(self.strategy)
+    }
+}
+
+/// The estimator options besides the strategy, so that `bench` can apply them to several
+/// strategies in one run.
+#[derive(Args, Debug, Clone)]
+pub struct EstimatorOptions {
     /// Probability of light sampling in the `mixture` strategy, in [0, 1].
     #[arg(long, default_value_t = 0.5)]
     pub mix_weight: f32,
@@ -74,9 +92,9 @@ pub struct EstimatorArgs {
     pub max_depth: Option<i32>,
 }
 
-impl EstimatorArgs {
-    /// The renderer settings these options describe.
-    pub fn settings(&self) -> anyhow::Result<Settings> {
+impl EstimatorOptions {
+    /// The renderer settings for `strategy` with these options.
+    pub fn settings(&self, strategy: StrategyArg) -> anyhow::Result<Settings> {
         if !(0.0..=1.0).contains(&self.mix_weight) {
             anyhow::bail!("--mix-weight must be in [0, 1], got {}", self.mix_weight);
         }
@@ -89,7 +107,7 @@ impl EstimatorArgs {
             HeuristicArg::Balance => Heuristic::Balance,
             HeuristicArg::Power => Heuristic::Power,
         };
-        let strategy = match self.strategy {
+        let strategy = match strategy {
             StrategyArg::Light => Strategy::Light,
             StrategyArg::Bsdf => Strategy::Bsdf,
             StrategyArg::Mixture => Strategy::Mixture {
@@ -145,4 +163,64 @@ pub struct CompareArgs {
     pub image: PathBuf,
     /// Reference image (EXR or PFM).
     pub reference: PathBuf,
+}
+
+/// Where `bench` renders.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BackendArg {
+    /// The multi-threaded CPU engine.
+    Cpu,
+    /// The GPU engine (not available yet).
+    Gpu,
+}
+
+/// `lumis bench`.
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Scene file (JSON).
+    pub scene: PathBuf,
+    /// Reference image (EXR or PFM) of the same size; without it the error is estimated from two
+    /// independent half images.
+    #[arg(long)]
+    pub reference: Option<PathBuf>,
+    /// Strategies to measure, comma-separated.
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "light,bsdf,mixture,mis"
+    )]
+    pub strategies: Vec<StrategyArg>,
+    /// Where to render.
+    #[arg(long, value_enum, default_value = "cpu")]
+    pub backend: BackendArg,
+    /// Render time per strategy: checkpoints at 1, 2, 4, … spp (from 2 without --reference) until
+    /// this many seconds of rendering are spent (the default, 10 s, when --spp-list is not given
+    /// either); the last doubling can take the total to about twice the budget.
+    #[arg(long, conflicts_with = "spp_list")]
+    pub seconds: Option<f64>,
+    /// Checkpoints in samples per pixel, comma-separated and increasing, instead of --seconds.
+    #[arg(long, value_delimiter = ',')]
+    pub spp_list: Vec<u32>,
+    /// Random seed.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u32,
+    /// Estimator options (--mix-weight applies to `mixture`, --heuristic to `mis`).
+    #[command(flatten)]
+    pub estimator: EstimatorOptions,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Override the scene's image width.
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Override the scene's image height.
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Output CSV: strategy,seconds,spp,samples_per_second,relmse,rmse,efficiency,error_source.
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+    /// Also plot relMSE against seconds (log-log) to this PNG.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
 }

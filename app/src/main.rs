@@ -1,5 +1,6 @@
 //! `lumis`: the command line of the lumis path tracer.
 
+mod bench_cmd;
 mod cli;
 mod render_cmd;
 
@@ -25,6 +26,7 @@ fn main() {
     let result = match args.command {
         cli::Command::Render(a) => render_cmd::render(&a),
         cli::Command::Compare(a) => render_cmd::compare(&a),
+        cli::Command::Bench(a) => bench_cmd::bench(&a),
     };
     if let Err(e) = result {
         eprintln!("lumis: {e:#}");

@@ -17,23 +17,9 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
         bail!("--spp must be at least 1");
     }
     check_output_extension(&args.output)?;
-    // Fail before rendering, not after, when the image could never be written.
-    if let Some(dir) = args.output.parent()
-        && !dir.as_os_str().is_empty()
-        && !dir.is_dir()
-    {
-        bail!(
-            "{}: the directory {} does not exist",
-            args.output.display(),
-            dir.display()
-        );
-    }
+    check_output_dir(&args.output)?;
     let scene = Arc::new(Scene::load(&args.scene)?);
-    let threads = args.threads.unwrap_or(0);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .context("starting worker threads")?;
+    let pool = thread_pool(args.threads)?;
     let mut render = Progressive::new(scene, settings, args.seed);
     let bar = ProgressBar::new(args.spp as u64);
     bar.set_style(
@@ -80,6 +66,30 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
         film.nonfinite
     );
     Ok(())
+}
+
+/// Fails before rendering, not after, when `path` could never be written because its directory
+/// is missing.
+pub(crate) fn check_output_dir(path: &std::path::Path) -> anyhow::Result<()> {
+    if let Some(dir) = path.parent()
+        && !dir.as_os_str().is_empty()
+        && !dir.is_dir()
+    {
+        bail!(
+            "{}: the directory {} does not exist",
+            path.display(),
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+/// The worker pool for `--threads` (`None`: all cores).
+pub(crate) fn thread_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .context("starting worker threads")
 }
 
 fn check_output_extension(path: &std::path::Path) -> anyhow::Result<()> {

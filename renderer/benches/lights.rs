@@ -1,0 +1,112 @@
+//! Light sampling throughput per shape (triangle, polygon, quad, disk, sphere) and method (area,
+//! solid angle): `Light::sample` from a fixed set of shading points, the first visible surface
+//! point of each pixel of a 64×48 view of `assets/plastic_lights.json`, which has one light of each
+//! shape (the polygon is a concave 10-vertex star). Points behind a one-sided light are kept: the
+//! integrator pays for those calls too. Throughput is in samples.
+//!
+//! Disks have no solid-angle sampler (`LightSampling::SolidAngle` falls back to area), so they are
+//! measured once.
+//!
+//! `cargo bench -p lumis-renderer --bench lights`
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use glam::{Vec2, Vec3};
+use lumis::lights::{Light, LightSampling};
+use lumis::rng::Rng;
+use lumis::scene::Scene;
+use std::hint::black_box;
+use std::path::Path;
+
+/// Shading points are taken on this grid of the camera's view.
+const GRID: (u32, u32) = (64, 48);
+
+/// One call's inputs.
+struct Input {
+    p: Vec3,
+    u: Vec2,
+}
+
+fn load_scene() -> Scene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/plastic_lights.json");
+    Scene::load(&path).expect("plastic_lights.json loads")
+}
+
+/// The first hit of a camera ray through each grid cell, with a fixed random pair each.
+fn inputs(scene: &Scene) -> Vec<Input> {
+    let cam = &scene.camera;
+    let (sx, sy) = (
+        cam.width as f32 / GRID.0 as f32,
+        cam.height as f32 / GRID.1 as f32,
+    );
+    let mut out = Vec::new();
+    for y in 0..GRID.1 {
+        for x in 0..GRID.0 {
+            let ray = cam.ray((x as f32 + 0.5) * sx, (y as f32 + 0.5) * sy);
+            if let Some(hit) = scene.accel.intersect(&ray) {
+                let mut rng = Rng::new(5, y * GRID.0 + x, 0);
+                out.push(Input {
+                    p: hit.p,
+                    u: rng.next_2d(),
+                });
+            }
+        }
+    }
+    out
+}
+
+/// The scene's first light of each shape.
+fn lights(scene: &Scene) -> Vec<(&'static str, &Light)> {
+    let kind = |l: &Light| match l {
+        Light::Triangle(_) => Some("triangle"),
+        Light::Polygon(_) => Some("polygon"),
+        Light::Quad(_) => Some("quad"),
+        Light::Disk(_) => Some("disk"),
+        Light::Sphere(_) => Some("sphere"),
+        Light::Background(_) => None,
+    };
+    let mut out: Vec<(&'static str, &Light)> = Vec::new();
+    for l in &scene.lights {
+        if let Some(k) = kind(l)
+            && !out.iter().any(|(name, _)| *name == k)
+        {
+            out.push((k, l));
+        }
+    }
+    assert_eq!(
+        out.len(),
+        5,
+        "plastic_lights.json has one light of every shape"
+    );
+    out
+}
+
+fn light_sampling(c: &mut Criterion) {
+    let scene = load_scene();
+    let inputs = inputs(&scene);
+    let mut group = c.benchmark_group("light_sample");
+    group.throughput(Throughput::Elements(inputs.len() as u64));
+    for (shape, light) in lights(&scene) {
+        for (method_name, method) in [
+            ("area", LightSampling::Area),
+            ("solid_angle", LightSampling::SolidAngle),
+        ] {
+            if shape == "disk" && method == LightSampling::SolidAngle {
+                continue;
+            }
+            group.bench_function(format!("{shape}/{method_name}"), |b| {
+                b.iter(|| {
+                    inputs.iter().fold(0.0f32, |acc, x| {
+                        match light.sample(black_box(x.p), x.u, method) {
+                            Some(s) => acc + s.pdf,
+                            None => acc,
+                        }
+                    })
+                })
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, light_sampling);
+criterion_main!(benches);
