@@ -35,26 +35,14 @@
 
 mod common;
 
-use common::render;
+use common::{METHODS, STRATEGIES, build, json_vec, render};
 use glam::Vec3;
-use lumis::integrator::{Heuristic, Settings, Strategy};
+use lumis::integrator::{Settings, Strategy};
 use lumis::lights::LightSampling;
 use lumis::metrics::{normal_two_sided_critical, sidak};
-use lumis::scene::{Scene, parse_scene};
+use lumis::scene::Scene;
 use std::sync::Arc;
 
-const STRATEGIES: [Strategy; 5] = [
-    Strategy::Light,
-    Strategy::Bsdf,
-    Strategy::Mixture { light_weight: 0.5 },
-    Strategy::Mis {
-        heuristic: Heuristic::Power,
-    },
-    Strategy::Mis {
-        heuristic: Heuristic::Balance,
-    },
-];
-const METHODS: [LightSampling; 2] = [LightSampling::Area, LightSampling::SolidAngle];
 const SETTINGS_PER_SCENE: usize = STRATEGIES.len() * METHODS.len();
 
 /// Image size (square).
@@ -93,15 +81,6 @@ fn settings(strategy: Strategy, light_sampling: LightSampling, max_depth: i32) -
         max_depth: Some(max_depth),
         ..Settings::default()
     }
-}
-
-fn json_vec(v: Vec3) -> String {
-    format!("[{}, {}, {}]", v.x, v.y, v.z)
-}
-
-fn build(json: &str) -> Arc<Scene> {
-    let desc = parse_scene(json).unwrap_or_else(|e| panic!("{e}\n{json}"));
-    Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}")))
 }
 
 /// The cube [−1, 1]³ made of six quads whose normals `cross(edge_u, edge_v)` point inwards, all

@@ -3,13 +3,43 @@
 
 #![allow(dead_code)]
 
+use glam::Vec3;
 use lumis::engine::Progressive;
 use lumis::image_io::Image;
-use lumis::integrator::Settings;
+use lumis::integrator::{Heuristic, Settings, Strategy};
+use lumis::lights::LightSampling;
 use lumis::metrics::{BlockTest, ImageWithVariance, block_z_test};
-use lumis::scene::Scene;
+use lumis::scene::{Scene, parse_scene};
 use std::path::PathBuf;
 use std::sync::Arc;
+
+/// The strategies every scene-level test runs: each single strategy, the original program's
+/// 0.5/0.5 mixture, and MIS with both heuristics.
+pub const STRATEGIES: [Strategy; 5] = [
+    Strategy::Light,
+    Strategy::Bsdf,
+    Strategy::Mixture { light_weight: 0.5 },
+    Strategy::Mis {
+        heuristic: Heuristic::Power,
+    },
+    Strategy::Mis {
+        heuristic: Heuristic::Balance,
+    },
+];
+
+/// Both light-sampling methods.
+pub const METHODS: [LightSampling; 2] = [LightSampling::Area, LightSampling::SolidAngle];
+
+/// A JSON array for a vector.
+pub fn json_vec(v: Vec3) -> String {
+    format!("[{}, {}, {}]", v.x, v.y, v.z)
+}
+
+/// Parses and builds a scene from JSON text, panicking with the message and the text.
+pub fn build(json: &str) -> Arc<Scene> {
+    let desc = parse_scene(json).unwrap_or_else(|e| panic!("{e}\n{json}"));
+    Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}\n{json}")))
+}
 
 /// `tests/data` of the workspace.
 pub fn data_dir() -> PathBuf {
