@@ -603,6 +603,172 @@ fn invalid_options_are_one_line_errors() {
     expect_error(&lumis(["compare", "only-one.exr"]), &["REFERENCE"]);
 }
 
+// ---- Bad input and unwritable outputs (issue 7, item 4) ----
+
+/// Runs `lumis render SCENE --spp 1 -o OUT`.
+fn render_to(scene: &Path, out: &Path) -> Output {
+    lumis([
+        OsStr::new("render"),
+        scene.as_os_str(),
+        OsStr::new("--spp"),
+        OsStr::new("1"),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ])
+}
+
+/// Whether file permissions stop this process: not when the tests run as root (CI may), in which
+/// case the permission cases below are replaced by paths under a regular file, which fail for
+/// everyone.
+fn permissions_enforced(dir: &TempDir) -> bool {
+    use std::os::unix::fs::PermissionsExt;
+    let probe = dir.write("permission-probe", "x");
+    std::fs::set_permissions(&probe, std::fs::Permissions::from_mode(0o000)).expect("chmod");
+    let enforced = std::fs::read(&probe).is_err();
+    let _ = std::fs::remove_file(&probe);
+    enforced
+}
+
+/// Makes `path` readable and writable again, so that `TempDir` can remove it.
+fn restore_permissions(path: &Path, mode: u32) {
+    use std::os::unix::fs::PermissionsExt;
+    let _ = std::fs::set_permissions(path, std::fs::Permissions::from_mode(mode));
+}
+
+#[test]
+fn scene_that_cannot_be_read_is_named() {
+    let dir = TempDir::new("unreadable-scene");
+    let not_a_dir = dir.write("somefile.txt", "not a directory");
+    // A directory, a file that is not UTF-8, an empty file, a path through a regular file.
+    let directory = dir.path("scenes.json");
+    std::fs::create_dir(&directory).expect("create dir");
+    let binary = dir.path("binary.json");
+    std::fs::write(&binary, b"{\"camera\": \xff\xfe}").expect("write");
+    let empty = dir.write("empty.json", "");
+    let through_file = not_a_dir.join("scene.json");
+    for (scene, problem) in [
+        (&directory, "cannot read the scene file"),
+        (&binary, "cannot read the scene file"),
+        (&through_file, "cannot read the scene file"),
+        (&empty, "EOF while parsing"),
+    ] {
+        expect_scene_error(&dir, scene, &[scene.to_str().unwrap(), problem]);
+    }
+    if permissions_enforced(&dir) {
+        let locked = dir.write("locked.json", &scene_json(16, 16));
+        restore_permissions(&locked, 0o000);
+        expect_scene_error(
+            &dir,
+            &locked,
+            &[locked.to_str().unwrap(), "Permission denied"],
+        );
+        restore_permissions(&locked, 0o644);
+    }
+}
+
+#[test]
+fn unwritable_outputs_are_named() {
+    let dir = TempDir::new("unwritable-outputs");
+    let scene = dir.scene(16, 16);
+    // Under a regular file: the directory cannot exist, so this fails before rendering.
+    let not_a_dir = dir.write("somefile.txt", "not a directory");
+    for name in ["out.exr", "out.pfm", "out.png"] {
+        let out = not_a_dir.join(name);
+        let output = render_to(&scene, &out);
+        expect_error(&output, &[out.to_str().unwrap()]);
+        assert!(
+            output.stdout.is_empty(),
+            "{name}: rendered before failing: {}",
+            text(&output.stdout)
+        );
+    }
+    // An output that is a directory, in every format.
+    for name in ["taken.exr", "taken.pfm", "taken.png"] {
+        let out = dir.path(name);
+        std::fs::create_dir(&out).expect("create dir");
+        expect_error(&render_to(&scene, &out), &[out.to_str().unwrap()]);
+        assert!(out.is_dir(), "{name} was replaced");
+    }
+    // A read-only directory, where permissions apply.
+    if permissions_enforced(&dir) {
+        let locked = dir.path("locked");
+        std::fs::create_dir(&locked).expect("create dir");
+        restore_permissions(&locked, 0o555);
+        let out = locked.join("out.exr");
+        let output = render_to(&scene, &out);
+        restore_permissions(&locked, 0o755);
+        expect_error(&output, &[out.to_str().unwrap(), "Permission denied"]);
+        assert!(!out.exists(), "wrote into a read-only directory");
+    }
+}
+
+#[test]
+fn more_unknown_output_extensions_are_rejected() {
+    let dir = TempDir::new("bad-ext-more");
+    let scene = dir.scene(16, 16);
+    for name in ["x.tiff", "x.exr.gz", "x.", ".exr"] {
+        let out = dir.path(name);
+        let output = render_to(&scene, &out);
+        expect_error(&output, &[out.to_str().unwrap(), ".exr, .pfm or .png"]);
+        assert!(!out.exists(), "{name} was written");
+        assert!(output.stdout.is_empty(), "{name}: rendered before failing");
+    }
+}
+
+#[test]
+fn compare_unreadable_or_invalid_images_are_named() {
+    let dir = TempDir::new("compare-invalid");
+    let good = dir.path("good.exr");
+    render(&dir.scene(16, 16), &good, &["--spp", "1"]);
+    let bytes = std::fs::read(&good).expect("read EXR");
+
+    let garbage = dir.write("garbage.exr", "this is not an EXR file");
+    let truncated = dir.path("truncated.exr");
+    std::fs::write(&truncated, &bytes[..bytes.len() / 2]).expect("write");
+    let empty = dir.write("empty.exr", "");
+    let bad_pfm = dir.write("bad.pfm", "PF\n16 sixteen\n-1.0\n");
+    let short_pfm = dir.write("short.pfm", "PF\n16 16\n-1.0\n\0\0\0\0");
+    let png = dir.path("image.png");
+    render(&dir.scene(16, 16), &png, &["--spp", "1"]);
+    let directory = dir.path("directory.exr");
+    std::fs::create_dir(&directory).expect("create dir");
+    let through_file = garbage.join("x.exr");
+
+    for bad in [
+        &garbage,
+        &truncated,
+        &empty,
+        &bad_pfm,
+        &short_pfm,
+        &png,
+        &directory,
+        &through_file,
+    ] {
+        // As the reference and as the image: either way the bad file is the one named.
+        for (image, reference) in [(&good, bad), (bad, &good)] {
+            let output = lumis([
+                OsStr::new("compare"),
+                image.as_os_str(),
+                reference.as_os_str(),
+            ]);
+            let line = expect_error(&output, &[bad.to_str().unwrap()]);
+            assert!(
+                !line.contains(good.to_str().unwrap()),
+                "names the good file: {line}"
+            );
+            assert!(output.stdout.is_empty(), "printed metrics for {bad:?}");
+        }
+    }
+    if permissions_enforced(&dir) {
+        let locked = dir.path("locked.exr");
+        std::fs::write(&locked, &bytes).expect("write");
+        restore_permissions(&locked, 0o000);
+        let output = lumis([OsStr::new("compare"), good.as_os_str(), locked.as_os_str()]);
+        restore_permissions(&locked, 0o644);
+        expect_error(&output, &[locked.to_str().unwrap()]);
+    }
+}
+
 // ---- `lumis bench` ----
 
 /// One row of `bench`'s CSV.

@@ -56,13 +56,24 @@ impl Complex {
     }
 }
 
+/// Bound on the magnitude of a complex IOR in [`fresnel_complex`], so that |η|² and the Fresnel
+/// quotients stay inside f32's range (the WGSL twin cannot fall back to f64).
+pub const IOR_LIMIT: f32 = 1e6;
+
 /// Unpolarised Fresnel reflectance of a conductor with complex IOR η + ik, one wavelength
 /// (pbrt-v4 `FrComplex`).
+///
+/// Valid for any η > 0, k ≥ 0 a scene may hold: |η + ik| beyond [`IOR_LIMIT`] is clamped there
+/// (the reflectance is then 1 to within ~4/(limit·cosθ), negligible in a render, while |η|²
+/// and the quotients below stay finite), and |η + ik| below 1/[`IOR_LIMIT`] reflects fully.
 pub fn fresnel_complex(cos_theta_i: f32, eta: f32, k: f32) -> f32 {
     let cos_i = cos_theta_i.clamp(0.0, 1.0);
-    let eta = Complex::new(eta, k);
-    if eta.norm() == 0.0 {
-        return 1.0; // η = 0: a perfect reflector; avoids dividing by zero below
+    let eta = Complex::new(eta.min(IOR_LIMIT), k.min(IOR_LIMIT));
+    if eta.norm() < 1.0 / (IOR_LIMIT * IOR_LIMIT) {
+        return 1.0; // η → 0: a perfect reflector; avoids dividing by (almost) zero below
+    }
+    if cos_i == 0.0 {
+        return 1.0; // the grazing limit for every η ≠ 1; η = 1, k = 0 would give 0/0
     }
     let sin2_i = 1.0 - cos_i * cos_i;
     let sin2_t = Complex::new(sin2_i, 0.0).div(eta.mul(eta));
@@ -109,6 +120,42 @@ pub fn schlick_f0_from_ior(ior: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every η > 0, k ≥ 0 an f32 scene can hold gives a reflectance in [0, 1], and huge or tiny
+    /// |η + ik| reflect (almost) fully away from grazing. Found by the scene-mutation property test: η = 2e19
+    /// overflowed |η|² and gave NaN.
+    #[test]
+    fn complex_fresnel_is_finite_for_extreme_iors() {
+        let values = [
+            0.0,
+            1e-45,
+            1e-30,
+            1e-20,
+            1e-7,
+            1e-3,
+            0.2,
+            1.0,
+            1.5,
+            3.9,
+            1e3,
+            1e6,
+            1e7,
+            2e19,
+            1e30,
+            f32::MAX,
+        ];
+        for &eta in &values[1..] {
+            for &k in &values {
+                for c in [0.0, 1e-6, 0.1, 0.5, 0.9, 1.0] {
+                    let f = fresnel_complex(c, eta, k);
+                    assert!((0.0..=1.0).contains(&f), "F({c}, {eta}, {k}) = {f}");
+                    if c >= 0.1 && (eta.max(k) >= 1e7 || eta.max(k) <= 1e-20) {
+                        assert!(f > 0.999, "F({c}, {eta}, {k}) = {f}");
+                    }
+                }
+            }
+        }
+    }
 
     /// pbrt-v3's real-arithmetic `FrConductor` in f64: an independent reference.
     fn reference(cos_i: f64, eta: f64, k: f64) -> f64 {

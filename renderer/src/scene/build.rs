@@ -3,6 +3,7 @@
 
 use super::desc::{FresnelDesc, GeometryDesc, MaterialDesc, SceneDesc};
 use super::error::SceneError;
+use super::parse_shapes::unit;
 use crate::camera::Camera;
 use crate::geometry::disk::Disk;
 use crate::geometry::primitive::{NONE, Primitive, Shape};
@@ -14,6 +15,12 @@ use crate::lights::{
 };
 use crate::materials::{Conductor, ConductorFresnel, Diffuse, Material, Plastic};
 use glam::{DVec3, Vec3};
+
+/// Largest supported extent of a scene's bounding box (on its longest axis). The BVH builder
+/// computes surface-area costs in single precision: sizes past ~1e19 overflow them to infinity
+/// (and then NaN, which breaks the build); 1e15 also keeps area × primitive-count costs finite.
+/// The format promises 1e-3 to 1e5 units.
+pub const MAX_SCENE_SIZE: f32 = 1e15;
 
 /// A scene ready to render.
 pub struct Scene {
@@ -102,10 +109,14 @@ impl Scene {
     /// becomes degenerate in f32).
     pub fn from_desc(desc: &SceneDesc) -> Result<Scene, SceneError> {
         let cam = &desc.camera;
+        // The parser checked the view direction and `up` in f64. Rounded to f32, a `to` very close
+        // to a distant `from` could coincide with it, and a tiny `up` become zero: hand the camera
+        // a look-at point as far away as `from` is from the origin, and a unit `up`.
+        let reach = cam.from.abs().max_element().max(1.0);
         let camera = Camera::new(
             v(cam.from),
-            v(cam.to),
-            v(cam.up),
+            v(cam.from + unit(cam.to - cam.from) * reach),
+            v(unit(cam.up)),
             cam.vfov_deg as f32,
             cam.width,
             cam.height,
@@ -125,7 +136,9 @@ impl Scene {
 
         let mut prims = Vec::new();
         let mut lights = Vec::new();
+        let (mut scene_lo, mut scene_hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
         for shape in &desc.shapes {
+            let first_prim = prims.len();
             let mat = shape.material.map_or(black, |m| m as u32);
             let le = v(shape.emission);
             let emits = le.cmpgt(Vec3::ZERO).any();
@@ -134,7 +147,9 @@ impl Scene {
                 if !emits {
                     return Ok(NONE);
                 }
-                let light = light.ok_or_else(|| err("emitter has zero area"))?;
+                let light = light.ok_or_else(|| {
+                    err("emitter has zero area, or an area too large, in single precision")
+                })?;
                 lights.push(light);
                 Ok(lights.len() as u32 - 1)
             };
@@ -235,6 +250,21 @@ impl Scene {
                     }
                 }
             }
+            for p in &prims[first_prim..] {
+                let (lo, hi) = p.shape.bounds();
+                (scene_lo, scene_hi) = (scene_lo.min(lo), scene_hi.max(hi));
+            }
+            // Infinite sizes compare greater; NaN ones need saying.
+            let size = (scene_hi - scene_lo).max_element();
+            if first_prim < prims.len() && (size.is_nan() || size > MAX_SCENE_SIZE) {
+                return Err(SceneError::new(
+                    &shape.json_path,
+                    format!(
+                        "this shape makes the scene {size:e} units across; at most \
+                         {MAX_SCENE_SIZE:e} is supported (single precision)"
+                    ),
+                ));
+            }
         }
         let accel = Accel::new(prims);
         let background = v(desc.background);
@@ -267,10 +297,16 @@ impl Scene {
         })
     }
 
-    /// Loads and builds a scene file.
+    /// Parses, validates and builds scene JSON text: the one entry point from text to a
+    /// renderable scene, which [`Scene::load`] and the fuzz target use.
+    pub fn from_json_str(text: &str) -> Result<Scene, SceneError> {
+        Scene::from_desc(&super::parse::parse_scene(text)?)
+    }
+
+    /// Loads and builds a scene file; errors name the file.
     pub fn load(path: &std::path::Path) -> Result<Scene, SceneError> {
-        let desc = super::parse::load_scene(path)?;
-        Scene::from_desc(&desc).map_err(|e| e.in_file(path))
+        let text = super::parse::read_scene_file(path)?;
+        Scene::from_json_str(&text).map_err(|e| e.in_file(path))
     }
 }
 

@@ -16,11 +16,13 @@ pub struct SceneError {
 }
 
 impl SceneError {
-    /// An error at `path` (no file yet: [`crate::scene::load_scene`] adds it).
+    /// An error at `path` (no file yet: [`crate::scene::load_scene`] adds it). Control
+    /// characters are escaped, so that a key or name from the file written with `\n` cannot
+    /// break the message over several lines.
     pub fn new(path: impl Into<String>, message: impl Into<String>) -> SceneError {
         SceneError {
-            path: path.into(),
-            message: message.into(),
+            path: one_line(path.into()),
+            message: one_line(message.into()),
             file: None,
         }
     }
@@ -32,10 +34,32 @@ impl SceneError {
     }
 }
 
+/// Whether `c` would end or disturb a line of terminal output.
+fn breaks_line(c: char) -> bool {
+    c.is_control() || c == '\u{2028}' || c == '\u{2029}'
+}
+
+/// `s` with every line-breaking character written as its Rust escape (`\n`, `\u{1b}`).
+fn one_line(s: String) -> String {
+    if !s.chars().any(breaks_line) {
+        return s;
+    }
+    s.chars()
+        .map(|c| {
+            if breaks_line(c) {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if let Some(file) = &self.file {
-            write!(f, "{}: ", file.display())?;
+            // File names may hold newlines too.
+            write!(f, "{}: ", one_line(file.display().to_string()))?;
         }
         if !self.path.is_empty() {
             write!(f, "{}: ", self.path)?;
@@ -60,5 +84,15 @@ mod tests {
             "scenes/a.json: shapes[3].vertices: not planar"
         );
         assert_eq!(SceneError::new("", "bad JSON").to_string(), "bad JSON");
+    }
+
+    #[test]
+    fn control_characters_are_escaped() {
+        let e =
+            SceneError::new("materials.a\nb", "unknown key `a\nb\r\u{2028}`").in_file("x\ny.json");
+        assert_eq!(
+            e.to_string(),
+            "x\\ny.json: materials.a\\nb: unknown key `a\\nb\\r\\u{2028}`"
+        );
     }
 }

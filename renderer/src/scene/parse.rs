@@ -7,7 +7,7 @@
 use super::desc::{CameraDesc, SceneDesc};
 use super::error::SceneError;
 use super::parse_materials::parse_materials;
-use super::parse_shapes::parse_shapes;
+use super::parse_shapes::{parse_shapes, unit};
 use super::walk::{Obj, array, check_components, integer, parse_json};
 use glam::DVec3;
 use serde_json::Value;
@@ -17,6 +17,12 @@ use std::path::Path;
 /// gigabytes of accumulation buffers.
 pub const MAX_IMAGE_SIZE: u32 = 16384;
 
+/// Largest accepted emitted or background radiance. A sample is the radiance times the
+/// estimator's weights (BSDF over pdf, MIS), which reach 1e4 on the shipped scenes; this leaves
+/// eight orders of magnitude of headroom below single precision's 3.4e38, where samples would
+/// overflow to infinity and be discarded.
+pub const MAX_RADIANCE: f64 = 1e30;
+
 /// Parses and validates scene JSON text.
 pub fn parse_scene(text: &str) -> Result<SceneDesc, SceneError> {
     parse_scene_value(&parse_json(text)?)
@@ -24,16 +30,23 @@ pub fn parse_scene(text: &str) -> Result<SceneDesc, SceneError> {
 
 /// Reads, parses and validates a scene file; errors name the file.
 pub fn load_scene(path: &Path) -> Result<SceneDesc, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        SceneError::new("", format!("cannot read the scene file: {e}")).in_file(path)
-    })?;
-    parse_scene(&text).map_err(|e| e.in_file(path))
+    parse_scene(&read_scene_file(path)?).map_err(|e| e.in_file(path))
+}
+
+/// The text of a scene file; the error (missing, a directory, not UTF-8, …) names the file.
+pub(crate) fn read_scene_file(path: &Path) -> Result<String, SceneError> {
+    std::fs::read_to_string(path)
+        .map_err(|e| SceneError::new("", format!("cannot read the scene file: {e}")).in_file(path))
 }
 
 /// Validates an already parsed JSON value (e.g. one from [`SceneDesc::to_json`]).
 pub fn parse_scene_value(value: &Value) -> Result<SceneDesc, SceneError> {
     if !value.is_object() {
-        return Err(SceneError::new("", "a scene must be a JSON object"));
+        // No JSON path to name, so say where in words.
+        return Err(SceneError::new(
+            "",
+            "the root of a scene file must be a JSON object",
+        ));
     }
     let root = Obj::new(value, "")?;
     root.only_keys(
@@ -54,12 +67,7 @@ pub fn parse_scene_value(value: &Value) -> Result<SceneDesc, SceneError> {
     }
 
     let background = root.opt_vec3("background")?.unwrap_or(DVec3::ZERO);
-    check_components(
-        background,
-        "background",
-        |x| x >= 0.0,
-        "is negative: radiance must be ≥ 0",
-    )?;
+    check_radiance(background, "background")?;
 
     let materials = match root.get("materials") {
         Some(v) => parse_materials(&Obj::new(v, "materials")?)?,
@@ -81,6 +89,17 @@ pub fn parse_scene_value(value: &Value) -> Result<SceneDesc, SceneError> {
     })
 }
 
+/// Checks emitted or background radiance: every channel in `[0, MAX_RADIANCE]`.
+pub(crate) fn check_radiance(le: DVec3, path: &str) -> Result<DVec3, SceneError> {
+    check_components(le, path, |x| x >= 0.0, "is negative: radiance must be ≥ 0")?;
+    check_components(
+        le,
+        path,
+        |x| x <= MAX_RADIANCE,
+        "is too large: radiance must be at most 1e30 (single precision would overflow)",
+    )
+}
+
 fn parse_camera(obj: &Obj) -> Result<CameraDesc, SceneError> {
     obj.only_keys(&["from", "to", "up", "vfov_deg", "width", "height"], false)?;
     let (from, to, up) = (obj.vec3("from")?, obj.vec3("to")?, obj.vec3("up")?);
@@ -98,7 +117,7 @@ fn parse_camera(obj: &Obj) -> Result<CameraDesc, SceneError> {
         return Err(SceneError::new(obj.at("up"), "`up` has zero length"));
     }
     // sin(angle) below 1e-6: the image's horizontal axis `cross(forward, up)` would be noise.
-    if view.normalize().cross(up.normalize()).length() < 1e-6 {
+    if unit(view).cross(unit(up)).length() < 1e-6 {
         return Err(SceneError::new(
             obj.at("up"),
             "`up` is parallel to the view direction `to - from`",
@@ -258,7 +277,7 @@ mod tests {
     #[test]
     fn json_syntax_errors_have_line_and_column() {
         let e = parse_scene("{\n  \"camera\": {,\n}").unwrap_err();
-        assert_eq!(e.path, "");
+        assert_eq!(e.path, "camera");
         assert!(e.message.contains("line 2 column 14"), "{e}");
         let e = parse_scene("{\"max_depth\": 1e999}").unwrap_err();
         assert!(e.message.contains("number out of range at line 1"), "{e}");

@@ -261,7 +261,7 @@ mod tests {
         let s = with("white", json!([]));
         expect_err(&s, "materials.white", "expected an object");
         let s = with("", json!({"type": "diffuse", "albedo": [0, 0, 0]}));
-        expect_err(&s, "materials.", "must not be empty");
+        expect_err(&s, "materials.\"\"", "must not be empty");
         let ok = json!({"type": "diffuse", "albedo": [0, 0, 0], "comment": "x", "name": "White"});
         assert!(parse_scene_value(&with("white", ok)).is_ok());
     }

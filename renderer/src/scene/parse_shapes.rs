@@ -2,8 +2,9 @@
 
 use super::desc::{GeometryDesc, NamedMaterial, ShapeDesc};
 use super::error::SceneError;
+use super::parse::check_radiance;
 use super::parse_mesh::{DEGENERATE_TRIANGLE, polygon, triangles};
-use super::walk::{Obj, check_components};
+use super::walk::Obj;
 use glam::DVec3;
 use serde_json::Value;
 
@@ -52,12 +53,7 @@ fn parse_shape(
         Some(_) => Some(material_index(obj, materials)?),
     };
     let emission = obj.opt_vec3("emission")?.unwrap_or(DVec3::ZERO);
-    check_components(
-        emission,
-        &obj.at("emission"),
-        |x| x >= 0.0,
-        "is negative: radiance must be ≥ 0",
-    )?;
+    check_radiance(emission, &obj.at("emission"))?;
 
     let geometry = match kind {
         "quad" => quad(obj)?,
@@ -108,14 +104,17 @@ fn material_index(obj: &Obj, materials: &[NamedMaterial]) -> Result<usize, Scene
         })
 }
 
-/// `v / |v|`, but unchanged when `v` is already unit to rounding, so that normalising is
-/// idempotent and a saved and reloaded scene compares equal.
-fn unit(v: DVec3) -> DVec3 {
+/// `v / |v|` for any non-zero `v`, but unchanged when `v` is already unit to rounding, so that
+/// normalising is idempotent and a saved and reloaded scene compares equal.
+pub(crate) fn unit(v: DVec3) -> DVec3 {
     let len = v.length();
     if (len - 1.0).abs() <= 4.0 * f64::EPSILON {
         v
     } else {
-        v / len
+        // Scaled by the largest component first: the length of `[1e-300, 0, 0]` underflows to 0
+        // (a NaN normal) and that of `[1e300, 1e300, 0]` overflows.
+        let v = v / v.abs().max_element();
+        v / v.length()
     }
 }
 

@@ -163,3 +163,376 @@ fn to_json_writes_non_defaults() {
     assert!(j["shapes"][0].get("emission").is_none());
     assert_eq!(j["shapes"][3]["normal"], json!([0.0, -1.0, 0.0]));
 }
+
+/// Asserts that JSON `text` is rejected at exactly `path` with a message containing every
+/// string of `fragments` (for problems a `Value` cannot hold: syntax, `1e999`, bare `NaN`).
+#[track_caller]
+fn expect_text_err(text: &str, path: &str, fragments: &[&str]) {
+    let e = parse_scene(text).unwrap_err();
+    assert_eq!(e.path, path, "wrong path in: {e}");
+    for fragment in fragments {
+        assert!(
+            e.message.contains(fragment),
+            "expected {fragment:?} in: {e}"
+        );
+    }
+    assert!(!e.to_string().contains('\n'), "not one line: {e}");
+}
+
+/// The base scene as text with the first occurrence of `from` replaced by `to`.
+fn base_text_with(from: &str, to: &str) -> String {
+    let text = base().to_string();
+    assert!(text.contains(from), "{from:?} not in the base scene");
+    text.replacen(from, to, 1)
+}
+
+/// One case per rule of the Errors section of `docs/scene-format.md`, in its order, each with
+/// the JSON path and the problem the message must name. Variants of most rules are tested next to
+/// their parser (`parse*.rs`); this is the audit that none is missing.
+#[test]
+fn every_errors_section_rule_names_path_and_problem() {
+    // bad JSON: syntax errors name the value being read, the line and the column.
+    expect_text_err(
+        "{\"camera\": {\"from\": [0, 1,, 0]}}",
+        "camera.from[2]",
+        &["JSON syntax error", "line 1 column 27"],
+    );
+    let text = base().to_string();
+    let cut = text.find("\"vertices\"").unwrap() + 20;
+    expect_text_err(
+        &text[..cut],
+        "shapes[1].vertices[1]",
+        &["EOF while parsing", "line 1 column"],
+    );
+    expect_text_err(
+        &base_text_with("\"max_depth\":8", "\"max_depth\":8,\"max_depth\":9"),
+        "max_depth",
+        &["duplicate key `max_depth`"],
+    );
+    expect_text_err(
+        &base_text_with(
+            "\"metal\":{",
+            "\"white\":{\"type\":\"diffuse\",\"albedo\":[0,0,0]},\"metal\":{",
+        ),
+        "materials.white",
+        &["duplicate key `white`"],
+    );
+
+    // unknown key (root, camera, material, shape).
+    let mut s = base();
+    s["shape"] = json!([]);
+    expect_err(&s, "shape", "unknown key `shape`");
+    let mut s = base();
+    s["camera"]["aperture"] = json!(0.1);
+    expect_err(&s, "camera.aperture", "unknown key `aperture`");
+    let mut s = base();
+    s["materials"]["white"]["color"] = json!([1, 1, 1]);
+    expect_err(&s, "materials.white.color", "unknown key `color`");
+    let s = with(
+        4,
+        json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "radius2": 1}),
+    );
+    expect_err(&s, "shapes[4].radius2", "unknown key `radius2`");
+
+    // unknown material name, also when none is defined.
+    let s = with(
+        4,
+        json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "Copper"}),
+    );
+    expect_err(&s, "shapes[4].material", "unknown material `Copper`");
+    let mut s = base();
+    s.as_object_mut().unwrap().remove("materials");
+    expect_err(
+        &s,
+        "shapes[0].material",
+        "unknown material `white` (no materials are defined)",
+    );
+
+    // wrong array length: too short, too long, empty, for vectors and triangle indices.
+    let mut s = base();
+    s["background"] = json!([0.1, 0.1, 0.1, 1.0]);
+    expect_err(&s, "background", "expected 3 numbers, found 4");
+    let s = with(5, json!({"type": "box", "min": [], "max": [1, 1, 1]}));
+    expect_err(&s, "shapes[5].min", "expected 3 numbers, found 0");
+    let s = with(
+        4,
+        json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "emission": [1, 1]}),
+    );
+    expect_err(&s, "shapes[4].emission", "expected 3 numbers, found 2");
+    let mut s = base();
+    s["shapes"][2]["indices"][3] = json!([1, 2]);
+    expect_err(
+        &s,
+        "shapes[2].indices[3]",
+        "expected 3 vertex indices, found 2",
+    );
+
+    // NaN and infinities: JSON has no literal for them, so they arrive as an overflowing number,
+    // a bare word (a syntax error) or a string.
+    expect_text_err(
+        &base_text_with(
+            "\"radius\":0.5,\"type\":\"sphere\"",
+            "\"radius\":1e999,\"type\":\"sphere\"",
+        ),
+        "shapes[4].radius",
+        &["number out of range"],
+    );
+    expect_text_err(
+        &base_text_with("\"from\":[0,1,-4]", "\"from\":[-1e400,1,-4]"),
+        "camera.from[0]",
+        &["number out of range"],
+    );
+    expect_text_err(
+        &base_text_with("\"emission\":[4,4,4]", "\"emission\":[4,NaN,4]"),
+        "shapes[1].emission[1]",
+        &["JSON syntax error"],
+    );
+    expect_text_err(
+        &base_text_with("\"vfov_deg\":40", "\"vfov_deg\":Infinity"),
+        "camera.vfov_deg",
+        &["JSON syntax error"],
+    );
+    let s = with(
+        4,
+        json!({"type": "sphere", "center": [0, 0, 0], "radius": "NaN"}),
+    );
+    expect_err(&s, "shapes[4].radius", "expected a number, found a string");
+    let mut s = base();
+    s["materials"]["white"]["albedo"][2] = json!("Infinity");
+    expect_err(
+        &s,
+        "materials.white.albedo[2]",
+        "expected a number, found a string",
+    );
+
+    // negative radius (and zero: a radius must be positive).
+    let s = with(
+        4,
+        json!({"type": "sphere", "center": [0, 0, 0], "radius": -1}),
+    );
+    expect_err(&s, "shapes[4].radius", "radius must be positive, found -1");
+    let s = with(
+        3,
+        json!({"type": "disk", "center": [0, 0, 0], "normal": [0, 1, 0], "radius": 0}),
+    );
+    expect_err(&s, "shapes[3].radius", "radius must be positive, found 0");
+
+    // albedo outside [0, 1].
+    let mut s = base();
+    s["materials"]["white"]["albedo"] = json!([0.5, 0.5, 1.0001]);
+    expect_err(&s, "materials.white.albedo[2]", "is outside [0, 1]");
+    let mut s = base();
+    s["materials"]["plastic"]["albedo"] = json!([-0.5, 0.5, 0.5]);
+    expect_err(&s, "materials.plastic.albedo[0]", "is outside [0, 1]");
+
+    // non-planar, self-intersecting or zero-area polygon.
+    let poly = |v: Value| {
+        with(
+            1,
+            json!({"type": "polygon", "vertices": v, "emission": [1, 1, 1]}),
+        )
+    };
+    let bent = json!([[0, 0, 0], [2, 0, 0], [2, 2, 0.5], [0, 2, 0]]);
+    expect_err(&poly(bent), "shapes[1].vertices", "not planar");
+    let crossed = json!([[0, 0, 0], [2, 0, 0], [0, 2, 0], [2, 2, 0]]);
+    expect_err(
+        &poly(crossed),
+        "shapes[1].vertices",
+        "not simple: edge 1 and edge 3",
+    );
+    let flat = json!([[0, 0, 0], [1, 0, 0], [3, 0, 0], [2, 0, 0]]);
+    expect_err(&poly(flat), "shapes[1].vertices", "zero area");
+    let tiny = json!([[0, 0, 0], [1, 0, 0], [0.5, 1e-12, 0]]);
+    expect_err(&poly(tiny), "shapes[1].vertices", "zero area");
+
+    // a degenerate triangle that is an emitter (a non-emitter's is dropped with a warning).
+    let tris = |idx: Value, emission: [f64; 3]| {
+        let pos = json!([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0.5, 0, 0]]);
+        with(
+            2,
+            json!({"type": "triangles", "positions": pos, "indices": idx, "emission": emission}),
+        )
+    };
+    expect_err(
+        &tris(json!([[0, 1, 2], [0, 3, 1]]), [1.0; 3]),
+        "shapes[2].indices[1]",
+        "zero area",
+    );
+    expect_err(
+        &tris(json!([[2, 2, 2]]), [0.0, 0.0, 1.0]),
+        "shapes[2].indices[0]",
+        "zero area",
+    );
+    let d = parse_scene_value(&tris(json!([[0, 1, 2], [0, 3, 1]]), [0.0; 3])).unwrap();
+    assert_eq!(
+        d.warnings,
+        ["shapes[2].indices: dropped 1 zero-area triangle(s): [1]"]
+    );
+
+    // a zero-length normal.
+    let s = with(
+        3,
+        json!({"type": "disk", "center": [0, 0, 0], "normal": [0, 0, 0], "radius": 1}),
+    );
+    expect_err(&s, "shapes[3].normal", "zero-length normal");
+    let s = with(
+        3,
+        json!({"type": "disk", "center": [0, 0, 0], "normal": [0, -0.0, 0], "radius": 1}),
+    );
+    expect_err(&s, "shapes[3].normal", "zero-length normal");
+
+    // a camera with `from == to` or `up` parallel to the view direction.
+    let mut s = base();
+    s["camera"]["to"] = s["camera"]["from"].clone();
+    expect_err(&s, "camera.to", "`to` equals `from`");
+    let mut s = base();
+    s["camera"]["up"] = json!([0, 0, -3]);
+    expect_err(&s, "camera.up", "parallel to the view direction");
+}
+
+/// Type errors of the containers, which no rule above names but every rule relies on.
+#[test]
+fn containers_of_the_wrong_type_are_named() {
+    let cases = [
+        (
+            "materials",
+            json!([]),
+            "materials",
+            "expected an object, found an array",
+        ),
+        (
+            "camera",
+            json!(null),
+            "camera",
+            "expected an object, found null",
+        ),
+        (
+            "shapes",
+            json!("none"),
+            "shapes",
+            "expected an array, found a string",
+        ),
+        (
+            "background",
+            json!(0.1),
+            "background",
+            "expected an array of 3 numbers, found a number",
+        ),
+        (
+            "max_depth",
+            json!("8"),
+            "max_depth",
+            "expected a number, found a string",
+        ),
+        (
+            "name",
+            json!(["x"]),
+            "name",
+            "expected a string, found an array",
+        ),
+    ];
+    for (key, value, path, fragment) in cases {
+        let mut s = base();
+        s[key] = value;
+        expect_err(&s, path, fragment);
+    }
+    let mut s = base();
+    s["shapes"][4]["type"] = json!(3);
+    expect_err(&s, "shapes[4].type", "expected a string, found a number");
+    s["shapes"][4]["type"] = json!("sphere");
+    s["shapes"][4]["name"] = json!(false);
+    expect_err(&s, "shapes[4].name", "expected a string, found a boolean");
+    let mut s = base();
+    s["shapes"][1]["vertices"] = json!({"0": [0, 0, 0]});
+    expect_err(
+        &s,
+        "shapes[1].vertices",
+        "expected an array, found an object",
+    );
+    let mut s = base();
+    s["shapes"][2]["indices"][0] = json!(0);
+    expect_err(
+        &s,
+        "shapes[2].indices[0]",
+        "expected an array, found a number",
+    );
+    let mut s = base();
+    s["materials"]["metal"]["type"] = json!(null);
+    expect_err(&s, "materials.metal.type", "expected a string, found null");
+}
+
+/// Keys and names from the file are quoted in messages; a newline in one must not break the
+/// one-line error.
+#[test]
+fn messages_stay_on_one_line() {
+    let mut s = base();
+    s["camera"]["a\nb"] = json!(1);
+    let e = parse_scene_value(&s).unwrap_err();
+    assert_eq!(e.to_string(), format!("camera.\"a\\nb\": {}", e.message));
+    assert!(e.message.starts_with("unknown key `a\\nb`"), "{e}");
+    // Keys that are empty or hold path punctuation are quoted, so a path is never empty.
+    let mut s = base();
+    s[""] = json!(1);
+    expect_err(&s, "\"\"", "unknown key ``");
+    let mut s = base();
+    s["materials"]["red.metal"] = json!({"type": "diffuse", "albedo": [2, 0, 0]});
+    expect_err(&s, "materials.\"red.metal\".albedo[0]", "outside [0, 1]");
+    let s = with(
+        4,
+        json!({"type": "sphere\r\n", "center": [0, 0, 0], "radius": 1}),
+    );
+    let e = parse_scene_value(&s).unwrap_err();
+    assert!(!e.to_string().contains(['\r', '\n']), "{e}");
+    let e = parse_scene("{\"camera\u{2028}\": [}").unwrap_err();
+    assert!(!e.to_string().contains('\u{2028}'), "{e}");
+}
+
+/// The renderer computes in f32: numbers beyond its range, radiance that would overflow samples,
+/// and scenes too large for the BVH's costs are refused by name; tiny vectors still normalise.
+#[test]
+fn single_precision_limits() {
+    use super::Scene;
+    let mut s = base();
+    s["shapes"][4]["center"][1] = json!(3.5e38);
+    expect_err(
+        &s,
+        "shapes[4].center[1]",
+        "out of range: numbers must lie within ±3.4e38",
+    );
+    let mut s = base();
+    s["shapes"][3]["emission"] = json!([1, 2e30, 1]);
+    expect_err(&s, "shapes[3].emission[1]", "radiance must be at most 1e30");
+    let mut s = base();
+    s["background"] = json!([1e31, 0, 0]);
+    expect_err(&s, "background[0]", "radiance must be at most 1e30");
+    let mut s = base();
+    s["shapes"][3]["emission"] = json!([1e30, 1e30, 1e30]);
+    assert!(parse_scene_value(&s).is_ok());
+
+    // Finite numbers that make the scene too large fail in the builder, at the shape.
+    let mut s = base();
+    s["shapes"][4]["radius"] = json!(1e19);
+    let e = Scene::from_json_str(&s.to_string())
+        .err()
+        .expect("too large");
+    assert_eq!(e.path, "shapes[4]", "{e}");
+    assert!(e.message.contains("units across; at most 1e15"), "{e}");
+    s["shapes"][4]["radius"] = json!(1e10);
+    assert!(Scene::from_json_str(&s.to_string()).is_ok());
+
+    // A disk normal or camera `up` whose length underflows is still a direction.
+    let mut s = base();
+    s["shapes"][3]["normal"] = json!([0, -1e-300, 0]);
+    s["camera"]["up"] = json!([0, 1e-300, 0]);
+    let d = parse_scene_value(&s).unwrap();
+    let GeometryDesc::Disk { normal, .. } = d.shapes[3].geometry else {
+        panic!()
+    };
+    assert_eq!(normal, DVec3::new(0.0, -1.0, 0.0));
+    let scene = Scene::from_desc(&d).unwrap();
+    let ray = scene.camera.ray(32.0, 24.0);
+    assert!(ray.d.is_finite() && ray.o.is_finite(), "{ray:?}");
+    // `up` parallel to the view is caught even when its length underflows.
+    s["camera"]["up"] = json!([0, 0, 1e-300]);
+    expect_err(&s, "camera.up", "parallel to the view direction");
+}

@@ -3,43 +3,74 @@
 
 use super::error::SceneError;
 use glam::DVec3;
-use serde::de::{self, Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
+use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde_json::{Map, Number, Value};
+use std::cell::RefCell;
 use std::fmt;
 
 /// Parses JSON text, rejecting duplicate keys (which `serde_json::Value` would silently collapse,
-/// e.g. two materials of the same name). Syntax errors carry line and column.
+/// e.g. two materials of the same name). Errors carry line and column and, because a number like
+/// `1e999` (the only way to write a non-finite number) or a truncated file is otherwise hard to
+/// find, the JSON path of the value being read.
 pub(crate) fn parse_json(text: &str) -> Result<Value, SceneError> {
-    serde_json::from_str::<Strict>(text)
-        .map(|s| s.0)
-        .map_err(|e| {
-            let what = match e.classify() {
-                serde_json::error::Category::Data => "invalid JSON",
-                _ => "JSON syntax error",
-            };
-            // serde_json's message already ends in "at line L column C"; say so even when it doesn't.
-            let msg = e.to_string();
-            let msg = if msg.contains(" line ") {
-                msg
-            } else {
-                format!("{msg} at line {} column {}", e.line(), e.column())
-            };
-            SceneError::new("", format!("{what}: {msg}"))
-        })
+    let at = RefCell::new(Vec::new());
+    let mut de = serde_json::Deserializer::from_str(text);
+    let value = StrictSeed(&at)
+        .deserialize(&mut de)
+        .and_then(|Strict(v)| de.end().map(|()| v));
+    value.map_err(|e| {
+        let what = match e.classify() {
+            serde_json::error::Category::Data => "invalid JSON",
+            _ => "JSON syntax error",
+        };
+        // serde_json's message already ends in "at line L column C"; say so even when it doesn't.
+        let msg = e.to_string();
+        let msg = if msg.contains(" line ") {
+            msg
+        } else {
+            format!("{msg} at line {} column {}", e.line(), e.column())
+        };
+        // On an error the stack is left as it was where reading stopped.
+        let path = at.borrow().iter().fold(String::new(), |p, seg| match seg {
+            Seg::Key(k) => join(&p, k),
+            Seg::Index(i) => format!("{p}[{i}]"),
+        });
+        SceneError::new(path, format!("{what}: {msg}"))
+    })
 }
 
-/// A `Value` built by [`StrictVisitor`].
+/// One step of a JSON path.
+enum Seg {
+    Key(String),
+    Index(usize),
+}
+
+/// A `Value` built by [`StrictSeed`].
 struct Strict(Value);
 
-impl<'de> Deserialize<'de> for Strict {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Strict, D::Error> {
-        d.deserialize_any(StrictVisitor)
+/// Deserializes a [`Strict`] value, keeping in `.0` the path of the value being read.
+#[derive(Clone, Copy)]
+struct StrictSeed<'a>(&'a RefCell<Vec<Seg>>);
+
+impl<'de> DeserializeSeed<'de> for StrictSeed<'_> {
+    type Value = Strict;
+
+    fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<Strict, D::Error> {
+        d.deserialize_any(self)
     }
 }
 
-struct StrictVisitor;
+impl StrictSeed<'_> {
+    /// Reads one nested value at `seg`; the segment stays on the stack if that fails.
+    fn nested<T, E>(self, seg: Seg, read: impl FnOnce(Self) -> Result<T, E>) -> Result<T, E> {
+        self.0.borrow_mut().push(seg);
+        let value = read(self)?;
+        self.0.borrow_mut().pop();
+        Ok(value)
+    }
+}
 
-impl<'de> Visitor<'de> for StrictVisitor {
+impl<'de> Visitor<'de> for StrictSeed<'_> {
     type Value = Strict;
 
     fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
@@ -67,7 +98,9 @@ impl<'de> Visitor<'de> for StrictVisitor {
     }
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Strict, A::Error> {
         let mut items = Vec::new();
-        while let Some(Strict(v)) = seq.next_element()? {
+        while let Some(Strict(v)) =
+            self.nested(Seg::Index(items.len()), |s| seq.next_element_seed(s))?
+        {
             items.push(v);
         }
         Ok(Strict(Value::Array(items)))
@@ -76,19 +109,31 @@ impl<'de> Visitor<'de> for StrictVisitor {
         let mut obj = Map::new();
         while let Some(key) = map.next_key::<String>()? {
             if obj.contains_key(&key) {
+                self.0.borrow_mut().push(Seg::Key(key.clone()));
                 return Err(de::Error::custom(format!("duplicate key `{key}`")));
             }
-            let Strict(v) = map.next_value()?;
+            let Strict(v) = self.nested(Seg::Key(key.clone()), |s| map.next_value_seed(s))?;
             obj.insert(key, v);
         }
         Ok(Strict(Value::Object(obj)))
     }
 }
 
-/// `parent.key`, or just `key` at the root.
+/// `parent.key`, or just `key` at the root. A key that is empty or holds anything but letters,
+/// digits, `_` and `-` is written as a JSON string (`materials."red.metal"`, `""`), so that every
+/// path is unambiguous and non-empty.
 pub(crate) fn join(parent: &str, key: &str) -> String {
-    if parent.is_empty() {
+    let plain = !key.is_empty()
+        && key
+            .chars()
+            .all(|c| c.is_alphanumeric() || c == '_' || c == '-');
+    let key = if plain {
         key.to_owned()
+    } else {
+        Value::String(key.to_owned()).to_string()
+    };
+    if parent.is_empty() {
+        key
     } else {
         format!("{parent}.{key}")
     }
@@ -110,11 +155,20 @@ fn wrong_type(v: &Value, path: &str, expected: &str) -> SceneError {
     SceneError::new(path, format!("expected {expected}, found {}", kind(v)))
 }
 
-/// A finite number.
+/// A number that is finite also in single precision, which the renderer computes in: a larger
+/// one would become infinite there.
 pub(crate) fn number(v: &Value, path: &str) -> Result<f64, SceneError> {
     let x = v.as_f64().ok_or_else(|| wrong_type(v, path, "a number"))?;
     if !x.is_finite() {
         return Err(SceneError::new(path, format!("number {x} is not finite")));
+    }
+    if x.abs() > f32::MAX as f64 {
+        return Err(SceneError::new(
+            path,
+            format!(
+                "number {x:e} is out of range: numbers must lie within ±3.4e38 (single precision)"
+            ),
+        ));
     }
     Ok(x)
 }
