@@ -206,8 +206,8 @@ impl<'a> ChiSquareTest<'a> {
     /// thin tip of a light's silhouette) that sits on the nodes of one level and between those of
     /// the next. So every cell is also integrated by an 8×8 midpoint rule; where the two differ by
     /// more than a twentieth of the cell's Poisson noise, that cell and its neighbours (a sliver
-    /// runs on into them) are integrated again by a 64×64 midpoint rule, which is kept unless it
-    /// agrees with the adaptive value.
+    /// runs on into them) are integrated again by 64×64 and 128×128 midpoint rules; the finer one
+    /// replaces the adaptive value when the two have converged (half a count's noise apart).
     fn integrate(&self) -> Vec<f64> {
         let edges = self.domain.row_edges(self.res_theta);
         let (sampler, domain) = (self.sampler, &self.domain);
@@ -253,7 +253,15 @@ impl<'a> ChiSquareTest<'a> {
                     return a;
                 }
                 let m = midpoint(&f, rect(i, j), 64);
-                if close(a, m) { a } else { m }
+                if close(a, m) {
+                    return a;
+                }
+                // A sliver is resolved once the midpoint rule has converged; an integrable
+                // singularity (the 1/cos of area sampling at a sphere's silhouette) is not, and
+                // there the adaptive rule, which refines towards it, is the better one.
+                let fine = midpoint(&f, rect(i, j), 128);
+                let converged = (fine - m).abs() * n <= 0.5 * (fine * n).max(1.0).sqrt();
+                if converged { fine } else { a }
             })
             .collect()
     }
