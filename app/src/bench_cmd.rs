@@ -6,10 +6,11 @@
 //! the relMSE and RMSE against `--reference`, or, without one, their estimates from the two
 //! independent half images the film keeps.
 
-use crate::cli::{BackendArg, BenchArgs};
+use crate::cli::BenchArgs;
 use crate::render_cmd::{check_output_dir, thread_pool};
 use anyhow::{Context, anyhow, bail};
-use lumis::engine::{Film, Progressive};
+use lumis::engine::Film;
+use lumis::gpu::AnyProgressive;
 use lumis::image_io::Image;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::metrics::{relmse, rmse};
@@ -109,9 +110,6 @@ impl Curve {
 
 /// Runs the benchmark and writes the CSV (and the plot).
 pub fn bench(args: &BenchArgs) -> anyhow::Result<()> {
-    if args.backend == BackendArg::Gpu {
-        bail!("the GPU backend is not available yet (use --backend cpu)");
-    }
     // Every usage problem is reported before any rendering starts.
     let mut settings: Vec<Settings> = Vec::new();
     for (i, &s) in args.strategies.iter().enumerate() {
@@ -167,7 +165,9 @@ pub fn bench(args: &BenchArgs) -> anyhow::Result<()> {
 
     let mut curves = Vec::new();
     for &settings in &settings {
-        let mut render = Progressive::new(scene.clone(), settings, args.seed);
+        // The GPU program is compiled here, before the timed passes.
+        let mut render =
+            AnyProgressive::new(args.backend.backend(), scene.clone(), settings, args.seed)?;
         let mut seconds = 0.0f64;
         let mut points = Vec::new();
         let mut next = match &schedule {
@@ -179,13 +179,14 @@ pub fn bench(args: &BenchArgs) -> anyhow::Result<()> {
             Schedule::List(list) => list[0],
         };
         loop {
-            let n = next - render.film().spp;
+            let n = next - render.spp();
             // Only the render is timed: the error below is measurement, not work a user waits for.
             let t = Instant::now();
             pool.install(|| render.render_pass(n));
             seconds += t.elapsed().as_secs_f64();
 
-            let film = render.film();
+            let film = render.film()?;
+            let film = &film;
             let (relmse, rmse) = match &reference {
                 Some(r) => {
                     let mean = film.mean();

@@ -142,6 +142,9 @@ pub struct RenderArgs {
     /// Estimator options.
     #[command(flatten)]
     pub estimator: EstimatorArgs,
+    /// Where to render.
+    #[arg(long, value_enum, default_value = "cpu")]
+    pub backend: BackendArg,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -165,12 +168,12 @@ pub struct CompareArgs {
     pub reference: PathBuf,
 }
 
-/// Where `bench` renders.
+/// Where `render` and `bench` render.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BackendArg {
     /// The multi-threaded CPU engine.
     Cpu,
-    /// The GPU engine (not available yet).
+    /// The GPU engine (wgpu compute; Mesa's lavapipe where there is no GPU).
     Gpu,
 }
 
@@ -223,4 +226,14 @@ pub struct BenchArgs {
     /// Also plot relMSE against seconds (log-log) to this PNG.
     #[arg(long)]
     pub plot: Option<PathBuf>,
+}
+
+impl BackendArg {
+    /// The renderer's backend.
+    pub fn backend(self) -> lumis::gpu::Backend {
+        match self {
+            BackendArg::Cpu => lumis::gpu::Backend::Cpu,
+            BackendArg::Gpu => lumis::gpu::Backend::Gpu,
+        }
+    }
 }

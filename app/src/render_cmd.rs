@@ -3,7 +3,7 @@
 use crate::cli::{CompareArgs, RenderArgs};
 use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressStyle};
-use lumis::engine::Progressive;
+use lumis::gpu::AnyProgressive;
 use lumis::image_io::Image;
 use lumis::metrics::{relmse, rmse};
 use lumis::scene::Scene;
@@ -20,7 +20,7 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
     check_output_dir(&args.output)?;
     let scene = Arc::new(Scene::load(&args.scene)?);
     let pool = thread_pool(args.threads)?;
-    let mut render = Progressive::new(scene, settings, args.seed);
+    let mut render = AnyProgressive::new(args.backend.backend(), scene, settings, args.seed)?;
     let bar = ProgressBar::new(args.spp as u64);
     bar.set_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} spp  {elapsed_precise} (eta {eta})")
@@ -28,18 +28,18 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
     );
     let start = Instant::now();
     let mut pass = 1u32;
-    while render.film().spp < args.spp {
+    while render.spp() < args.spp {
         // The time limit never stops the first pass: a 0-spp image would be silently black.
         if let Some(limit) = args.time_limit
-            && render.film().spp > 0
+            && render.spp() > 0
             && start.elapsed().as_secs_f64() >= limit
         {
             break;
         }
-        let n = pass.min(args.spp - render.film().spp);
+        let n = pass.min(args.spp - render.spp());
         let t = Instant::now();
         pool.install(|| render.render_pass(n));
-        bar.set_position(render.film().spp as u64);
+        bar.set_position(render.spp() as u64);
         // Aim for passes of about a quarter second: responsive to the time limit, cheap to schedule.
         let dt = t.elapsed().as_secs_f64().max(1e-6);
         pass = ((n as f64 * 0.25 / dt).clamp(1.0, 4096.0)) as u32;
@@ -50,7 +50,7 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
     }
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
-    let film = render.film();
+    let film = render.film()?;
     let img = Image {
         width: film.width,
         height: film.height,

@@ -41,6 +41,12 @@ impl Camera {
         }
     }
 
+    /// The view basis as plain data: `(forward, right, up, tan_x, tan_y)`, the unit axes and the
+    /// half-extents of the image plane at distance 1 that [`Camera::ray`] combines (for the GPU).
+    pub fn basis(&self) -> (Vec3, Vec3, Vec3, f32, f32) {
+        (self.forward, self.right, self.up, self.tan_x, self.tan_y)
+    }
+
     /// The ray through continuous film position `(x, y)` in pixels (0..width, 0..height, y down).
     #[inline]
     pub fn ray(&self, x: f32, y: f32) -> Ray {

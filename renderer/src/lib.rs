@@ -10,11 +10,13 @@
 //! * [`lights`]: area lights of every shape, the background, power-based light selection.
 //! * [`integrator`]: the path tracer and its four strategies.
 //! * [`engine`]: the progressive, multi-threaded CPU accumulation.
+//! * [`gpu`]: the same estimator in wgpu compute shaders (WGSL), progressive on the GPU.
 //! * [`image_io`] and [`metrics`]: EXR/PFM/PNG and error metrics, statistical image tests.
 
 pub mod camera;
 pub mod engine;
 pub mod geometry;
+pub mod gpu;
 pub mod image_io;
 pub mod integrator;
 pub mod lights;

@@ -48,6 +48,12 @@ impl Accel {
         &self.prims
     }
 
+    /// The CWBVH over [`Accel::primitives`] (its leaves index them directly), or `None` when the
+    /// scene is small enough to be scanned linearly. The GPU backend uploads its nodes as they are.
+    pub fn cwbvh(&self) -> Option<&CwBvh> {
+        self.bvh.as_ref()
+    }
+
     /// Closest hit along `ray` within `(0, ray.t_max)`.
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
         let mut best_t = ray.t_max;

@@ -1,0 +1,86 @@
+//! The wgpu device the backend renders with.
+
+use super::GpuError;
+use std::sync::Arc;
+
+/// A device and its queue. Create one headless with [`GpuContext::new`], or wrap the viewer's
+/// (eframe's) device with [`GpuContext::from_device`] so the accumulation buffer can be drawn
+/// without a round trip through the CPU.
+#[derive(Debug)]
+pub struct GpuContext {
+    /// The device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// What the adapter is ("llvmpipe (LLVM 15.0.6, 256 bits)" on Mesa's software driver).
+    pub adapter_info: wgpu::AdapterInfo,
+}
+
+impl GpuContext {
+    /// The default adapter (any backend wgpu finds; `WGPU_BACKEND` can force one) and a device with
+    /// the adapter's own limits (the defaults allow only 8 storage buffers and small dispatches;
+    /// the path tracer binds 8). [`GpuError::NoAdapter`] when there is none.
+    pub fn new() -> Result<Arc<GpuContext>, GpuError> {
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter =
+            pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default()))
+                .map_err(|_| GpuError::NoAdapter)?;
+        let adapter_info = adapter.get_info();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("lumis"),
+            required_limits: adapter.limits(),
+            ..Default::default()
+        }))
+        .map_err(|e| GpuError::Device(e.to_string()))?;
+        Ok(Arc::new(GpuContext {
+            device,
+            queue,
+            adapter_info,
+        }))
+    }
+
+    /// Wraps an existing device (the viewer's), so GPU renders and their display share buffers.
+    pub fn from_device(
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+        adapter_info: wgpu::AdapterInfo,
+    ) -> Arc<GpuContext> {
+        Arc::new(GpuContext {
+            device,
+            queue,
+            adapter_info,
+        })
+    }
+
+    /// Copies `size` bytes of `buffer` (which needs `COPY_SRC`) to the CPU, waiting for the GPU.
+    pub fn read_buffer(&self, buffer: &wgpu::Buffer, size: u64) -> Result<Vec<u8>, GpuError> {
+        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("lumis readback"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
+        self.queue.submit([encoder.finish()]);
+        let (tx, rx) = std::sync::mpsc::channel();
+        staging.map_async(wgpu::MapMode::Read, .., move |r| {
+            let _ = tx.send(r);
+        });
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        rx.recv()
+            .map_err(|e| GpuError::Readback(e.to_string()))?
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        let data = staging
+            .get_mapped_range(..)
+            .map_err(|e| GpuError::Readback(e.to_string()))?
+            .to_vec();
+        staging.unmap();
+        Ok(data)
+    }
+}

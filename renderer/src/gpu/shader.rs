@@ -1,0 +1,351 @@
+//! WGSL sources and their specialisation.
+//!
+//! The maths lives once per side: one WGSL module per concept in `shaders/`, each the twin of the
+//! Rust module it names (`ggx.wgsl` ↔ `materials/ggx.rs`, `sphere_light.wgsl` ↔
+//! `lights/sphere.rs`, …), kept in step by `tests/gpu_parity.rs`. WGSL has no includes, so a
+//! program is the concatenation of the modules it needs.
+//!
+//! Specialisation is by generated source, not by branches on uniforms: a scene's [`Features`]
+//! decide which modules are concatenated and which `// #if NAME` … `// #else` … `// #endif`
+//! regions survive, so a scene without lights carries no light-sampling code, one without rough
+//! microfacets no GGX, one of a handful of primitives no BVH traversal. Compiling only what a
+//! scene uses keeps register pressure and driver compile time down (the whole program is one
+//! megakernel).
+
+use super::GpuError;
+use crate::lights::Light;
+use crate::materials::{ConductorFresnel, Material};
+use crate::scene::Scene;
+
+/// One WGSL module: its file name and text.
+struct Module {
+    name: &'static str,
+    text: &'static str,
+}
+
+macro_rules! module {
+    ($name:literal) => {
+        Module {
+            name: $name,
+            text: include_str!(concat!("shaders/", $name)),
+        }
+    };
+}
+
+/// Every module, in concatenation order (WGSL allows any order; this one reads top-down).
+const MODULES: &[Module] = &[
+    module!("math.wgsl"),
+    module!("rng.wgsl"),
+    module!("warps.wgsl"),
+    module!("spherical_triangle.wgsl"),
+    module!("spherical_rectangle.wgsl"),
+    module!("fresnel.wgsl"),
+    module!("ggx.wgsl"),
+    module!("mis.wgsl"),
+    module!("material.wgsl"),
+    module!("diffuse.wgsl"),
+    module!("conductor.wgsl"),
+    module!("plastic.wgsl"),
+    module!("light.wgsl"),
+    module!("light_sampler.wgsl"),
+    module!("triangle_light.wgsl"),
+    module!("polygon_light.wgsl"),
+    module!("quad_light.wgsl"),
+    module!("disk_light.wgsl"),
+    module!("sphere_light.wgsl"),
+    module!("background_light.wgsl"),
+    module!("ray.wgsl"),
+    module!("triangle.wgsl"),
+    module!("disk.wgsl"),
+    module!("sphere.wgsl"),
+    module!("shape.wgsl"),
+    module!("bvh.wgsl"),
+    module!("bindings.wgsl"),
+];
+
+/// The render kernel's module (entry point `render`).
+const PATH_MODULE: Module = module!("path.wgsl");
+
+/// What a scene uses, deciding which code a pipeline contains.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct Features {
+    /// Something can be sampled by next-event estimation (the scene has a light sampler).
+    pub has_lights: bool,
+    /// A non-black background.
+    pub has_background: bool,
+    /// Emitting triangles (`triangles` meshes).
+    pub has_triangle_light: bool,
+    /// Emitting polygons.
+    pub has_polygon_light: bool,
+    /// Emitting quads or boxes.
+    pub has_quad_light: bool,
+    /// Emitting disks.
+    pub has_disk_light: bool,
+    /// Emitting spheres.
+    pub has_sphere_light: bool,
+    /// A BVH (more than [`crate::geometry::Accel::LINEAR_LIMIT`] primitives).
+    pub use_bvh: bool,
+    /// A microfacet lobe rough enough not to be a mirror (conductor or plastic coat).
+    pub has_ggx: bool,
+    /// Conductors.
+    pub has_conductor: bool,
+    /// Conductors with a complex IOR (exact Fresnel).
+    pub has_complex_fresnel: bool,
+    /// Plastics.
+    pub has_plastic: bool,
+    /// Disk shapes.
+    pub has_disk_shape: bool,
+    /// Sphere shapes.
+    pub has_sphere_shape: bool,
+}
+
+impl Features {
+    /// Everything on: the kernels of the parity tests, which call every function.
+    pub fn all() -> Features {
+        Features {
+            has_lights: true,
+            has_background: true,
+            has_triangle_light: true,
+            has_polygon_light: true,
+            has_quad_light: true,
+            has_disk_light: true,
+            has_sphere_light: true,
+            use_bvh: true,
+            has_ggx: true,
+            has_conductor: true,
+            has_complex_fresnel: true,
+            has_plastic: true,
+            has_disk_shape: true,
+            has_sphere_shape: true,
+        }
+    }
+
+    /// What `scene` needs.
+    pub fn of(scene: &Scene) -> Features {
+        use crate::geometry::Shape;
+        use crate::materials::ggx::is_smooth;
+        let mut f = Features {
+            has_lights: scene.light_sampler.is_some(),
+            use_bvh: scene.accel.cwbvh().is_some(),
+            ..Features::default()
+        };
+        // Light kinds matter only for sampling; emission seen by rays needs no per-kind code.
+        if f.has_lights {
+            for l in &scene.lights {
+                match l {
+                    Light::Triangle(_) => f.has_triangle_light = true,
+                    Light::Polygon(_) => f.has_polygon_light = true,
+                    Light::Quad(_) => f.has_quad_light = true,
+                    Light::Disk(_) => f.has_disk_light = true,
+                    Light::Sphere(_) => f.has_sphere_light = true,
+                    Light::Background(_) => f.has_background = true,
+                }
+            }
+        }
+        f.has_background |= scene.background_light.is_some();
+        for m in &scene.materials {
+            match m {
+                Material::Diffuse(_) => {}
+                Material::Conductor(c) => {
+                    f.has_conductor = true;
+                    f.has_ggx |= !c.is_delta();
+                    f.has_complex_fresnel |= matches!(c.fresnel, ConductorFresnel::Complex { .. });
+                }
+                Material::Plastic(p) => {
+                    f.has_plastic = true;
+                    f.has_ggx |= !is_smooth(p.alpha());
+                }
+            }
+        }
+        for p in scene.accel.primitives() {
+            match p.shape {
+                Shape::Triangle { .. } => {}
+                Shape::Disk(_) => f.has_disk_shape = true,
+                Shape::Sphere(_) => f.has_sphere_shape = true,
+            }
+        }
+        // Area sampling of a sphere light re-traces the sphere.
+        f.has_sphere_shape |= f.has_sphere_light;
+        f
+    }
+
+    /// The `#if` names and their values.
+    fn defines(&self) -> [(&'static str, bool); 14] {
+        [
+            ("HAS_LIGHTS", self.has_lights),
+            ("HAS_BACKGROUND", self.has_background),
+            (
+                "HAS_TRIANGLE_LIGHT",
+                self.has_lights && self.has_triangle_light,
+            ),
+            (
+                "HAS_POLYGON_LIGHT",
+                self.has_lights && self.has_polygon_light,
+            ),
+            ("HAS_QUAD_LIGHT", self.has_lights && self.has_quad_light),
+            ("HAS_DISK_LIGHT", self.has_lights && self.has_disk_light),
+            ("HAS_SPHERE_LIGHT", self.has_lights && self.has_sphere_light),
+            ("USE_BVH", self.use_bvh),
+            ("HAS_GGX", self.has_ggx),
+            ("HAS_CONDUCTOR", self.has_conductor),
+            ("HAS_COMPLEX_FRESNEL", self.has_complex_fresnel),
+            ("HAS_PLASTIC", self.has_plastic),
+            ("HAS_DISK_SHAPE", self.has_disk_shape),
+            ("HAS_SPHERE_SHAPE", self.has_sphere_shape),
+        ]
+    }
+
+    fn define(&self, name: &str) -> Option<bool> {
+        self.defines()
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, v)| *v)
+    }
+
+    /// Whether module `name` belongs in the program.
+    fn wants(&self, name: &str) -> bool {
+        let lights = self.has_lights;
+        match name {
+            "spherical_triangle.wgsl" | "light_sampler.wgsl" => lights,
+            "spherical_rectangle.wgsl" | "quad_light.wgsl" => lights && self.has_quad_light,
+            "triangle_light.wgsl" => lights && self.has_triangle_light,
+            "polygon_light.wgsl" => lights && self.has_polygon_light,
+            "disk_light.wgsl" => lights && self.has_disk_light,
+            "sphere_light.wgsl" => lights && self.has_sphere_light,
+            "background_light.wgsl" => lights && self.has_background,
+            "fresnel.wgsl" => self.has_conductor || self.has_plastic,
+            "ggx.wgsl" => self.has_ggx,
+            "conductor.wgsl" => self.has_conductor,
+            "plastic.wgsl" => self.has_plastic,
+            "disk.wgsl" => self.has_disk_shape,
+            "sphere.wgsl" => self.has_sphere_shape,
+            _ => true,
+        }
+    }
+}
+
+/// Keeps the lines of `text` whose `// #if` conditions hold under `features`. Conditions are a
+/// name or `!name`; regions nest.
+fn preprocess(file: &str, text: &str, features: &Features) -> Result<String, GpuError> {
+    let mut out = String::with_capacity(text.len());
+    // (this region is emitted, the enclosing region is emitted)
+    let mut stack: Vec<(bool, bool)> = Vec::new();
+    let active = |stack: &[(bool, bool)]| stack.last().is_none_or(|s| s.0);
+    for (i, line) in text.lines().enumerate() {
+        let t = line.trim();
+        let err = |what: &str| GpuError::Shader(format!("{file}:{}: {what}", i + 1));
+        if let Some(cond) = t.strip_prefix("// #if ") {
+            let cond = cond.trim();
+            let (neg, name) = match cond.strip_prefix('!') {
+                Some(n) => (true, n),
+                None => (false, cond),
+            };
+            let value = features
+                .define(name)
+                .ok_or_else(|| err(&format!("unknown feature {name}")))?;
+            let outer = active(&stack);
+            stack.push((outer && (value != neg), outer));
+        } else if t == "// #else" {
+            let (on, outer) = stack.pop().ok_or_else(|| err("#else without #if"))?;
+            stack.push((outer && !on, outer));
+        } else if t == "// #endif" {
+            stack.pop().ok_or_else(|| err("#endif without #if"))?;
+        } else if active(&stack) {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    if !stack.is_empty() {
+        return Err(GpuError::Shader(format!("{file}: unterminated #if")));
+    }
+    Ok(out)
+}
+
+/// The library (every module `features` wants) followed by `kernel`, the program's entry points.
+pub fn library_source(features: &Features, kernel: &str) -> Result<String, GpuError> {
+    let mut src = String::new();
+    for m in MODULES.iter().filter(|m| features.wants(m.name)) {
+        src += &format!("// ---- {} ----\n", m.name);
+        src += &preprocess(m.name, m.text, features)?;
+    }
+    src += "// ---- kernel ----\n";
+    src += &preprocess("kernel", kernel, features)?;
+    Ok(src)
+}
+
+/// The path tracer's source for `features` (entry point `render`).
+pub fn path_tracer_source(features: &Features) -> Result<String, GpuError> {
+    library_source(features, PATH_MODULE.text)
+}
+
+/// Parses and validates `source` with naga, so a broken shader is a [`GpuError::Shader`] with
+/// the offending line instead of a wgpu panic.
+pub fn validate(source: &str) -> Result<(), GpuError> {
+    use wgpu::naga;
+    let module = naga::front::wgsl::parse_str(source)
+        .map_err(|e| GpuError::Shader(e.emit_to_string(source)))?;
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::empty(),
+    )
+    .validate(&module)
+    .map_err(|e| GpuError::Shader(e.emit_to_string(source)))?;
+    Ok(())
+}
+
+/// Creates a shader module from validated source.
+pub fn create_module(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+) -> Result<wgpu::ShaderModule, GpuError> {
+    validate(source)?;
+    let desc = wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    };
+    Ok(device.create_shader_module(desc))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn preprocessor_keeps_the_right_regions() {
+        let f = Features {
+            has_ggx: true,
+            ..Features::default()
+        };
+        let text = "a\n// #if HAS_GGX\nb\n// #if HAS_PLASTIC\nc\n// #else\nd\n// #endif\n// #else\ne\n// #endif\n// #if !USE_BVH\nf\n// #endif\n";
+        assert_eq!(preprocess("t", text, &f).unwrap(), "a\nb\nd\nf\n");
+        assert!(preprocess("t", "// #if NOPE\n// #endif\n", &f).is_err());
+        assert!(preprocess("t", "// #if HAS_GGX\n", &f).is_err());
+    }
+
+    #[test]
+    fn every_specialisation_validates() {
+        // The full library and a few sparse feature sets must all be valid WGSL.
+        let all = Features::all();
+        validate(&path_tracer_source(&all).unwrap()).unwrap();
+        for f in [
+            Features::default(),
+            Features {
+                has_lights: true,
+                has_disk_light: true,
+                ..Features::default()
+            },
+            Features {
+                has_plastic: true,
+                has_conductor: true,
+                use_bvh: true,
+                ..Features::default()
+            },
+        ] {
+            let src = path_tracer_source(&f).unwrap();
+            if let Err(e) = validate(&src) {
+                panic!("{f:?}: {e}");
+            }
+        }
+    }
+}

@@ -1,0 +1,44 @@
+// The scene and render bindings shared by every kernel (group 0), uploaded by
+// `gpu/scene_buffers.rs`. Per-sample parameters arrive through a dynamic uniform offset.
+
+struct Params {
+    width: u32,
+    height: u32,
+    seed: u32,
+    sample: u32,
+    // Strategy: 0 light, 1 BSDF, 2 mixture, 3 MIS.
+    strategy: u32,
+    heuristic: u32,
+    light_sampling: u32,
+    max_depth: i32,
+    rr_depth: u32,
+    n_lights: u32,
+    // Index of the background light, or NONE.
+    background: u32,
+    // Offsets of the light-selection CDF and pmf in `tables`; NONE when nothing can be sampled.
+    light_cdf: u32,
+    light_pmf: u32,
+    mix_weight: f32,
+    pad0: u32,
+    pad1: u32,
+    // Camera: origin, forward, right, up; tan_x, tan_y in origin.w, forward.w.
+    cam_origin: vec4f,
+    cam_forward: vec4f,
+    cam_right: vec4f,
+    cam_up: vec4f,
+}
+
+@group(0) @binding(0) var<uniform> params: Params;
+// #if USE_BVH
+@group(0) @binding(1) var<storage, read> nodes: array<BvhNode>;
+// #endif
+@group(0) @binding(2) var<storage, read> prims: array<Prim>;
+@group(0) @binding(3) var<storage, read> materials: array<Material>;
+@group(0) @binding(4) var<storage, read> lights: array<Light>;
+@group(0) @binding(5) var<storage, read> light_tris: array<vec4f>;
+@group(0) @binding(6) var<storage, read> tables: array<f32>;
+// Accumulation, three planes of width·height vec4: running mean, Welford's M2, mean of the
+// even-numbered samples.
+@group(0) @binding(7) var<storage, read_write> accum: array<vec4f>;
+// [0] = samples that were not finite (counted as zero, like the CPU).
+@group(0) @binding(8) var<storage, read_write> counters: array<atomic<u32>>;

@@ -1,0 +1,76 @@
+// GGX conductor (or a perfect mirror below SMOOTH_ALPHA), the twin of `materials/conductor.rs`.
+
+fn conductor_fresnel(m: Material, cos_h: f32) -> vec3f {
+// #if HAS_COMPLEX_FRESNEL
+    if m.h.z == 0u {
+        return fresnel_conductor(cos_h, m.a.xyz, m.b.xyz);
+    }
+// #endif
+    return m.a.xyz;
+}
+
+fn conductor_is_delta(m: Material) -> bool {
+    return m.c.x < 1e-3;
+}
+
+// The half vector and wo·h of a valid reflection pair; w < 0 for none.
+fn conductor_half_vector(m: Material, wo: vec3f, wi: vec3f) -> vec4f {
+    if conductor_is_delta(m) || wo.z <= 0.0 || wi.z <= 0.0 {
+        return vec4f(0.0, 0.0, 0.0, -1.0);
+    }
+// #if HAS_GGX
+    return ggx_half_vector(wo, wi);
+// #else
+    return vec4f(0.0, 0.0, 0.0, -1.0);
+// #endif
+}
+
+fn conductor_eval(m: Material, wo: vec3f, wi: vec3f) -> vec3f {
+// #if HAS_GGX
+    let hv = conductor_half_vector(m, wo, wi);
+    if hv.w < 0.0 {
+        return vec3f(0.0);
+    }
+    let a = m.c.x;
+    let s = ggx_d(a, hv.xyz) * ggx_g2_separable(a, wo, wi) / (4.0 * wo.z);
+    return conductor_fresnel(m, hv.w) * s;
+// #else
+    return vec3f(0.0);
+// #endif
+}
+
+fn conductor_pdf(m: Material, wo: vec3f, wi: vec3f) -> f32 {
+// #if HAS_GGX
+    let hv = conductor_half_vector(m, wo, wi);
+    if hv.w < 0.0 {
+        return 0.0;
+    }
+    return ggx_g1(m.c.x, wo) * ggx_d(m.c.x, hv.xyz) / (4.0 * wo.z);
+// #else
+    return 0.0;
+// #endif
+}
+
+fn conductor_sample(m: Material, wo: vec3f, u: vec2f) -> BsdfSample {
+    if wo.z <= 0.0 {
+        return no_bsdf_sample();
+    }
+    if conductor_is_delta(m) {
+        let wi = vec3f(-wo.x, -wo.y, wo.z);
+        return BsdfSample(wi, conductor_fresnel(m, wo.z), 1.0, true, true);
+    }
+// #if HAS_GGX
+    let alpha = m.c.x;
+    let h0 = ggx_sample_visible_normal(alpha, wo, u);
+    let wi = normalize_glam(reflect_about(wo, h0));
+    let hv = conductor_half_vector(m, wo, wi);
+    if hv.w < 0.0 {
+        return no_bsdf_sample();
+    }
+    let pdf = ggx_g1(alpha, wo) * ggx_d(alpha, hv.xyz) / (4.0 * wo.z);
+    let weight = conductor_fresnel(m, hv.w) * ggx_g1(alpha, wi);
+    return BsdfSample(wi, weight, pdf, false, true);
+// #else
+    return no_bsdf_sample();
+// #endif
+}

@@ -1,0 +1,63 @@
+// Fresnel reflectance, the twin of `materials/fresnel.rs`: exact conductor Fresnel for a complex
+// IOR (pbrt-v4 `FrComplex`, complex numbers as vec2 (re, im)) and Schlick's approximation.
+
+fn c_mul(a: vec2f, b: vec2f) -> vec2f {
+    return vec2f(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x);
+}
+
+fn c_norm(a: vec2f) -> f32 {
+    return a.x * a.x + a.y * a.y;
+}
+
+fn c_div(a: vec2f, b: vec2f) -> vec2f {
+    let s = 1.0 / c_norm(b);
+    return vec2f((a.x * b.x + a.y * b.y) * s, (a.y * b.x - a.x * b.y) * s);
+}
+
+// Principal square root, stable for either sign of the real part.
+fn c_sqrt(z: vec2f) -> vec2f {
+    let n = sqrt(c_norm(z));
+    if n == 0.0 {
+        return vec2f(0.0);
+    }
+    let t1 = sqrt(0.5 * (n + abs(z.x)));
+    let t2 = 0.5 * z.y / t1;
+    if z.x >= 0.0 {
+        return vec2f(t1, t2);
+    }
+    return vec2f(abs(t2), copysign(t1, z.y));
+}
+
+fn fresnel_complex(cos_theta_i: f32, eta_re: f32, k: f32) -> f32 {
+    let cos_i = clamp(cos_theta_i, 0.0, 1.0);
+    let eta = vec2f(eta_re, k);
+    if c_norm(eta) == 0.0 {
+        return 1.0;
+    }
+    let sin2_i = 1.0 - cos_i * cos_i;
+    let sin2_t = c_div(vec2f(sin2_i, 0.0), c_mul(eta, eta));
+    let cos_t = c_sqrt(vec2f(1.0, 0.0) - sin2_t);
+    let ci = vec2f(cos_i, 0.0);
+    let r_parl = c_div(eta * cos_i - cos_t, eta * cos_i + cos_t);
+    let r_perp = c_div(ci - c_mul(eta, cos_t), ci + c_mul(eta, cos_t));
+    return clamp(0.5 * (c_norm(r_parl) + c_norm(r_perp)), 0.0, 1.0);
+}
+
+fn fresnel_conductor(cos_theta_i: f32, eta: vec3f, k: vec3f) -> vec3f {
+    return vec3f(
+        fresnel_complex(cos_theta_i, eta.x, k.x),
+        fresnel_complex(cos_theta_i, eta.y, k.y),
+        fresnel_complex(cos_theta_i, eta.z, k.z),
+    );
+}
+
+fn fresnel_schlick(f0: f32, cos_theta: f32) -> f32 {
+    let m = 1.0 - clamp(cos_theta, 0.0, 1.0);
+    let m2 = m * m;
+    return f0 + (1.0 - f0) * (m2 * m2 * m);
+}
+
+fn schlick_f0_from_ior(ior: f32) -> f32 {
+    let r = (ior - 1.0) / (ior + 1.0);
+    return r * r;
+}

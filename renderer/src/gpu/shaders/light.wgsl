@@ -1,0 +1,167 @@
+// Lights, the twin of `lights/mod.rs` and `lights/light_sampler.rs`: one record per light, a
+// `switch` in the variant order of `Light` (Triangle, Polygon, Quad, Disk, Sphere, Background),
+// power-proportional selection from a CDF in `tables`.
+//
+// Record layout (see `gpu/scene_buffers.rs`): h = (kind, first triangle, triangle count, _),
+// le = (radiance, area).
+//   Triangle:   a, b, c = vertices, d.xyz = normal.
+//   Polygon:    a.xyz = a point of the plane, d.xyz = normal; triangles in `light_tris`
+//               (3 vec4 each, v0.w/v1.w = the triangle's interval in the by-area CDF).
+//   Quad:       a = corner, b = edge u, c = edge v, d.xyz = normal.
+//   Disk:       a.xyz = centre, a.w = radius, d.xyz = normal.
+//   Sphere:     a.xyz = centre, a.w = radius.
+//   Background: le.xyz only.
+
+const LIGHT_TRIANGLE: u32 = 0u;
+const LIGHT_POLYGON: u32 = 1u;
+const LIGHT_QUAD: u32 = 2u;
+const LIGHT_DISK: u32 = 3u;
+const LIGHT_SPHERE: u32 = 4u;
+const LIGHT_BACKGROUND: u32 = 5u;
+
+const LIGHT_SAMPLING_AREA: u32 = 0u;
+const LIGHT_SAMPLING_SOLID_ANGLE: u32 = 1u;
+
+struct Light {
+    h: vec4<u32>,
+    a: vec4f,
+    b: vec4f,
+    c: vec4f,
+    d: vec4f,
+    le: vec4f,
+}
+
+// `LightSample`; `ok` = false stands for `None`.
+struct LightSample {
+    p: vec3f,
+    p_error: vec3f,
+    n: vec3f,
+    wi: vec3f,
+    pdf: f32,
+    le: vec3f,
+    infinite: bool,
+    ok: bool,
+}
+
+fn no_light_sample() -> LightSample {
+    return LightSample(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), 0.0, vec3f(0.0), false, false);
+}
+
+// #if HAS_LIGHTS
+// `area_to_solid_angle`: pdf_A·d²/|cos θ_y|, 0 where singular.
+fn area_to_solid_angle(pdf_area: f32, p: vec3f, y: vec3f, ny: vec3f) -> f32 {
+    let d = y - p;
+    let dist2 = dot(d, d);
+    let cos_y = abs(dot(ny, d)) / sqrt(dist2);
+    let pdf = pdf_area * dist2 / cos_y;
+    if is_finite_f(pdf) && dist2 > 0.0 {
+        return pdf;
+    }
+    return 0.0;
+}
+
+// `area_sample`: a sample for point y (normal ny) chosen with area density pdf_area.
+fn area_sample(p: vec3f, y: vec3f, ny: vec3f, pdf_area: f32, le: vec3f) -> LightSample {
+    let d = y - p;
+    let dist = length(d);
+    let wi = d / dist;
+    // One-sided, and rejects NaN.
+    if !(dot(ny, wi) < 0.0) {
+        return no_light_sample();
+    }
+    let pdf = area_to_solid_angle(pdf_area, p, y, ny);
+    return LightSample(y, gamma(6.0) * abs(y), ny, wi, pdf, le, false, true);
+}
+
+fn spherical_ok(omega: f32) -> bool {
+    return omega >= MIN_SPHERICAL_SAMPLE_AREA && omega <= MAX_SPHERICAL_SAMPLE_AREA;
+}
+
+// `Light::sample`, including its final validity test.
+fn light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSample {
+    var s = no_light_sample();
+    switch l.h.x {
+// #if HAS_TRIANGLE_LIGHT
+        case LIGHT_TRIANGLE: {
+            s = triangle_light_sample(l, p, u, method);
+        }
+// #endif
+// #if HAS_POLYGON_LIGHT
+        case LIGHT_POLYGON: {
+            s = polygon_light_sample(l, p, u, method);
+        }
+// #endif
+// #if HAS_QUAD_LIGHT
+        case LIGHT_QUAD: {
+            s = quad_light_sample(l, p, u, method);
+        }
+// #endif
+// #if HAS_DISK_LIGHT
+        case LIGHT_DISK: {
+            s = disk_light_sample(l, p, u);
+        }
+// #endif
+// #if HAS_SPHERE_LIGHT
+        case LIGHT_SPHERE: {
+            s = sphere_light_sample(l, p, u, method);
+        }
+// #endif
+// #if HAS_BACKGROUND
+        case LIGHT_BACKGROUND: {
+            s = background_light_sample(l, u);
+        }
+// #endif
+        default: {}
+    }
+    if !(s.ok && s.pdf > 0.0 && is_finite_f(s.pdf) && any(s.le > vec3f(0.0))) {
+        return no_light_sample();
+    }
+    return s;
+}
+
+// `Light::pdf`: solid-angle pdf of sampling direction wi from p, hitting y with normal ny.
+fn light_pdf(l: Light, p: vec3f, wi: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
+    switch l.h.x {
+// #if HAS_TRIANGLE_LIGHT
+        case LIGHT_TRIANGLE: {
+            return triangle_light_pdf(l, p, y, ny, method);
+        }
+// #endif
+// #if HAS_POLYGON_LIGHT
+        case LIGHT_POLYGON: {
+            return polygon_light_pdf(l, p, y, ny, method);
+        }
+// #endif
+// #if HAS_QUAD_LIGHT
+        case LIGHT_QUAD: {
+            return quad_light_pdf(l, p, y, ny, method);
+        }
+// #endif
+// #if HAS_DISK_LIGHT
+        case LIGHT_DISK: {
+            return area_to_solid_angle(1.0 / disk_light_area(l), p, y, ny);
+        }
+// #endif
+// #if HAS_SPHERE_LIGHT
+        case LIGHT_SPHERE: {
+            return sphere_light_pdf(l, p, y, ny, method);
+        }
+// #endif
+        case LIGHT_BACKGROUND: {
+            return uniform_sphere_pdf();
+        }
+        default: {
+            return 0.0;
+        }
+    }
+}
+
+// #endif
+
+// `Light::radiance`: one-sided emission towards −w_in at a point with normal n.
+fn light_radiance(l: Light, n: vec3f, w_in: vec3f) -> vec3f {
+    if l.h.x == LIGHT_BACKGROUND || dot(n, w_in) < 0.0 {
+        return l.le.xyz;
+    }
+    return vec3f(0.0);
+}

@@ -1,0 +1,105 @@
+// The closed set of materials, the twin of `materials/mod.rs`: one record per material, a `switch`
+// on the same variant order as `Material` (Diffuse, Conductor, Plastic).
+//
+// Record layout (see `gpu/scene_buffers.rs`):
+//   h = (kind, two_sided, aux, has_smooth_part); aux = Fresnel kind for conductors
+//       (0 complex, 1 tint) and the coat table's offset in `tables` for plastic.
+//   Diffuse:   a.xyz albedo.
+//   Conductor: a.xyz η (or the tint), b.xyz k, c.x α.
+//   Plastic:   a.xyz albedo, b.xyz coat tint, c = (α, F0, 1/(1 − E_avg) or 0, _).
+
+const MATERIAL_DIFFUSE: u32 = 0u;
+const MATERIAL_CONDUCTOR: u32 = 1u;
+const MATERIAL_PLASTIC: u32 = 2u;
+
+struct Material {
+    h: vec4<u32>,
+    a: vec4f,
+    b: vec4f,
+    c: vec4f,
+}
+
+// `BsdfSample`; `ok` = false stands for `None`.
+struct BsdfSample {
+    wi: vec3f,
+    weight: vec3f,
+    pdf: f32,
+    delta: bool,
+    ok: bool,
+}
+
+fn no_bsdf_sample() -> BsdfSample {
+    return BsdfSample(vec3f(0.0), vec3f(0.0), 0.0, false, false);
+}
+
+fn material_eval(m: Material, wo: vec3f, wi: vec3f) -> vec3f {
+    switch m.h.x {
+        case MATERIAL_DIFFUSE: {
+            return diffuse_eval(m, wo, wi);
+        }
+// #if HAS_CONDUCTOR
+        case MATERIAL_CONDUCTOR: {
+            return conductor_eval(m, wo, wi);
+        }
+// #endif
+// #if HAS_PLASTIC
+        case MATERIAL_PLASTIC: {
+            return plastic_eval_pdf(m, wo, wi).xyz;
+        }
+// #endif
+        default: {
+            return vec3f(0.0);
+        }
+    }
+}
+
+fn material_pdf(m: Material, wo: vec3f, wi: vec3f) -> f32 {
+    switch m.h.x {
+        case MATERIAL_DIFFUSE: {
+            return diffuse_pdf(wo, wi);
+        }
+// #if HAS_CONDUCTOR
+        case MATERIAL_CONDUCTOR: {
+            return conductor_pdf(m, wo, wi);
+        }
+// #endif
+// #if HAS_PLASTIC
+        case MATERIAL_PLASTIC: {
+            return plastic_eval_pdf(m, wo, wi).w;
+        }
+// #endif
+        default: {
+            return 0.0;
+        }
+    }
+}
+
+// `Material::sample` including `BsdfSample::checked`.
+fn material_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample {
+    var s = no_bsdf_sample();
+    switch m.h.x {
+        case MATERIAL_DIFFUSE: {
+            s = diffuse_sample(m, wo, u);
+        }
+// #if HAS_CONDUCTOR
+        case MATERIAL_CONDUCTOR: {
+            s = conductor_sample(m, wo, u);
+        }
+// #endif
+// #if HAS_PLASTIC
+        case MATERIAL_PLASTIC: {
+            s = plastic_sample(m, wo, u_lobe, u);
+        }
+// #endif
+        default: {}
+    }
+    let ok = s.ok && s.pdf > 0.0 && is_finite_f(s.pdf) && is_finite3(s.weight) && s.wi.z > 0.0;
+    if !ok {
+        return no_bsdf_sample();
+    }
+    return s;
+}
+
+fn material_has_smooth_part(m: Material) -> bool {
+    return m.h.w != 0u;
+}

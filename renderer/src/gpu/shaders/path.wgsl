@@ -1,0 +1,238 @@
+// The unidirectional path tracer, the twin of `integrator/path.rs` (one loop, four direct-light
+// strategies, Mitsuba's max_depth, Russian roulette from rr_depth), and the render kernel: one
+// invocation per pixel draws one sample per dispatch and folds it into the accumulation with
+// Welford's update (stable variance in f32; the film reads back Σx and Σx² from it).
+
+const STRATEGY_LIGHT: u32 = 0u;
+const STRATEGY_BSDF: u32 = 1u;
+const STRATEGY_MIXTURE: u32 = 2u;
+const STRATEGY_MIS: u32 = 3u;
+
+// `EmissionWeight`: 0 one, 1 zero, 2 MIS, 3 mixture (BSDF branch).
+const EW_ONE: u32 = 0u;
+const EW_ZERO: u32 = 1u;
+const EW_MIS: u32 = 2u;
+const EW_MIXTURE: u32 = 3u;
+
+// Weight of emission from light `light` found by a BSDF-sampled ray (`emission_weight`);
+// `light_pdf` is the solid-angle pdf light sampling would have had for the direction.
+fn emission_weight(rule: u32, p_bsdf: f32, light: u32, light_pdf: f32) -> f32 {
+    if rule == EW_ONE {
+        return 1.0;
+    } else if rule == EW_ZERO {
+        return 0.0;
+    }
+    var pmf = 0.0;
+// #if HAS_LIGHTS
+    if params.light_pmf != NONE {
+        pmf = light_sampler_pmf(params.light_pmf, light);
+    }
+// #endif
+    let p_light = pmf * light_pdf;
+    if rule == EW_MIS {
+        return mis_weight(params.heuristic, p_bsdf, p_light);
+    }
+    let w = params.mix_weight;
+    let r = p_bsdf / (w * p_light + (1.0 - w) * p_bsdf);
+    if is_finite_f(r) {
+        return r;
+    }
+    return 0.0;
+}
+
+// #if HAS_LIGHTS
+// Next-event estimation (`direct_light`); `mixture_w` ≥ 0 on the mixture's light branch.
+fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material, u_light: f32, u: vec2f, mixture_w: f32) -> vec3f {
+    let choice = light_sampler_sample(params.light_cdf, params.light_pmf, params.n_lights, u_light);
+    let light = lights[choice.index];
+    let ls = light_sample(light, hit.p, u, params.light_sampling);
+    if !ls.ok {
+        return vec3f(0.0);
+    }
+    let wi = to_local(frame, ls.wi);
+    if wi.z <= 0.0 {
+        return vec3f(0.0);
+    }
+    let f = material_eval(m, wo, wi);
+    if all(f == vec3f(0.0)) {
+        return vec3f(0.0);
+    }
+    var shadow: Ray;
+    if ls.infinite {
+        shadow = spawn_ray(hit.p, hit.p_error, n, ls.wi);
+    } else {
+        shadow = spawn_ray_to(hit.p, hit.p_error, n, ls.p, ls.p_error, ls.n);
+    }
+    if scene_occluded(shadow) {
+        return vec3f(0.0);
+    }
+    let p_light = choice.pmf * ls.pdf;
+    if mixture_w >= 0.0 {
+        let p_mix = mixture_w * p_light + (1.0 - mixture_w) * material_pdf(m, wo, wi);
+        return f * ls.le / p_mix;
+    }
+    var weight = 1.0;
+    if params.strategy == STRATEGY_MIS {
+        weight = mis_weight(params.heuristic, p_light, material_pdf(m, wo, wi));
+    }
+    return f * ls.le * (weight / p_light);
+}
+// #endif
+
+fn radiance(camera_ray: Ray) -> vec3f {
+    var ray = camera_ray;
+    let max_depth = params.max_depth;
+    var l = vec3f(0.0);
+    var beta = vec3f(1.0);
+    var rule = EW_ONE;
+    var p_bsdf = 0.0;
+    var prev_p = ray.o;
+    var depth = 0;
+    loop {
+        depth += 1;
+        let hit = scene_intersect(ray);
+        if hit.prim == NONE {
+// #if HAS_BACKGROUND
+            if params.background != NONE {
+                let bg = lights[params.background];
+                let w = emission_weight(rule, p_bsdf, params.background, uniform_sphere_pdf());
+                l += beta * light_radiance(bg, vec3f(0.0), ray.d) * w;
+            }
+// #endif
+            break;
+        }
+        let prim = prims[hit.prim];
+        let light_index = prim_light(prim);
+        if light_index != NONE {
+            let light = lights[light_index];
+            let le = light_radiance(light, hit.n, ray.d);
+            if any(le != vec3f(0.0)) {
+                var lpdf = 0.0;
+// #if HAS_LIGHTS
+                if rule == EW_MIS || rule == EW_MIXTURE {
+                    lpdf = light_pdf(light, prev_p, normalize_glam(ray.d), hit.p, hit.n, params.light_sampling);
+                }
+// #endif
+                l += beta * le * emission_weight(rule, p_bsdf, light_index, lpdf);
+            }
+        }
+        if max_depth >= 0 && depth >= max_depth {
+            break;
+        }
+        let mi = prim_material(prim);
+        let m = materials[mi];
+        let wo_world = -normalize_glam(ray.d);
+        var n = hit.n;
+        if dot(n, wo_world) < 0.0 {
+            if m.h.y == 0u {
+                break;
+            }
+            n = -n;
+        }
+        let frame = frame_from_normal(n);
+        let wo = to_local(frame, wo_world);
+        if wo.z <= 0.0 {
+            break;
+        }
+
+        // Direct light by light sampling, and the rule for emission the BSDF sample will find.
+        var do_nee = false;
+        var nee_mixture_w = -1.0;
+        rule = EW_ONE;
+// #if HAS_LIGHTS
+        let nee_worth = material_has_smooth_part(m) && params.light_cdf != NONE;
+        if nee_worth {
+            switch params.strategy {
+                case STRATEGY_LIGHT: {
+                    do_nee = true;
+                    rule = EW_ZERO;
+                }
+                case STRATEGY_MIS: {
+                    do_nee = true;
+                    rule = EW_MIS;
+                    p_bsdf = 0.0;
+                }
+                case STRATEGY_MIXTURE: {
+                    if rng_next_f32() < params.mix_weight {
+                        do_nee = true;
+                        nee_mixture_w = params.mix_weight;
+                        rule = EW_ZERO;
+                    } else {
+                        rule = EW_MIXTURE;
+                        p_bsdf = 0.0;
+                    }
+                }
+                default: {}
+            }
+        }
+        if do_nee {
+            let u_light = rng_next_f32();
+            let u = rng_next_2d();
+            l += beta * direct_light(hit, n, frame, wo, m, u_light, u, nee_mixture_w);
+        }
+// #endif
+
+        // Continue the path by BSDF sampling.
+        let u_lobe = rng_next_f32();
+        let bs = material_sample(m, wo, u_lobe, rng_next_2d());
+        if !bs.ok {
+            break;
+        }
+        if bs.delta {
+            rule = EW_ONE;
+        } else {
+            p_bsdf = bs.pdf;
+        }
+        beta *= bs.weight;
+        if all(beta == vec3f(0.0)) {
+            break;
+        }
+        let wi = to_world(frame, bs.wi);
+        prev_p = hit.p;
+        ray = spawn_ray(hit.p, hit.p_error, n, wi);
+
+        if u32(depth) >= params.rr_depth {
+            let q = min(max_component(beta), 0.95);
+            if rng_next_f32() >= q {
+                break;
+            }
+            beta /= q;
+        }
+    }
+    return l;
+}
+
+fn camera_ray(x: f32, y: f32) -> Ray {
+    let sx = 2.0 * x / f32(params.width) - 1.0;
+    let sy = 1.0 - 2.0 * y / f32(params.height);
+    let d = params.cam_forward.xyz + (sx * params.cam_origin.w) * params.cam_right.xyz
+        + (sy * params.cam_forward.w) * params.cam_up.xyz;
+    return Ray(params.cam_origin.xyz, normalize_glam(d), inf());
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn render(@builtin(global_invocation_id) gid: vec3<u32>) {
+    if gid.x >= params.width || gid.y >= params.height {
+        return;
+    }
+    let pixel = gid.y * params.width + gid.x;
+    let s = params.sample;
+    rng_init(params.seed, pixel, s);
+    let jitter = rng_next_2d();
+    var x = radiance(camera_ray(f32(gid.x) + jitter.x, f32(gid.y) + jitter.y));
+    if !is_finite3(x) {
+        // The CPU skips it but still counts the sample: a zero sample.
+        atomicAdd(&counters[0], 1u);
+        x = vec3f(0.0);
+    }
+    let plane = params.width * params.height;
+    let mean = accum[pixel].xyz;
+    let delta = x - mean;
+    let new_mean = mean + delta / f32(s + 1u);
+    accum[pixel] = vec4f(new_mean, 0.0);
+    accum[plane + pixel] = vec4f(accum[plane + pixel].xyz + delta * (x - new_mean), 0.0);
+    if s % 2u == 0u {
+        let even = accum[2u * plane + pixel].xyz;
+        accum[2u * plane + pixel] = vec4f(even + (x - even) / f32(s / 2u + 1u), 0.0);
+    }
+}

@@ -1,0 +1,100 @@
+// Lambert base under a GGX dielectric coat, coupled through the coat's tabulated directional
+// albedo: the twin of `materials/plastic.rs` and `materials/coat_albedo.rs`. The table (64 nodes
+// at μ = (i/63)³) lives in `tables` at the material's offset.
+
+const E_TABLE_SIZE: u32 = 64u;
+
+fn coat_node_mu(i: u32) -> f32 {
+    let t = f32(i) / f32(E_TABLE_SIZE - 1u);
+    return t * t * t;
+}
+
+// E(μ): Schlick for a smooth coat, else the table interpolated linearly in μ.
+fn coat_albedo_eval(m: Material, mu_in: f32) -> f32 {
+    let mu = clamp(mu_in, 0.0, 1.0);
+    let alpha = m.c.x;
+    if alpha < 1e-3 {
+        return fresnel_schlick(m.c.y, mu);
+    }
+    // pow(μ, 1/3) for cbrt; its rounding can pick a neighbouring node, so step to the node
+    // interval that really holds μ (the interpolant is continuous across nodes).
+    var i = min(u32(pow(mu, 1.0 / 3.0) * f32(E_TABLE_SIZE - 1u)), E_TABLE_SIZE - 2u);
+    if i + 2u < E_TABLE_SIZE && mu >= coat_node_mu(i + 1u) {
+        i += 1u;
+    }
+    if i > 0u && mu < coat_node_mu(i) {
+        i -= 1u;
+    }
+    let ma = coat_node_mu(i);
+    let mb = coat_node_mu(i + 1u);
+    let t = clamp((mu - ma) / (mb - ma), 0.0, 1.0);
+    let off = m.h.z;
+    let ea = tables[off + i];
+    let eb = tables[off + i + 1u];
+    return ea + t * (eb - ea);
+}
+
+fn plastic_coat_probability(m: Material, e_o: f32) -> f32 {
+    let s = max(luminance(m.b.xyz) * e_o, 0.0);
+    var d = 0.0;
+    if m.c.z > 0.0 {
+        d = max(luminance(m.a.xyz) * (1.0 - e_o), 0.0);
+    }
+    if d <= 0.0 {
+        return 1.0;
+    } else if s <= 0.0 {
+        return 0.0;
+    }
+    return clamp(s / (s + d), 0.05, 0.95);
+}
+
+// f·cosθi (xyz) and pdf (w) of the non-delta lobes, together so they agree.
+fn plastic_eval_pdf(m: Material, wo: vec3f, wi: vec3f) -> vec4f {
+    if wo.z <= 0.0 || wi.z <= 0.0 {
+        return vec4f(0.0);
+    }
+    let e_o = coat_albedo_eval(m, wo.z);
+    let e_i = coat_albedo_eval(m, wi.z);
+    let p_coat = plastic_coat_probability(m, e_o);
+    let k = INV_PI * (1.0 - e_o) * (1.0 - e_i) * m.c.z * wi.z;
+    var f = m.a.xyz * k;
+    var pdf = (1.0 - p_coat) * INV_PI * wi.z;
+// #if HAS_GGX
+    let a = m.c.x;
+    if !(a < 1e-3) {
+        let hv = ggx_half_vector(wo, wi);
+        let d_g1o = ggx_d(a, hv.xyz) * ggx_g1(a, wo) / (4.0 * wo.z);
+        let fr = fresnel_schlick(m.c.y, hv.w);
+        f += m.b.xyz * (fr * d_g1o * ggx_g1(a, wi));
+        pdf += p_coat * d_g1o;
+    }
+// #endif
+    return vec4f(f, pdf);
+}
+
+fn plastic_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample {
+    if wo.z <= 0.0 {
+        return no_bsdf_sample();
+    }
+    let p_coat = plastic_coat_probability(m, coat_albedo_eval(m, wo.z));
+    var wi: vec3f;
+    if u_lobe < p_coat {
+        if m.c.x < 1e-3 {
+            let wm = vec3f(-wo.x, -wo.y, wo.z);
+            let weight = m.b.xyz * (fresnel_schlick(m.c.y, wo.z) / p_coat);
+            return BsdfSample(wm, weight, p_coat, true, true);
+        }
+// #if HAS_GGX
+        wi = normalize_glam(reflect_about(wo, ggx_sample_visible_normal(m.c.x, wo, u)));
+// #else
+        return no_bsdf_sample();
+// #endif
+    } else {
+        wi = sample_cosine_hemisphere(u);
+    }
+    let fp = plastic_eval_pdf(m, wo, wi);
+    if !(fp.w > 0.0) {
+        return no_bsdf_sample();
+    }
+    return BsdfSample(wi, fp.xyz / fp.w, fp.w, false, true);
+}

@@ -1,0 +1,36 @@
+// Emitting parallelograms, the twin of `lights/quad.rs`: by area, or by solid angle (spherical
+// rectangle) when the quad is a rectangle and its solid angle suits the warp.
+
+fn quad_light_faces(l: Light, p: vec3f) -> bool {
+    return dot(p - l.a.xyz, l.d.xyz) > 0.0;
+}
+
+fn quad_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSample {
+    if !quad_light_faces(l, p) {
+        return no_light_sample();
+    }
+    if method == LIGHT_SAMPLING_SOLID_ANGLE {
+        let rect = sph_rect_new(p, l.a.xyz, l.b.xyz, l.c.xyz);
+        if rect.ok && spherical_ok(rect.solid_angle) {
+            let y = sph_rect_sample(rect, u);
+            var s = area_sample(p, y, l.d.xyz, 1.0 / l.le.w, l.le.xyz);
+            s.pdf = 1.0 / rect.solid_angle;
+            return s;
+        }
+    }
+    let y = l.a.xyz + u.x * l.b.xyz + u.y * l.c.xyz;
+    return area_sample(p, y, l.d.xyz, 1.0 / l.le.w, l.le.xyz);
+}
+
+fn quad_light_pdf(l: Light, p: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
+    if !quad_light_faces(l, p) {
+        return 0.0;
+    }
+    if method == LIGHT_SAMPLING_SOLID_ANGLE {
+        let rect = sph_rect_new(p, l.a.xyz, l.b.xyz, l.c.xyz);
+        if rect.ok && spherical_ok(rect.solid_angle) {
+            return 1.0 / rect.solid_angle;
+        }
+    }
+    return area_to_solid_angle(1.0 / l.le.w, p, y, ny);
+}

@@ -1,0 +1,44 @@
+// Emitting triangles, the twin of `lights/triangle.rs`: uniform by area, or by solid angle (Arvo).
+
+fn triangle_solid_angle(v0: vec3f, v1: vec3f, v2: vec3f, p: vec3f) -> f32 {
+    return spherical_triangle_area(normalize_or_zero(v0 - p), normalize_or_zero(v1 - p), normalize_or_zero(v2 - p));
+}
+
+fn triangle_light_faces(l: Light, p: vec3f) -> bool {
+    return dot(p - l.a.xyz, l.d.xyz) > 0.0;
+}
+
+fn triangle_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSample {
+    if !triangle_light_faces(l, p) {
+        return no_light_sample();
+    }
+    let v0 = l.a.xyz;
+    let v1 = l.b.xyz;
+    let v2 = l.c.xyz;
+    if method == LIGHT_SAMPLING_SOLID_ANGLE && spherical_ok(triangle_solid_angle(v0, v1, v2, p)) {
+        let s = sample_spherical_triangle(v0, v1, v2, p, u);
+        if !s.ok {
+            return no_light_sample();
+        }
+        let b = s.barycentrics;
+        let y = b.x * v0 + b.y * v1 + b.z * v2;
+        let err = gamma(6.0) * (abs(b.x * v0) + abs(b.y * v1) + abs(b.z * v2));
+        return LightSample(y, err, l.d.xyz, s.dir, s.pdf, l.le.xyz, false, true);
+    }
+    let b = sample_uniform_triangle(u);
+    let y = b.x * v0 + b.y * v1 + b.z * v2;
+    return area_sample(p, y, l.d.xyz, 1.0 / l.le.w, l.le.xyz);
+}
+
+fn triangle_light_pdf(l: Light, p: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
+    if !triangle_light_faces(l, p) {
+        return 0.0;
+    }
+    if method == LIGHT_SAMPLING_SOLID_ANGLE {
+        let omega = triangle_solid_angle(l.a.xyz, l.b.xyz, l.c.xyz, p);
+        if spherical_ok(omega) {
+            return 1.0 / omega;
+        }
+    }
+    return area_to_solid_angle(1.0 / l.le.w, p, y, ny);
+}
