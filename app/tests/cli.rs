@@ -994,7 +994,6 @@ fn bench_invalid_options_are_one_line_errors() {
             &["--strategies", "mis,mis"],
             &["--strategies", "mis", "twice"],
         ),
-        (&["--backend", "gpu"], &["GPU backend", "not available"]),
         (&["--spp-list", "4,2"], &["--spp-list", "increasing"]),
         (&["--spp-list", "0,2"], &["--spp-list"]),
         (&["--spp-list", "1,2"], &["--spp-list", "--reference"]),
