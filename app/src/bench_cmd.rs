@@ -9,7 +9,6 @@
 use crate::cli::BenchArgs;
 use crate::render_cmd::{check_output_dir, thread_pool};
 use anyhow::{Context, anyhow, bail};
-use lumis::engine::Film;
 use lumis::gpu::AnyProgressive;
 use lumis::image_io::Image;
 use lumis::integrator::{Heuristic, Settings, Strategy};
@@ -192,7 +191,7 @@ pub fn bench(args: &BenchArgs) -> anyhow::Result<()> {
                     let mean = film.mean();
                     (relmse(&mean, r), rmse(&mean, r))
                 }
-                None => half_buffer_error(film),
+                None => film.half_buffer_error(),
             };
             let samples = film.spp as f64 * width as f64 * height as f64;
             let point = Checkpoint {
@@ -303,33 +302,6 @@ fn load_scene(path: &Path, width: Option<u32>, height: Option<u32>) -> anyhow::R
         desc.camera.height = h;
     }
     Ok(Scene::from_desc(&desc).map_err(|e| e.in_file(path))?)
-}
-
-/// `(relMSE, RMSE)` estimated from the film's two independent half images, without a reference.
-///
-/// With `a` of the `na` even samples and `b` of the `nb` odd ones, `E[(a−b)²] = σ²(1/na + 1/nb)`,
-/// so `(a−b)²·na·nb/n²` estimates `σ²/n`, the variance of the full mean, which is its expected
-/// squared error (`/4` when the halves are equal). The relMSE mirrors
-/// [`lumis::metrics::relmse`]: per pixel and channel divided by `m² + 0.01`, with the mean `m`
-/// standing in for the unknown reference, then averaged.
-fn half_buffer_error(film: &Film) -> (f64, f64) {
-    let n = film.spp as f64;
-    let (na, nb) = (film.spp.div_ceil(2) as f64, (film.spp / 2) as f64);
-    let scale = na * nb / (n * n);
-    let (a, b) = film.half_means();
-    let mean = film.mean();
-    let (mut rel, mut sq) = (0.0f64, 0.0f64);
-    for ((a, b), m) in a.iter().zip(&b).zip(&mean) {
-        for c in 0..3 {
-            let d = a[c] as f64 - b[c] as f64;
-            let var = d * d * scale;
-            let m = m[c] as f64;
-            rel += var / (m * m + 0.01);
-            sq += var;
-        }
-    }
-    let count = (3 * mean.len()) as f64;
-    (rel / count, (sq / count).sqrt())
 }
 
 /// Plot size in pixels.
@@ -509,35 +481,6 @@ fn short_number(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use lumis::engine::PixelSums;
-
-    /// The half-buffer estimate on a film with known sums: one pixel, 4 samples with values
-    /// 1, 3, 1, 3 (even samples 1 and 1, odd 3 and 3) in every channel.
-    #[test]
-    fn half_buffer_error_matches_hand_computation() {
-        let mut film = Film::new(1, 1);
-        film.spp = 4;
-        film.pixels[0] = PixelSums {
-            sum: [8.0; 3],
-            sum_sq: [20.0; 3],
-            sum_even: [2.0; 3],
-        };
-        let (rel, rmse) = half_buffer_error(&film);
-        // a = 1, b = 3, mean 2: variance of the mean (a−b)²/4 = 1; relMSE 1 / (4 + 0.01).
-        assert!((rmse - 1.0).abs() < 1e-12, "{rmse}");
-        assert!((rel - 1.0 / 4.01).abs() < 1e-12, "{rel}");
-
-        // Odd spp weighs the unequal halves: 3 samples 1, 3, 1 → a = 1 (2 samples), b = 3 (1).
-        film.spp = 3;
-        film.pixels[0] = PixelSums {
-            sum: [5.0; 3],
-            sum_sq: [11.0; 3],
-            sum_even: [2.0; 3],
-        };
-        let (_, rmse) = half_buffer_error(&film);
-        // (a−b)²·na·nb/n² = 4·2/9.
-        assert!((rmse * rmse - 8.0 / 9.0).abs() < 1e-9, "{rmse}");
-    }
 
     #[test]
     fn short_numbers() {

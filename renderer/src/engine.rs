@@ -85,6 +85,38 @@ impl Film {
         (a, b)
     }
 
+    /// `(relMSE, RMSE)` of the mean estimated from the two independent half images, without a
+    /// reference.
+    ///
+    /// With `a` of the `na` even samples and `b` of the `nb` odd ones, `E[(a−b)²] = σ²(1/na +
+    /// 1/nb)`, so `(a−b)²·na·nb/n²` estimates `σ²/n`, the variance of the full mean, which is
+    /// its expected squared error (`/4` when the halves are equal). The relMSE mirrors
+    /// [`crate::metrics::relmse`]: per pixel and channel divided by `m² + 0.01`, with the mean
+    /// `m` standing in for the unknown reference, then averaged. Zero before two samples.
+    pub fn half_buffer_error(&self) -> (f64, f64) {
+        let n = self.spp as f64;
+        let (na, nb) = (self.spp.div_ceil(2) as f64, (self.spp / 2) as f64);
+        let scale = if self.spp >= 2 {
+            na * nb / (n * n)
+        } else {
+            0.0
+        };
+        let (a, b) = self.half_means();
+        let mean = self.mean();
+        let (mut rel, mut sq) = (0.0f64, 0.0f64);
+        for ((a, b), m) in a.iter().zip(&b).zip(&mean) {
+            for c in 0..3 {
+                let d = a[c] as f64 - b[c] as f64;
+                let var = d * d * scale;
+                let m = m[c] as f64;
+                rel += var / (m * m + 0.01);
+                sq += var;
+            }
+        }
+        let count = (3 * mean.len()).max(1) as f64;
+        (rel / count, (sq / count).sqrt())
+    }
+
     /// Per-pixel, per-channel variance of the mean, from the sample variance (`s² / n`).
     pub fn variance_of_mean(&self) -> Vec<[f64; 3]> {
         let n = self.spp as f64;
@@ -218,6 +250,35 @@ impl Progressive {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The half-buffer estimate on a film with known sums: one pixel, 4 samples with values
+    /// 1, 3, 1, 3 (even samples 1 and 1, odd 3 and 3) in every channel.
+    #[test]
+    fn half_buffer_error_matches_hand_computation() {
+        let mut film = Film::new(1, 1);
+        film.spp = 4;
+        film.pixels[0] = PixelSums {
+            sum: [8.0; 3],
+            sum_sq: [20.0; 3],
+            sum_even: [2.0; 3],
+        };
+        let (rel, rmse) = film.half_buffer_error();
+        // a = 1, b = 3, mean 2: variance of the mean (a−b)²/4 = 1; relMSE 1 / (4 + 0.01).
+        assert!((rmse - 1.0).abs() < 1e-12, "{rmse}");
+        assert!((rel - 1.0 / 4.01).abs() < 1e-12, "{rel}");
+
+        // Odd spp weighs the unequal halves: 3 samples 1, 3, 1 → a = 1 (2 samples), b = 3 (1).
+        film.spp = 3;
+        film.pixels[0] = PixelSums {
+            sum: [5.0; 3],
+            sum_sq: [11.0; 3],
+            sum_even: [2.0; 3],
+        };
+        let (_, rmse) = film.half_buffer_error();
+        // (a−b)²·na·nb/n² = 4·2/9.
+        assert!((rmse * rmse - 8.0 / 9.0).abs() < 1e-9, "{rmse}");
+    }
+
     use crate::scene::parse_scene;
 
     fn small_scene() -> Arc<Scene> {

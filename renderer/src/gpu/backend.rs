@@ -1,11 +1,13 @@
 //! [`AnyProgressive`]: the CPU or the GPU engine behind one interface, for front ends (the
 //! command line, the viewer) that let the user pick the backend.
 
-use super::{GpuError, GpuProgressive};
+use super::{AccumulationView, GpuContext, GpuError, GpuProgressive};
 use crate::engine::{Film, Progressive};
 use crate::integrator::Settings;
 use crate::scene::Scene;
+use std::borrow::Cow;
 use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 
 /// Which engine renders.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -33,10 +35,29 @@ impl AnyProgressive {
         settings: Settings,
         seed: u32,
     ) -> Result<AnyProgressive, GpuError> {
+        AnyProgressive::with_device(backend, scene, settings, seed, &mut None)
+    }
+
+    /// A new, empty render on `backend`; a GPU render uses the device in `gpu`, creating the
+    /// default one there first if it is empty, so that later renders (a viewer's restarts)
+    /// reuse it instead of paying for a new device each time.
+    pub fn with_device(
+        backend: Backend,
+        scene: Arc<Scene>,
+        settings: Settings,
+        seed: u32,
+        gpu: &mut Option<Arc<GpuContext>>,
+    ) -> Result<AnyProgressive, GpuError> {
         Ok(match backend {
             Backend::Cpu => AnyProgressive::Cpu(Progressive::new(scene, settings, seed)),
             Backend::Gpu => {
-                AnyProgressive::Gpu(Box::new(GpuProgressive::new(scene, settings, seed)?))
+                let ctx = match gpu {
+                    Some(c) => c.clone(),
+                    None => gpu.insert(GpuContext::new()?).clone(),
+                };
+                AnyProgressive::Gpu(Box::new(GpuProgressive::with_context(
+                    ctx, scene, settings, seed,
+                )?))
             }
         })
     }
@@ -49,7 +70,8 @@ impl AnyProgressive {
         }
     }
 
-    /// Renders `n` more samples per pixel; `false` if a CPU pass was cancelled.
+    /// Renders `n` more samples per pixel; `false` if a CPU pass was cancelled (then nothing
+    /// was added).
     pub fn render_pass(&mut self, n: u32) -> bool {
         match self {
             AnyProgressive::Cpu(r) => r.render_pass(n),
@@ -65,11 +87,28 @@ impl AnyProgressive {
         }
     }
 
-    /// The accumulated image (a copy; read back from the GPU for the GPU backend).
-    pub fn film(&self) -> Result<Film, GpuError> {
+    /// The accumulated image: borrowed on the CPU, read back from the GPU.
+    pub fn film(&self) -> Result<Cow<'_, Film>, GpuError> {
         match self {
-            AnyProgressive::Cpu(r) => Ok(r.film().clone()),
-            AnyProgressive::Gpu(r) => r.film(),
+            AnyProgressive::Cpu(r) => Ok(Cow::Borrowed(r.film())),
+            AnyProgressive::Gpu(r) => r.film().map(Cow::Owned),
+        }
+    }
+
+    /// The flag that stops a running pass early: CPU passes only (a submitted GPU pass runs to
+    /// its end, so GPU callers keep passes short instead).
+    pub fn cancel_flag(&self) -> Option<Arc<AtomicBool>> {
+        match self {
+            AnyProgressive::Cpu(r) => Some(r.cancel_flag()),
+            AnyProgressive::Gpu(_) => None,
+        }
+    }
+
+    /// Where a GPU render's image lives on the device, for display without a readback.
+    pub fn accumulation(&self) -> Option<AccumulationView<'_>> {
+        match self {
+            AnyProgressive::Cpu(_) => None,
+            AnyProgressive::Gpu(r) => Some(r.accumulation()),
         }
     }
 }

@@ -1,7 +1,8 @@
 //! The wgpu device the backend renders with.
 
 use super::GpuError;
-use std::sync::Arc;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
 
 /// A device and its queue. Create one headless with [`GpuContext::new`], or wrap the viewer's
 /// (eframe's) device with [`GpuContext::from_device`] so the accumulation buffer can be drawn
@@ -14,6 +15,8 @@ pub struct GpuContext {
     pub queue: wgpu::Queue,
     /// What the adapter is ("llvmpipe (LLVM 15.0.6, 256 bits)" on Mesa's software driver).
     pub adapter_info: wgpu::AdapterInfo,
+    /// Compiled path tracers by their WGSL source (see [`GpuContext::pipeline`]).
+    pipelines: Mutex<HashMap<String, wgpu::ComputePipeline>>,
 }
 
 impl GpuContext {
@@ -37,6 +40,7 @@ impl GpuContext {
             device,
             queue,
             adapter_info,
+            pipelines: Mutex::default(),
         }))
     }
 
@@ -50,7 +54,26 @@ impl GpuContext {
             device,
             queue,
             adapter_info,
+            pipelines: Mutex::default(),
         })
+    }
+
+    /// The compute pipeline for `source`, compiled by `compile` the first time only: a viewer
+    /// restarts renders with the same scene features again and again, and compiling the path
+    /// tracer takes about a second on lavapipe. (wgpu deduplicates equal bind group layouts, so
+    /// a cached pipeline accepts bind groups made from a later scene's equal layout.)
+    pub fn pipeline(
+        &self,
+        source: &str,
+        compile: impl FnOnce() -> Result<wgpu::ComputePipeline, GpuError>,
+    ) -> Result<wgpu::ComputePipeline, GpuError> {
+        let mut cache = self.pipelines.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(p) = cache.get(source) {
+            return Ok(p.clone());
+        }
+        let p = compile()?;
+        cache.insert(source.to_owned(), p.clone());
+        Ok(p)
     }
 
     /// Copies `size` bytes of `buffer` (which needs `COPY_SRC`) to the CPU, waiting for the GPU.

@@ -22,7 +22,7 @@ pub mod shader;
 
 pub use backend::{AnyProgressive, Backend};
 pub use context::GpuContext;
-pub use progressive::GpuProgressive;
+pub use progressive::{AccumulationView, GpuProgressive};
 pub use scene_buffers::GpuScene;
 pub use shader::Features;
 

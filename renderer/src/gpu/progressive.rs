@@ -73,20 +73,24 @@ impl GpuProgressive {
         let gpu = GpuScene::new(ctx.clone(), scene)?;
         let device = &ctx.device;
         let source = path_tracer_source(&gpu.features())?;
-        let module = create_module(device, "lumis path tracer", &source)?;
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("lumis path tracer"),
-            bind_group_layouts: &[Some(gpu.layout())],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("lumis path tracer"),
-            layout: Some(&layout),
-            module: &module,
-            entry_point: Some("render"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let pipeline = ctx.pipeline(&source, || {
+            let module = create_module(device, "lumis path tracer", &source)?;
+            let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("lumis path tracer"),
+                bind_group_layouts: &[Some(gpu.layout())],
+                immediate_size: 0,
+            });
+            Ok(
+                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some("lumis path tracer"),
+                    layout: Some(&layout),
+                    module: &module,
+                    entry_point: Some("render"),
+                    compilation_options: Default::default(),
+                    cache: None,
+                }),
+            )
+        })?;
         let cam = &gpu.scene().camera;
         let pixels = cam.width as u64 * cam.height as u64;
         let accum_size = 3 * pixels * 16;
