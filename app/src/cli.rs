@@ -23,6 +23,8 @@ pub enum Command {
     Compare(CompareArgs),
     /// Measure error against render time for each strategy; write the curves as CSV (and a plot).
     Bench(BenchArgs),
+    /// Open the interactive viewer (renders headless to a PNG when there is no display).
+    View(ViewArgs),
 }
 
 /// Direct-lighting strategy names.
@@ -168,7 +170,7 @@ pub struct CompareArgs {
     pub reference: PathBuf,
 }
 
-/// Where `render` and `bench` render.
+/// Where `render`, `bench` and `view` render.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BackendArg {
     /// The multi-threaded CPU engine.
@@ -226,6 +228,68 @@ pub struct BenchArgs {
     /// Also plot relMSE against seconds (log-log) to this PNG.
     #[arg(long)]
     pub plot: Option<PathBuf>,
+}
+
+/// `lumis view`.
+#[derive(Args, Debug)]
+pub struct ViewArgs {
+    /// Scene file (JSON) [default: the seed Cornell box, assets/seed_cornell.json].
+    pub scene: Option<PathBuf>,
+    /// Reference image (EXR or PFM, the film's size) for the error; without it the error is
+    /// estimated from two independent half images.
+    #[arg(long)]
+    pub reference: Option<PathBuf>,
+    /// Strategy of the single view.
+    #[arg(long, value_enum, default_value = "mis")]
+    pub strategy: StrategyArg,
+    /// Where to render (switchable live in the window).
+    #[arg(long, value_enum, default_value = "cpu")]
+    pub backend: BackendArg,
+    /// Estimator options.
+    #[command(flatten)]
+    pub estimator: EstimatorOptions,
+    /// Open the comparison view with these 2 or 3 strategies side by side (comma-separated).
+    #[arg(long, value_enum, value_delimiter = ',')]
+    pub compare: Vec<StrategyArg>,
+    /// Compare at equal render time instead of equal samples per pixel.
+    #[arg(long)]
+    pub equal_time: bool,
+    /// Stop accumulating at this many samples per pixel (0: never).
+    #[arg(long, default_value_t = 0)]
+    pub spp_limit: u32,
+    /// Random seed.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u32,
+    /// Rendering threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Override the scene's image width.
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Override the scene's image height.
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Initial exposure in stops.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub exposure: f32,
+    /// Folder for screenshots (Ctrl+S or F12): lumis-NNNN*.png/.exr/.csv.
+    #[arg(long, default_value = ".")]
+    pub screenshot_dir: PathBuf,
+    /// Take a screenshot as soon as every pane has this many samples per pixel.
+    #[arg(long)]
+    pub screenshot_after: Option<u32>,
+    /// Close the window after the --screenshot-after screenshot is saved.
+    #[arg(long, requires = "screenshot_after")]
+    pub exit_after_screenshot: bool,
+    /// Print the time from every restart to its first image on stderr.
+    #[arg(long)]
+    pub log_latency: bool,
+    /// Without a display: the PNG to write [default: SCENE_NAME.png].
+    #[arg(short = 'o', long = "output")]
+    pub output: Option<PathBuf>,
+    /// Without a display: samples per pixel when no --spp-limit is given.
+    #[arg(long, default_value_t = 64)]
+    pub headless_spp: u32,
 }
 
 impl BackendArg {

@@ -3,6 +3,7 @@
 mod bench_cmd;
 mod cli;
 mod render_cmd;
+mod view_cmd;
 
 use clap::Parser;
 use clap::error::ErrorKind;
@@ -27,6 +28,7 @@ fn main() {
         cli::Command::Render(a) => render_cmd::render(&a),
         cli::Command::Compare(a) => render_cmd::compare(&a),
         cli::Command::Bench(a) => bench_cmd::bench(&a),
+        cli::Command::View(a) => view_cmd::view(&a),
     };
     if let Err(e) = result {
         eprintln!("lumis: {e:#}");

@@ -1015,3 +1015,83 @@ fn bench_invalid_options_are_one_line_errors() {
         assert!(!csv.exists(), "{opts:?} wrote a CSV");
     }
 }
+
+/// Runs `lumis view` with no display, so it renders headless.
+fn view_headless<S: AsRef<OsStr>>(args: &[S]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lumis"))
+        .arg("view")
+        .args(args)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("run lumis")
+}
+
+#[test]
+fn view_without_a_display_renders_headless_and_says_so() {
+    let dir = TempDir::new("view-headless");
+    let scene = dir.scene(12, 8);
+    let out = dir.path("shot.png");
+    let o = view_headless(&[
+        scene.as_os_str(),
+        OsStr::new("--headless-spp"),
+        OsStr::new("3"),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let stderr = text(&o.stderr);
+    assert!(
+        stderr.contains("no display") && stderr.contains("3 spp"),
+        "{stderr}"
+    );
+    let png = image::open(&out).unwrap().into_rgb8();
+    assert_eq!(png.dimensions(), (12, 8));
+    assert!(png.pixels().any(|p| p.0 != [0, 0, 0]), "the floor is lit");
+
+    // The comparison view writes one image per pane, named after its strategy.
+    let o = view_headless(&[
+        scene.as_os_str(),
+        OsStr::new("--compare"),
+        OsStr::new("light,bsdf"),
+        OsStr::new("--spp-limit"),
+        OsStr::new("2"),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    for lane in ["light", "bsdf"] {
+        let p = dir.path(&format!("shot-{lane}.png"));
+        assert_eq!(
+            image::open(&p).unwrap().into_rgb8().dimensions(),
+            (12, 8),
+            "{p:?}"
+        );
+    }
+}
+
+#[test]
+fn view_errors_are_one_line_and_named() {
+    let dir = TempDir::new("view-errors");
+    let missing = dir.path("nope.json");
+    expect_error(&view_headless(&[missing.as_os_str()]), &["nope.json"]);
+    let bad = dir.write("bad.json", "{\"camera\": ");
+    expect_error(&view_headless(&[bad.as_os_str()]), &["bad.json", "line 1"]);
+    let scene = dir.scene(8, 8);
+    expect_error(
+        &view_headless(&[
+            scene.as_os_str(),
+            OsStr::new("--compare"),
+            OsStr::new("mis"),
+        ]),
+        &["--compare takes 2 or 3 strategies"],
+    );
+    expect_error(
+        &view_headless(&[
+            scene.as_os_str(),
+            OsStr::new("--mix-weight"),
+            OsStr::new("1.5"),
+        ]),
+        &["1.5"],
+    );
+}

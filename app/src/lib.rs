@@ -1,0 +1,4 @@
+//! The `lumis` application as a library: the interactive viewer, so that its UI tests
+//! (`app/tests/`) can drive it; the binary (`main.rs`) adds the command line.
+
+pub mod viewer;

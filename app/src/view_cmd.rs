@@ -1,0 +1,83 @@
+//! `lumis view`: command-line options into the viewer's.
+
+use crate::cli::{BackendArg, HeuristicArg, StrategyArg, ViewArgs};
+use anyhow::bail;
+use lumis::gpu::Backend;
+use lumis::integrator::Heuristic;
+use lumis_app::viewer::params::{RenderParams, StrategyKind};
+use lumis_app::viewer::{ViewerOptions, run};
+use std::path::PathBuf;
+
+fn kind(s: StrategyArg) -> StrategyKind {
+    match s {
+        StrategyArg::Light => StrategyKind::Light,
+        StrategyArg::Bsdf => StrategyKind::Bsdf,
+        StrategyArg::Mixture => StrategyKind::Mixture,
+        StrategyArg::Mis => StrategyKind::Mis,
+    }
+}
+
+/// The default scene: `assets/seed_cornell.json` from the current folder, else from the source
+/// tree this binary was built in (so `lumis view` works from any folder of a checkout).
+fn default_scene() -> PathBuf {
+    let local = PathBuf::from("assets/seed_cornell.json");
+    let built = PathBuf::from(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/seed_cornell.json"
+    ));
+    if !local.exists() && built.exists() {
+        built
+    } else {
+        local
+    }
+}
+
+/// Runs the viewer.
+pub fn view(args: &ViewArgs) -> anyhow::Result<()> {
+    // Validates the shared options (weight, depth) exactly as `render` does.
+    let settings = args.estimator.settings(args.strategy)?;
+    if !args.compare.is_empty() && !(2..=3).contains(&args.compare.len()) {
+        bail!(
+            "--compare takes 2 or 3 strategies, got {}",
+            args.compare.len()
+        );
+    }
+    let params = RenderParams {
+        backend: match args.backend {
+            BackendArg::Cpu => Backend::Cpu,
+            BackendArg::Gpu => Backend::Gpu,
+        },
+        strategy: kind(args.strategy),
+        mix_weight: args.estimator.mix_weight,
+        heuristic: match args.estimator.heuristic {
+            HeuristicArg::Balance => Heuristic::Balance,
+            HeuristicArg::Power => Heuristic::Power,
+        },
+        light_sampling: settings.light_sampling,
+        max_depth: settings.max_depth,
+        spp_limit: args.spp_limit,
+        compare: !args.compare.is_empty(),
+        compare_strategies: if args.compare.is_empty() {
+            RenderParams::default().compare_strategies
+        } else {
+            args.compare.iter().map(|&s| kind(s)).collect()
+        },
+        equal_time: args.equal_time,
+    };
+    run(ViewerOptions {
+        scene: args.scene.clone().unwrap_or_else(default_scene),
+        reference: args.reference.clone(),
+        params,
+        seed: args.seed,
+        threads: args.threads.unwrap_or(0),
+        width: args.width,
+        height: args.height,
+        exposure: args.exposure,
+        screenshot_dir: args.screenshot_dir.clone(),
+        screenshot_after: args.screenshot_after,
+        exit_after_screenshot: args.exit_after_screenshot,
+        log_latency: args.log_latency,
+        headless_output: args.output.clone(),
+        headless_spp: args.headless_spp,
+    })
+}

@@ -1,0 +1,226 @@
+//! The selected material's and light's controls, and selection by clicking the image. Edits go
+//! into the scene description, which is then rebuilt.
+
+use super::app::ViewerApp;
+use super::controls::combo;
+use super::edit::{self, LightEdit};
+use super::light_shape::{DISK_STOP, Keep, LightShape, MAX_SIDES};
+use super::pick::pick;
+use glam::DVec3;
+
+impl ViewerApp {
+    /// Selects what the camera sees through film position (`x`, `y`): its material, and the
+    /// light if it emits. Clicking the background clears the selection.
+    pub fn select_at(&mut self, x: f32, y: f32) {
+        let (Some(scene), Some(desc)) = (&self.output.scene, &self.desc) else {
+            return;
+        };
+        if self.output.desc_version != self.desc_version {
+            // The scene on screen is older than the description; the indices may not match.
+            return;
+        }
+        match pick(scene, desc, x, y) {
+            Some(p) => {
+                self.selected_material = p.material;
+                self.select_light(p.light_shape);
+            }
+            None => {
+                self.selected_material = None;
+                self.light = None;
+            }
+        }
+    }
+
+    /// Selects emitting shape `shape` (or none) for the light controls.
+    pub fn select_light(&mut self, shape: Option<usize>) {
+        if self.light.as_ref().map(|l| l.shape) == shape {
+            return;
+        }
+        self.light = match (shape, &self.desc) {
+            (Some(s), Some(desc)) => Some(LightEdit::new(desc, s)),
+            _ => None,
+        };
+    }
+
+    /// Applies the light editor to the description and restarts.
+    pub fn light_changed(&mut self) {
+        if let (Some(l), Some(desc)) = (&self.light, &mut self.desc) {
+            l.apply(desc);
+            self.scene_changed();
+        }
+    }
+
+    pub(crate) fn selection_controls(&mut self, ui: &mut egui::Ui) {
+        let Some(desc) = &self.desc else { return };
+        ui.heading("Material");
+        ui.label("click an object in the image, or pick one here");
+        let names: Vec<String> = desc.materials.iter().map(|m| m.name.clone()).collect();
+        let mut sel = self.selected_material;
+        let options: Vec<Option<usize>> = std::iter::once(None)
+            .chain((0..names.len()).map(Some))
+            .collect();
+        combo(ui, "Material", &mut sel, &options, |m| {
+            m.map_or("(none)".into(), |i| names[i].clone())
+        });
+        self.selected_material = sel;
+        if let Some(i) = sel {
+            self.material_controls(ui, i);
+        }
+        ui.separator();
+        ui.heading("Light");
+        self.light_controls(ui);
+    }
+
+    fn material_controls(&mut self, ui: &mut egui::Ui, i: usize) {
+        let Some(desc) = &mut self.desc else { return };
+        let m = &mut desc.materials[i].material;
+        let mut changed = false;
+        if let Some(mut a) = edit::alpha(m)
+            && ui
+                .add(egui::Slider::new(&mut a, 0.0..=1.0).text("Roughness α"))
+                .changed()
+        {
+            edit::set_alpha(m, a);
+            changed = true;
+        }
+        if let Some(c) = edit::colour(m) {
+            let mut rgb = c.as_vec3().to_array();
+            let r = ui
+                .horizontal(|ui| {
+                    let r = egui::color_picker::color_edit_button_rgb(ui, &mut rgb);
+                    ui.label("Colour");
+                    r
+                })
+                .inner;
+            if r.changed() {
+                edit::set_colour(m, DVec3::from(rgb.map(f64::from)));
+                changed = true;
+            }
+        }
+        if let Some(mut n) = edit::ior(m)
+            && ui
+                .add(egui::Slider::new(&mut n, 1.01..=3.0).text("IOR"))
+                .changed()
+        {
+            edit::set_ior(m, n);
+            changed = true;
+        }
+        if changed {
+            self.scene_changed();
+        }
+    }
+
+    fn light_controls(&mut self, ui: &mut egui::Ui) {
+        let Some(desc) = &self.desc else { return };
+        let emitters: Vec<Option<usize>> = std::iter::once(None)
+            .chain(
+                desc.shapes
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, s)| s.emission.cmpgt(DVec3::ZERO).any())
+                    .map(|(i, _)| Some(i)),
+            )
+            .collect();
+        let paths: Vec<String> = desc.shapes.iter().map(|s| s.json_path.clone()).collect();
+        // Size range: from a thousandth of the scene to the whole scene.
+        let extent = self.output.scene.as_ref().map_or(1.0, |s| {
+            let (lo, hi) = s.accel.bounds();
+            (hi - lo).length().max(1e-6) as f64
+        });
+        let mut sel = self.light.as_ref().map(|l| l.shape);
+        if combo(ui, "Light", &mut sel, &emitters, |s| {
+            s.map_or("(none)".into(), |i| paths[i].clone())
+        }) {
+            self.select_light(sel);
+        }
+        let Some(light) = &mut self.light else { return };
+        let before = light.clone();
+        ui.horizontal(|ui| {
+            ui.label("Keep");
+            ui.radio_value(&mut light.keep, Keep::Area, "area");
+            ui.radio_value(&mut light.keep, Keep::Power, "power");
+        });
+        if let Some(shape) = light.planar_shape() {
+            let mut s = shape;
+            let kinds = [
+                polygon_entry(shape),
+                LightShape::Disk,
+                LightShape::Quad,
+                LightShape::Triangle,
+            ];
+            combo(ui, "Light shape", &mut s, &kinds, |k| match k {
+                LightShape::Polygon(_) => "polygon".into(),
+                k => k.label(),
+            });
+            let mut sides = s.slider_value();
+            let r = ui.add(
+                egui::Slider::new(&mut sides, 3..=DISK_STOP)
+                    .text("Light sides")
+                    .custom_formatter(|v, _| {
+                        if v as u32 >= DISK_STOP {
+                            "disk".into()
+                        } else {
+                            format!("{v}")
+                        }
+                    }),
+            );
+            if r.changed() {
+                s = LightShape::from_slider(sides);
+            }
+            if s != shape {
+                light.set_shape(s);
+            }
+        }
+        if let Some(mut size) = light.size() {
+            let r = ui.add(
+                egui::Slider::new(&mut size, extent * 1e-3..=extent)
+                    .logarithmic(true)
+                    .text("Light size"),
+            );
+            if r.changed() {
+                light.set_size(size);
+            }
+        }
+        let mut radiance = light.radiance;
+        if ui
+            .add(
+                egui::Slider::new(&mut radiance, 1e-3..=1e5)
+                    .logarithmic(true)
+                    .text("Radiance"),
+            )
+            .changed()
+        {
+            light.radiance = radiance;
+        }
+        let mut rgb = light.colour.as_vec3().to_array();
+        ui.horizontal(|ui| {
+            if egui::color_picker::color_edit_button_rgb(ui, &mut rgb).changed() {
+                let c = DVec3::from(rgb.map(f64::from));
+                // Brightness lives in the radiance slider; the colour keeps its largest
+                // component at 1.
+                if c.max_element() > 0.0 {
+                    light.colour = c / c.max_element();
+                }
+            }
+            ui.label("Light colour");
+        });
+        if let Some(p) = light.power() {
+            ui.label(format!("power (largest channel): {p:.4e}"));
+        }
+        // The keep toggle alone changes nothing in the scene.
+        if (light.geometry, light.colour, light.radiance)
+            != (before.geometry, before.colour, before.radiance)
+        {
+            self.light_changed();
+        }
+    }
+}
+
+/// The polygon entry of the shape menu: the current polygon, or a hexagon when switching from
+/// another shape.
+fn polygon_entry(current: LightShape) -> LightShape {
+    match current {
+        LightShape::Polygon(n) => LightShape::Polygon(n.min(MAX_SIDES)),
+        _ => LightShape::Polygon(6),
+    }
+}

@@ -1,0 +1,445 @@
+//! UI tests of the viewer through egui_kittest: the real widgets are driven through AccessKit
+//! (the same tree screen readers use), and the render thread really renders (tiny images).
+//!
+//! Each control must change exactly the parameter it names and restart accumulation: the render
+//! thread then runs a new generation whose lanes carry the new settings (or a scene rebuilt from
+//! the edited description) and whose convergence curves start again from the first samples.
+
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use glam::DVec3;
+use lumis::integrator::Strategy;
+use lumis::scene::{GeometryDesc, MaterialDesc};
+use lumis_app::viewer::light_shape::LightShape;
+use lumis_app::viewer::params::StrategyKind;
+use lumis_app::viewer::{ViewerApp, ViewerOptions};
+use std::path::PathBuf;
+use std::time::Duration;
+
+const WAIT: Duration = Duration::from_secs(60);
+
+fn asset(name: &str) -> PathBuf {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../assets")).join(name)
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("lumis-viewer-ui-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The viewer on `scene` at `size`×`size` pixels, in a harness big enough for every panel.
+fn harness(scene: &str, size: u32, dir: PathBuf) -> Harness<'static, ViewerApp> {
+    let app = ViewerApp::new(ViewerOptions {
+        scene: asset(scene),
+        width: Some(size),
+        height: Some(size),
+        screenshot_dir: dir,
+        ..ViewerOptions::default()
+    });
+    let mut h = Harness::builder()
+        .with_size([1200.0, 1400.0])
+        .build_ui_state(|ui, app: &mut ViewerApp| app.show(ui), app);
+    h.run_steps(2);
+    h
+}
+
+/// Renders until every lane has `spp` samples, then checks that moving a control with `act`
+/// restarts: a new generation whose curves start from scratch. Returns the app for checks.
+fn assert_restarts(
+    h: &mut Harness<'static, ViewerApp>,
+    what: &str,
+    act: impl FnOnce(&mut Harness<'static, ViewerApp>),
+) {
+    assert!(
+        h.state_mut()
+            .wait_for(WAIT, |o| o.lanes.iter().all(|l| l.spp >= 32)),
+        "{what}: no accumulation before the change"
+    );
+    let restarts = h.state().restarts;
+    act(h);
+    h.run_steps(2);
+    assert!(h.state().restarts > restarts, "{what}: no restart");
+    assert!(
+        h.state_mut().wait_for(WAIT, |o| !o.lanes.is_empty()
+            && o.lanes.iter().all(|l| !l.curve.is_empty())),
+        "{what}: no image after the restart"
+    );
+    for l in &h.state().output().lanes {
+        // Pass sizes at most quadruple, so a fresh film's first error point is at ≤ 5 spp; a
+        // film that kept accumulating would start at ≥ 32.
+        assert!(
+            l.curve[0].spp <= 5,
+            "{what}: accumulation did not restart ({:?})",
+            l.curve[0]
+        );
+    }
+}
+
+fn set_slider(h: &mut Harness<'static, ViewerApp>, label: &str, v: f64) {
+    h.get_by_role_and_label(Role::Slider, label)
+        .set_value_accesskit(v);
+}
+
+fn pick_combo(h: &mut Harness<'static, ViewerApp>, combo: &str, option: &str) {
+    h.get_by_label(combo).click();
+    h.run_steps(2);
+    h.get_by_label(option).click();
+}
+
+fn material(h: &Harness<'static, ViewerApp>, name: &str) -> usize {
+    let desc = h.state().desc.as_ref().unwrap();
+    desc.materials.iter().position(|m| m.name == name).unwrap()
+}
+
+#[test]
+fn estimator_sliders_and_menus_change_their_setting_and_restart() {
+    let mut h = harness("seed_cornell.json", 24, scratch("estimator"));
+    assert_restarts(&mut h, "strategy", |h| pick_combo(h, "Strategy", "mixture"));
+    assert_eq!(h.state().params.strategy, StrategyKind::Mixture);
+    assert_restarts(&mut h, "mixture weight", |h| {
+        set_slider(h, "Mixture weight w", 0.25)
+    });
+    assert_eq!(h.state().params.mix_weight, 0.25);
+    let lane = h.state().output().lanes[0].settings;
+    assert_eq!(lane.strategy, Strategy::Mixture { light_weight: 0.25 });
+
+    assert_restarts(&mut h, "light sampling", |h| {
+        pick_combo(h, "Light sampling", "area")
+    });
+    let lane = h.state().output().lanes[0].settings;
+    assert_eq!(lane.light_sampling, lumis::lights::LightSampling::Area);
+
+    assert_restarts(&mut h, "max depth", |h| set_slider(h, "Max depth", 3.0));
+    assert_eq!(h.state().output().lanes[0].settings.max_depth, Some(3));
+
+    assert_restarts(&mut h, "strategy mis", |h| pick_combo(h, "Strategy", "mis"));
+    assert_restarts(&mut h, "heuristic", |h| {
+        pick_combo(h, "Heuristic", "balance")
+    });
+    assert_eq!(
+        h.state().output().lanes[0].settings.strategy,
+        Strategy::Mis {
+            heuristic: lumis::integrator::Heuristic::Balance
+        }
+    );
+
+    assert_restarts(&mut h, "spp limit", |h| set_slider(h, "Spp limit", 48.0));
+    assert_eq!(h.state().params.spp_limit, 48);
+    assert!(h.state_mut().wait_for(WAIT, |o| o.lanes[0].done));
+    assert_eq!(
+        h.state().output().lanes[0].spp,
+        48,
+        "stops exactly at the limit"
+    );
+
+    // Exposure is display only: no restart.
+    let restarts = h.state().restarts;
+    set_slider(&mut h, "Exposure (EV)", 1.5);
+    h.run_steps(2);
+    assert_eq!(h.state().display.exposure, 1.5);
+    assert_eq!(
+        h.state().restarts,
+        restarts,
+        "exposure must not restart accumulation"
+    );
+}
+
+#[test]
+fn material_sliders_edit_the_selected_material() {
+    let mut h = harness("seed_cornell.json", 24, scratch("material"));
+    let i = material(&h, "ggx01");
+    h.state_mut().selected_material = Some(i);
+    h.run_steps(2);
+    assert_restarts(&mut h, "roughness", |h| set_slider(h, "Roughness α", 0.5));
+    let desc = h.state().desc.clone().unwrap();
+    let MaterialDesc::Conductor { alpha, .. } = desc.materials[i].material else {
+        panic!("ggx01 is a conductor")
+    };
+    assert_eq!(alpha, 0.5);
+    // Only the selected material changed, and the render thread built the edited scene.
+    let original = lumis::scene::load_scene(&asset("seed_cornell.json")).unwrap();
+    for (j, (a, b)) in desc.materials.iter().zip(&original.materials).enumerate() {
+        assert_eq!(a == b, j != i, "material {}", a.name);
+    }
+    assert_eq!(h.state().output().desc_version, h.state().desc_version);
+
+    let mut h = harness("plastic_lights.json", 24, scratch("ior"));
+    let i = material(&h, "plastic_red");
+    h.state_mut().selected_material = Some(i);
+    h.run_steps(2);
+    assert_restarts(&mut h, "ior", |h| set_slider(h, "IOR", 2.0));
+    let MaterialDesc::Plastic { ior, .. } = h.state().desc.as_ref().unwrap().materials[i].material
+    else {
+        panic!("plastic_red is plastic")
+    };
+    assert_eq!(ior, 2.0);
+}
+
+#[test]
+fn clicking_an_object_selects_its_material_or_light() {
+    let mut h = harness("seed_cornell.json", 64, scratch("pick"));
+    assert!(h.state_mut().wait_for(WAIT, |o| o.scene.is_some()));
+    h.run_steps(2);
+    let desc = h.state().desc.clone().unwrap();
+    let scene = h.state().output().scene.clone().unwrap();
+    let rect = h.state().pane_rects[0];
+    // Click (through real pointer events) where the centre of sphere 11 and of the hexagon
+    // ceiling light (shape 2) project.
+    let click_at = |h: &mut Harness<'static, ViewerApp>, p: DVec3| {
+        let (x, y) = scene.camera.project(p.as_vec3()).unwrap();
+        let pos = rect.min + egui::vec2(x / 64.0 * rect.width(), y / 64.0 * rect.height());
+        h.hover_at(pos);
+        h.run_steps(1);
+        for pressed in [true, false] {
+            h.event(egui::Event::PointerButton {
+                pos,
+                button: egui::PointerButton::Primary,
+                pressed,
+                modifiers: egui::Modifiers::NONE,
+            });
+            h.run_steps(1);
+        }
+    };
+    let GeometryDesc::Sphere { center, .. } = desc.shapes[11].geometry else {
+        panic!()
+    };
+    click_at(&mut h, center);
+    assert_eq!(h.state().selected_material, desc.shapes[11].material);
+    assert!(h.state().light.is_none());
+    let GeometryDesc::Polygon { vertices } = &desc.shapes[2].geometry else {
+        panic!()
+    };
+    let centroid = vertices.iter().sum::<DVec3>() / vertices.len() as f64;
+    // Just below the light, so the ray meets it from its emitting side.
+    click_at(&mut h, centroid - DVec3::Y * 1e-3);
+    assert_eq!(h.state().light.as_ref().map(|l| l.shape), Some(2));
+}
+
+#[test]
+fn light_sliders_reshape_resize_and_brighten_the_selected_light() {
+    let mut h = harness("seed_cornell.json", 24, scratch("light"));
+    h.state_mut().select_light(Some(2));
+    h.run_steps(2);
+    let area = |h: &Harness<'static, ViewerApp>| {
+        let l = lumis_app::viewer::light_shape::PlanarLight::from_geometry(
+            &h.state().desc.as_ref().unwrap().shapes[2].geometry,
+        )
+        .unwrap();
+        (l.shape, l.area, l.centre)
+    };
+    let (_, a0, c0) = area(&h);
+    assert_restarts(&mut h, "light sides", |h| {
+        set_slider(h, "Light sides", 12.0)
+    });
+    let (shape, a, c) = area(&h);
+    assert_eq!(shape, LightShape::Polygon(12));
+    assert!((a - a0).abs() < 1e-6 * a0 && (c - c0).length() < 1e-6 * c0.length());
+    assert_restarts(&mut h, "light sides → disk", |h| {
+        set_slider(h, "Light sides", 65.0)
+    });
+    assert!(matches!(
+        h.state().desc.as_ref().unwrap().shapes[2].geometry,
+        GeometryDesc::Disk { .. }
+    ));
+    assert_restarts(&mut h, "light size", |h| set_slider(h, "Light size", 200.0));
+    let (_, a, _) = area(&h);
+    assert!((a - 200.0 * 200.0).abs() < 1e-6 * a);
+    let e0 = h.state().desc.as_ref().unwrap().shapes[2].emission;
+    assert_restarts(&mut h, "radiance", |h| set_slider(h, "Radiance", 3.0));
+    let e = h.state().desc.as_ref().unwrap().shapes[2].emission;
+    assert!((e.max_element() - 3.0).abs() < 1e-9);
+    assert!(
+        ((e / e.max_element()) - (e0 / e0.max_element())).length() < 1e-9,
+        "colour kept"
+    );
+}
+
+#[test]
+fn comparison_panes_accumulate_independently() {
+    let mut h = harness("seed_cornell.json", 24, scratch("compare"));
+    h.get_by_label("Compare strategies").click();
+    h.run_steps(2);
+    assert!(h.state().params.compare);
+    assert!(h.state_mut().wait_for(WAIT, |o| o.lanes.len() == 3
+        && o.lanes.iter().all(|l| !l.preview && l.spp >= 16)));
+    let o = h.state().output().clone();
+    let strategies: Vec<_> = o.lanes.iter().map(|l| l.settings.strategy).collect();
+    assert_eq!(strategies[0], Strategy::Light);
+    assert_eq!(strategies[1], Strategy::Bsdf);
+    assert!(matches!(strategies[2], Strategy::Mis { .. }));
+    // Independent accumulations: separate films (different images and error curves).
+    assert!(o.lanes[0].pixels != o.lanes[1].pixels && o.lanes[1].pixels != o.lanes[2].pixels);
+    assert!(o.lanes.iter().all(|l| !l.curve.is_empty()));
+    // Equal samples: no pane is more than one pass ahead of another.
+    let spp: Vec<u32> = o.lanes.iter().map(|l| l.spp).collect();
+    assert!(spp.iter().max().unwrap() - spp.iter().min().unwrap() <= 4 * spp.iter().min().unwrap());
+
+    // Equal time: render time, not samples, is shared out.
+    h.get_by_label("Equal time").click();
+    h.run_steps(2);
+    assert!(h.state().params.equal_time);
+    assert!(
+        h.state_mut()
+            .wait_for(WAIT, |o| o.lanes.iter().all(|l| l.render_seconds > 0.5))
+    );
+    let o = h.state().output().clone();
+    let t: Vec<f64> = o.lanes.iter().map(|l| l.render_seconds).collect();
+    let (lo, hi) = (
+        t.iter().cloned().fold(f64::MAX, f64::min),
+        t.iter().cloned().fold(0.0, f64::max),
+    );
+    // Lanes take turns by least time; one pass (~0.12 s, a few times that when contended)
+    // is the most they can differ by.
+    assert!(hi - lo < 0.6 + 0.3 * lo, "render times {t:?}");
+}
+
+#[test]
+fn screenshot_shortcut_writes_png_exr_and_csv_without_overwriting() {
+    let dir = scratch("shot");
+    let mut h = harness("seed_cornell.json", 32, dir.clone());
+    assert!(
+        h.state_mut()
+            .wait_for(WAIT, |o| o.lanes.iter().all(|l| !l.preview && l.spp >= 4))
+    );
+    h.run_steps(1);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    h.run_steps(2);
+    let saved = h.state().last_saved.clone();
+    assert_eq!(
+        saved
+            .iter()
+            .map(|p| p.file_name().unwrap().to_str().unwrap())
+            .collect::<Vec<_>>(),
+        ["lumis-0001.png", "lumis-0001.exr", "lumis-0001-error.csv"]
+    );
+    let png = image::open(&saved[0]).unwrap().into_rgb8();
+    assert_eq!(png.dimensions(), (32, 32));
+    let exr = lumis::image_io::Image::read(&saved[1]).unwrap();
+    assert_eq!((exr.width, exr.height), (32, 32));
+    assert!(exr.data.iter().all(|c| c.is_finite()) && exr.data.iter().any(|c| c.x > 0.0));
+    // The PNG is the EXR as displayed (exposure 0, sRGB).
+    let shown = lumis_app::viewer::tonemap::srgb8(exr.data[5 * 32 + 7], 1.0);
+    assert_eq!(png.get_pixel(7, 5).0, shown);
+    let csv = std::fs::read_to_string(&saved[2]).unwrap();
+    assert!(
+        csv.starts_with("lane,strategy,seconds,spp,relmse,error_source\n")
+            && csv.lines().count() > 1
+    );
+    // Again: new names, the first files untouched.
+    h.key_press(egui::Key::F12);
+    h.run_steps(2);
+    assert!(h.state().last_saved[0].ends_with("lumis-0002.png"));
+    assert!(saved.iter().all(|p| p.exists()));
+}
+
+#[test]
+fn a_broken_scene_file_shows_its_error_in_the_window() {
+    let dir = scratch("broken");
+    let bad = dir.join("bad.json");
+    std::fs::write(&bad, r#"{"camera": {"from": [0, 0, 0]}}"#).unwrap();
+    let mut h = harness("seed_cornell.json", 16, dir);
+    h.state_mut().path_field = bad.display().to_string();
+    h.run_steps(1);
+    h.get_by_label("Open").click();
+    h.run_steps(2);
+    let err = h.state().error.clone().expect("the load error is kept");
+    assert!(err.contains("bad.json") && !err.contains('\n'), "{err}");
+    // Shown in the window, and the previous scene keeps rendering.
+    h.get_by_label_contains("bad.json");
+    assert!(
+        h.state()
+            .scene_path
+            .as_ref()
+            .unwrap()
+            .ends_with("seed_cornell.json")
+    );
+}
+
+#[test]
+fn dragging_the_image_orbits_the_camera_and_it_can_be_saved_and_reset() {
+    let dir = scratch("camera");
+    let scene = dir.join("scene.json");
+    std::fs::copy(asset("seed_cornell.json"), &scene).unwrap();
+    let app = ViewerApp::new(ViewerOptions {
+        scene: scene.clone(),
+        width: Some(24),
+        height: Some(24),
+        screenshot_dir: dir,
+        ..ViewerOptions::default()
+    });
+    let mut h = Harness::builder()
+        .with_size([1200.0, 1400.0])
+        .build_ui_state(|ui, app: &mut ViewerApp| app.show(ui), app);
+    h.run_steps(2);
+    let home = h.state().desc.as_ref().unwrap().camera.clone();
+    let rect = h.state().pane_rects[0];
+    assert_restarts(&mut h, "orbit", |h| {
+        let start = rect.center();
+        h.event(egui::Event::PointerMoved(start));
+        h.run_steps(1);
+        h.event(egui::Event::PointerButton {
+            pos: start,
+            button: egui::PointerButton::Primary,
+            pressed: true,
+            modifiers: egui::Modifiers::NONE,
+        });
+        h.run_steps(1);
+        for k in 1..=10 {
+            h.event(egui::Event::PointerMoved(
+                start + egui::vec2(6.0 * k as f32, 0.0),
+            ));
+            h.run_steps(1);
+        }
+        h.event(egui::Event::PointerButton {
+            pos: start + egui::vec2(60.0, 0.0),
+            button: egui::PointerButton::Primary,
+            pressed: false,
+            modifiers: egui::Modifiers::NONE,
+        });
+    });
+    let moved = h.state().desc.as_ref().unwrap().camera.clone();
+    assert_ne!(moved.from, home.from, "a drag moves the camera");
+    assert_eq!(moved.to, home.to, "orbit keeps the look-at point");
+    assert!(((moved.from - moved.to).length() - (home.from - home.to).length()).abs() < 1e-6);
+    // The render thread renders the moved camera.
+    assert_eq!(h.state().output().desc_version, h.state().desc_version);
+
+    h.get_by_label("Save camera").click();
+    h.run_steps(2);
+    // The view is saved; the image size stays the file's (24×24 is this test's override).
+    let saved = lumis::scene::load_scene(&scene).unwrap().camera;
+    assert_eq!(
+        (saved.from, saved.to, saved.up, saved.vfov_deg),
+        (moved.from, moved.to, moved.up, moved.vfov_deg)
+    );
+    assert_eq!((saved.width, saved.height), (256, 256));
+    assert_restarts(&mut h, "reset camera", |h| {
+        h.get_by_label("Reset camera").click()
+    });
+    assert_eq!(h.state().desc.as_ref().unwrap().camera, home);
+}
+
+#[test]
+fn the_backend_menu_switches_to_the_gpu_and_back() {
+    if std::env::var_os("LUMIS_SKIP_GPU_TESTS").is_some() {
+        eprintln!("LUMIS_SKIP_GPU_TESTS is set: skipping a GPU test");
+        return;
+    }
+    let mut h = harness("seed_cornell.json", 16, scratch("backend"));
+    assert_restarts(&mut h, "backend gpu", |h| {
+        pick_combo(h, "Backend", "GPU (wgpu)")
+    });
+    assert_eq!(h.state().params.backend, lumis::gpu::Backend::Gpu);
+    assert!(h.state_mut().wait_for(WAIT, |o| o.error.is_some()
+        || o.lanes.iter().all(|l| !l.preview && l.spp >= 8)));
+    assert_eq!(
+        h.state().output().error,
+        None,
+        "the GPU backend must render here (lavapipe)"
+    );
+    assert_restarts(&mut h, "backend cpu", |h| pick_combo(h, "Backend", "CPU"));
+    assert_eq!(h.state().params.backend, lumis::gpu::Backend::Cpu);
+}
