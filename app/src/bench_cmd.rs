@@ -133,7 +133,7 @@ pub fn bench(args: &BenchArgs) -> anyhow::Result<()> {
         check_output_dir(plot)?;
     }
 
-    let scene = Arc::new(load_scene(&args.scene, args.width, args.height)?);
+    let scene = Arc::new(load_scene(&args.scene, args.film.width, args.film.height)?);
     let (width, height) = (scene.camera.width, scene.camera.height);
     let reference = match &args.reference {
         Some(path) => {
@@ -160,7 +160,7 @@ pub fn bench(args: &BenchArgs) -> anyhow::Result<()> {
             None
         }
     };
-    let pool = thread_pool(args.threads)?;
+    let pool = thread_pool(args.film.threads)?;
 
     let mut curves = Vec::new();
     for &settings in &settings {

@@ -213,7 +213,21 @@ pub struct BenchArgs {
     /// Estimator options (--mix-weight applies to `mixture`, --heuristic to `mis`).
     #[command(flatten)]
     pub estimator: EstimatorOptions,
-    /// Worker threads (default: all cores).
+    /// Threads and image size.
+    #[command(flatten)]
+    pub film: FilmOptions,
+    /// Output CSV: strategy,seconds,spp,samples_per_second,relmse,rmse,efficiency,error_source.
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+    /// Also plot relMSE against seconds (log-log) to this PNG.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+}
+
+/// Threads and image size, shared by `bench` and `view`.
+#[derive(Args, Debug)]
+pub struct FilmOptions {
+    /// Rendering threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
     /// Override the scene's image width.
@@ -222,12 +236,6 @@ pub struct BenchArgs {
     /// Override the scene's image height.
     #[arg(long)]
     pub height: Option<u32>,
-    /// Output CSV: strategy,seconds,spp,samples_per_second,relmse,rmse,efficiency,error_source.
-    #[arg(short = 'o', long = "output")]
-    pub output: PathBuf,
-    /// Also plot relMSE against seconds (log-log) to this PNG.
-    #[arg(long)]
-    pub plot: Option<PathBuf>,
 }
 
 /// `lumis view`.
@@ -260,15 +268,9 @@ pub struct ViewArgs {
     /// Random seed.
     #[arg(long, default_value_t = 0)]
     pub seed: u32,
-    /// Rendering threads (default: all cores).
-    #[arg(long)]
-    pub threads: Option<usize>,
-    /// Override the scene's image width.
-    #[arg(long)]
-    pub width: Option<u32>,
-    /// Override the scene's image height.
-    #[arg(long)]
-    pub height: Option<u32>,
+    /// Threads and image size.
+    #[command(flatten)]
+    pub film: FilmOptions,
     /// Initial exposure in stops.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub exposure: f32,

@@ -41,6 +41,20 @@ pub fn linear_to_srgb(x: f32) -> f32 {
     }
 }
 
+/// One display pixel (sRGB bytes) of linear `c` at `gain`: scaled, clamped to [0, 1] (non-finite
+/// values to 0), the sRGB curve, rounded. The PNG writer and the viewer both use it.
+pub fn srgb8(c: Vec3, gain: f32) -> [u8; 3] {
+    let c = c * gain;
+    [c.x, c.y, c.z].map(|x| {
+        let x = if x.is_finite() {
+            x.clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (linear_to_srgb(x) * 255.0 + 0.5) as u8
+    })
+}
+
 impl Image {
     /// Reads an EXR or PFM file (RGB; alpha and extra channels ignored).
     pub fn read(path: &Path) -> Result<Image, ImageError> {
@@ -81,21 +95,7 @@ impl Image {
             "pfm" => write_pfm(self, path),
             "png" => {
                 let scale = 2f32.powf(exposure);
-                let buf: Vec<u8> = self
-                    .data
-                    .iter()
-                    .flat_map(|c| {
-                        let c = *c * scale;
-                        [c.x, c.y, c.z].map(|x| {
-                            let x = if x.is_finite() {
-                                x.clamp(0.0, 1.0)
-                            } else {
-                                0.0
-                            };
-                            (linear_to_srgb(x) * 255.0 + 0.5) as u8
-                        })
-                    })
-                    .collect();
+                let buf: Vec<u8> = self.data.iter().flat_map(|&c| srgb8(c, scale)).collect();
                 let img = image::RgbImage::from_raw(self.width, self.height, buf)
                     .ok_or_else(|| err(path, "image size mismatch"))?;
                 img.save(path).map_err(|e| err(path, e))

@@ -2,7 +2,9 @@
 //! `lumis render`'s PNG output), or a false-colour map of the per-pixel relative error.
 
 use glam::Vec3;
-use lumis::image_io::linear_to_srgb;
+/// One display pixel (sRGB bytes) of linear `c` at a gain (`2^exposure`), as `lumis render`
+/// writes PNGs.
+pub use lumis::image_io::srgb8;
 
 /// How the image is shown.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,19 +49,6 @@ pub fn error_colour(e: f32) -> [u8; 3] {
     std::array::from_fn(|c| {
         let v = VIRIDIS[i][c] * (1.0 - f) + VIRIDIS[i + 1][c] * f;
         (v * 255.0 + 0.5) as u8
-    })
-}
-
-/// One display pixel (sRGB bytes) of linear `c` at `2^exposure` gain.
-pub fn srgb8(c: Vec3, gain: f32) -> [u8; 3] {
-    let c = c * gain;
-    [c.x, c.y, c.z].map(|x| {
-        let x = if x.is_finite() {
-            x.clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (linear_to_srgb(x) * 255.0 + 0.5) as u8
     })
 }
 
