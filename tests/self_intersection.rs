@@ -8,7 +8,7 @@ use lumis::geometry::disk::Disk;
 use lumis::geometry::ray::{spawn_ray, spawn_ray_to};
 use lumis::geometry::sphere::Sphere;
 use lumis::geometry::triangle::TriangleRay;
-use lumis::geometry::{Ray, Shape, SurfaceHit};
+use lumis::geometry::{Ray, Shape, ShapeHit, SurfaceHit};
 use lumis::math::Frame;
 use lumis::rng::Rng;
 use lumis::sampling::sphere::sample_uniform_sphere;
@@ -93,7 +93,7 @@ fn random_point(shape: &Shape, rng: &mut Rng) -> Vec3 {
     }
 }
 
-fn intersect(shape: &Shape, ray: &Ray) -> Option<f32> {
+fn intersect(shape: &Shape, ray: &Ray) -> Option<ShapeHit> {
     shape.intersect_t(ray, &TriangleRay::new(ray))
 }
 
@@ -102,7 +102,7 @@ fn random_hit(shape: &Shape, size: f32, rng: &mut Rng) -> Option<SurfaceHit> {
     let target = random_point(shape, rng);
     let origin = target + random_dir(rng) * size * (0.5 + 10.0 * rng.next_f32());
     let ray = Ray::new(origin, (target - origin).normalize());
-    intersect(shape, &ray).map(|t| shape.surface_hit(&ray, t, 0))
+    intersect(shape, &ray).map(|h| shape.surface_hit(&ray, h, 0))
 }
 
 /// How many hits and spawned rays a run tested, and how many hit points could not be made.
@@ -130,7 +130,7 @@ fn check_kind(kind: Kind, seed: u32) -> Counts {
             let w = random_dir(&mut rng);
             let ray = spawn_ray(hit.p, hit.p_error, hit.n, w);
             counts.rays += 1;
-            let Some(t) = intersect(&shape, &ray) else {
+            let Some(t) = intersect(&shape, &ray).map(|h| h.t) else {
                 continue;
             };
             // Only a sphere can be hit again, on its far side, by a ray heading inwards.

@@ -58,6 +58,7 @@ impl Accel {
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
         let mut best_t = ray.t_max;
         let mut best = u32::MAX;
+        let mut best_hit = None;
         let tri = TriangleRay::new(ray);
         match &self.bvh {
             Some(bvh) => {
@@ -75,34 +76,32 @@ impl Accel {
                             t_max: best_t,
                             ..*ray
                         };
-                        if let Some(t) = self.prims[id].shape.intersect_t(&local, &tri) {
-                            best_t = t;
+                        if let Some(h) = self.prims[id].shape.intersect_t(&local, &tri) {
+                            best_t = h.t;
                             best = id as u32;
-                            node_ray.t_max = t;
+                            best_hit = Some(h);
+                            node_ray.t_max = h.t;
                         }
                     }
                 );
             }
             None => {
                 for (id, p) in self.prims.iter().enumerate() {
-                    if let Some(t) = p.shape.intersect_t(
+                    if let Some(h) = p.shape.intersect_t(
                         &Ray {
                             t_max: best_t,
                             ..*ray
                         },
                         &tri,
                     ) {
-                        best_t = t;
+                        best_t = h.t;
                         best = id as u32;
+                        best_hit = Some(h);
                     }
                 }
             }
         }
-        (best != u32::MAX).then(|| {
-            self.prims[best as usize]
-                .shape
-                .surface_hit(ray, best_t, best)
-        })
+        best_hit.map(|h| self.prims[best as usize].shape.surface_hit(ray, h, best))
     }
 
     /// Whether anything blocks `ray` within `(0, ray.t_max)`; stops at the first blocker.

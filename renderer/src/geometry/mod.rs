@@ -10,5 +10,5 @@ pub mod sphere;
 pub mod triangle;
 
 pub use bvh::Accel;
-pub use primitive::{Primitive, Shape};
+pub use primitive::{Primitive, Shape, ShapeHit};
 pub use ray::{Ray, SurfaceHit};

@@ -3,13 +3,21 @@
 use super::disk::Disk;
 use super::ray::{Ray, SurfaceHit};
 use super::sphere::Sphere;
-use super::triangle::{
-    TriangleRay, intersect_triangle, intersect_triangle_prepared, triangle_normal, triangle_point,
-};
+use super::triangle::{TriangleRay, intersect_triangle_prepared, triangle_normal, triangle_point};
 use glam::Vec3;
 
 /// Marks "no light" / "no material".
 pub const NONE: u32 = u32::MAX;
+
+/// A candidate hit found by [`Shape::intersect_t`]: its ray parameter and, for triangles, the
+/// barycentrics, kept so that the closest hit's record needs no second triangle test.
+#[derive(Clone, Copy, Debug)]
+pub struct ShapeHit {
+    /// Ray parameter.
+    pub t: f32,
+    /// Barycentrics of a triangle hit (unused for disks and spheres).
+    pub b: [f32; 3],
+}
 
 /// The shapes the BVH holds. Quads, polygons and boxes are triangulated; disks and spheres stay
 /// analytic.
@@ -43,33 +51,24 @@ impl Shape {
         }
     }
 
-    /// Ray parameter of the nearest hit in `(0, ray.t_max)`; `tri` is `ray` prepared for triangles.
+    /// The nearest hit in `(0, ray.t_max)`; `tri` is `ray` prepared for triangles.
     #[inline]
-    pub fn intersect_t(&self, ray: &Ray, tri: &TriangleRay) -> Option<f32> {
+    pub fn intersect_t(&self, ray: &Ray, tri: &TriangleRay) -> Option<ShapeHit> {
         match self {
             Shape::Triangle { v, .. } => {
-                intersect_triangle_prepared(tri, v, ray.t_max).map(|h| h.t)
+                intersect_triangle_prepared(tri, v, ray.t_max).map(|h| ShapeHit { t: h.t, b: h.b })
             }
-            Shape::Disk(d) => d.intersect(ray),
-            Shape::Sphere(s) => s.intersect(ray),
+            Shape::Disk(d) => d.intersect(ray).map(|t| ShapeHit { t, b: [0.0; 3] }),
+            Shape::Sphere(s) => s.intersect(ray).map(|t| ShapeHit { t, b: [0.0; 3] }),
         }
     }
 
-    /// Full hit record for a hit at parameter `t` (found by [`Shape::intersect_t`]).
-    pub fn surface_hit(&self, ray: &Ray, t: f32, prim: u32) -> SurfaceHit {
+    /// Full hit record for `hit` (found by [`Shape::intersect_t`] on the same ray).
+    pub fn surface_hit(&self, ray: &Ray, hit: ShapeHit, prim: u32) -> SurfaceHit {
+        let t = hit.t;
         match self {
             Shape::Triangle { v, n } => {
-                // Recompute barycentrics; this runs once per closest hit, not per candidate.
-                let b = intersect_triangle(
-                    &Ray {
-                        t_max: f32::INFINITY,
-                        ..*ray
-                    },
-                    v,
-                )
-                .map(|h| h.b)
-                .unwrap_or([1.0 / 3.0; 3]);
-                let (p, p_error) = triangle_point(v, b);
+                let (p, p_error) = triangle_point(v, hit.b);
                 SurfaceHit {
                     t,
                     p,
