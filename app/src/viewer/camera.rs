@@ -57,23 +57,80 @@ fn vec3(v: DVec3) -> Value {
     json!([v.x, v.y, v.z])
 }
 
-/// Replaces the camera's view (`from`, `to`, `up`, `vfov_deg`) in the scene file `path`, keeping
-/// everything else in it (image size, the rest of the scene, the order of keys); the file is
-/// rewritten as pretty-printed JSON.
+/// Replaces the camera's view (`from`, `to`, `up`, `vfov_deg`) in the scene file `path`. Only the
+/// top-level `camera` object's text changes; everything else in the file (the rest of the scene,
+/// key order, formatting) stays as it is on disk.
 pub fn save_camera(path: &Path, cam: &CameraDesc) -> Result<(), String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut value: Value =
-        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    let camera = value
-        .get_mut("camera")
-        .and_then(Value::as_object_mut)
-        .ok_or_else(|| format!("{}: no camera object", path.display()))?;
+    let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let text = std::fs::read_to_string(path).map_err(|e| at(&e))?;
+    let value: Value = serde_json::from_str(&text).map_err(|e| at(&e))?;
+    let mut camera = value
+        .get("camera")
+        .and_then(Value::as_object)
+        .cloned()
+        .ok_or_else(|| at(&"no camera object"))?;
     camera.insert("from".into(), vec3(cam.from));
     camera.insert("to".into(), vec3(cam.to));
     camera.insert("up".into(), vec3(cam.up));
     camera.insert("vfov_deg".into(), json!(cam.vfov_deg));
-    let out = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())? + "\n";
-    std::fs::write(path, out).map_err(|e| format!("{}: {e}", path.display()))
+    let span = top_level_value_span(&text, "camera").ok_or_else(|| at(&"no camera object"))?;
+    let new_camera = serde_json::to_string(&Value::Object(camera)).map_err(|e| at(&e))?;
+    let out = format!("{}{new_camera}{}", &text[..span.start], &text[span.end..]);
+    std::fs::write(path, out).map_err(|e| at(&e))
+}
+
+/// Byte range of the value of `key` in the top-level object of the JSON document `text` (which
+/// must be valid JSON: the caller has parsed it). A scan that tracks strings and nesting depth.
+fn top_level_value_span(text: &str, key: &str) -> Option<std::ops::Range<usize>> {
+    let bytes = text.as_bytes();
+    let (mut depth, mut i) = (0usize, 0usize);
+    // Start of the value being measured, and the depth it opened at.
+    let mut value_start: Option<usize> = None;
+    let mut expect_value = false;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'"' => {
+                let s = i;
+                i += 1;
+                while bytes[i] != b'"' {
+                    i += if bytes[i] == b'\\' { 2 } else { 1 };
+                }
+                if depth == 1 && value_start.is_none() && !expect_value {
+                    // A key of the top-level object: is it ours?
+                    let name: Result<String, _> = serde_json::from_str(&text[s..=i]);
+                    expect_value = name.is_ok_and(|n| n == key);
+                }
+            }
+            b':' if expect_value && depth == 1 => {
+                let mut j = i + 1;
+                while bytes[j].is_ascii_whitespace() {
+                    j += 1;
+                }
+                value_start = Some(j);
+                expect_value = false;
+                if bytes[j] != b'{' && bytes[j] != b'[' {
+                    // A scalar: it ends at the next ',' or '}' outside strings.
+                    let mut k = j;
+                    while bytes[k] != b',' && bytes[k] != b'}' {
+                        k += 1;
+                    }
+                    return Some(j..k);
+                }
+            }
+            b'{' | b'[' => depth += 1,
+            b'}' | b']' => {
+                depth -= 1;
+                if depth == 1
+                    && let Some(s) = value_start
+                {
+                    return Some(s..i + 1);
+                }
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    None
 }
 
 #[cfg(test)]
@@ -129,25 +186,33 @@ mod tests {
         assert_ne!(after.camera, before.camera);
         assert_eq!(after.materials, before.materials);
         assert_eq!(after.shapes.len(), before.shapes.len());
-        // Top-level keys stay in the file's order, read from the raw text (a parsed map could
-        // have sorted them).
+        // Only the camera's text changed: the rest of the file is byte for byte the same.
         let text = std::fs::read_to_string(&path).unwrap();
         let original = std::fs::read_to_string(src).unwrap();
-        let order = |t: &str| {
-            let mut keys: Vec<(usize, &str)> = ["camera", "materials", "shapes", "max_depth"]
-                .iter()
-                .filter_map(|k| t.find(&format!("\"{k}\"")).map(|i| (i, *k)))
-                .collect();
-            keys.sort();
-            keys.into_iter().map(|(_, k)| k).collect::<Vec<_>>()
-        };
-        assert_eq!(order(&text), order(&original));
-        assert!(order(&original).len() >= 3);
+        let (a, b) = (
+            top_level_value_span(&original, "camera").unwrap(),
+            top_level_value_span(&text, "camera").unwrap(),
+        );
+        assert!(original[a.clone()].starts_with('{') && original[a.clone()].ends_with('}'));
+        assert_eq!(original[..a.start], text[..b.start]);
+        assert_eq!(original[a.end..], text[b.end..]);
+        assert!(original[a.end..].contains("\"materials\""));
         assert!(
             save_camera(&dir.join("missing.json"), &c)
                 .unwrap_err()
                 .contains("missing.json")
         );
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn value_spans_skip_nested_keys_and_strings() {
+        let t = r#"{"a": {"camera": 1}, "s": "\"camera\": {", "camera" : { "x": [1, {"y": 2}] } , "z": 3}"#;
+        assert_eq!(
+            &t[top_level_value_span(t, "camera").unwrap()],
+            r#"{ "x": [1, {"y": 2}] }"#
+        );
+        assert_eq!(&t[top_level_value_span(t, "z").unwrap()], "3");
+        assert_eq!(top_level_value_span(t, "y"), None);
     }
 }
