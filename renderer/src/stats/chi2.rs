@@ -14,12 +14,31 @@ use super::gamma::{chi2_sf, sidak};
 use super::quadrature::{Rect, adaptive, midpoint};
 use super::sampler::DirectionalSampler;
 use crate::rng::Rng;
+use glam::Vec2;
 use rayon::prelude::*;
 use std::f64::consts::TAU;
 use std::fmt;
 
 /// Samples per work item: the histogram does not depend on the thread count.
 const CHUNK: usize = 1 << 16;
+
+/// The uniforms `(u1, u2)` chunk `c` of a test with `seed` feeds its sampler, `n` of them.
+fn chunk_uniforms(seed: u32, c: usize, n: usize) -> impl Iterator<Item = (f32, Vec2)> {
+    let mut rng = Rng::new(seed, c as u32, 0x5eed);
+    (0..n).map(move |_| {
+        let u1 = rng.next_f32();
+        (u1, rng.next_2d())
+    })
+}
+
+/// Every uniform pair a test with `seed` and `sample_count` samples feeds its sampler, in the
+/// order it draws them: a sampler that runs elsewhere (the GPU backend's WGSL) computes its
+/// samples for exactly these, ahead of the test (see [`super::precomputed`]).
+pub fn drawn_uniforms(seed: u32, sample_count: usize) -> Vec<(f32, Vec2)> {
+    (0..sample_count.div_ceil(CHUNK))
+        .flat_map(|c| chunk_uniforms(seed, c, CHUNK.min(sample_count - c * CHUNK)))
+        .collect()
+}
 /// Relative difference beyond which a sample's reported pdf and `pdf(w)` disagree.
 const PDF_REL_TOL: f32 = 1e-2;
 /// Largest fraction of samples allowed to disagree that way: an area pdf recomputed from a
@@ -278,11 +297,8 @@ impl<'a> ChiSquareTest<'a> {
                     hist: vec![0; cells],
                     ..Tally::default()
                 };
-                let mut rng = Rng::new(self.seed, c as u32, 0x5eed);
                 let n = CHUNK.min(self.sample_count - c * CHUNK);
-                for _ in 0..n {
-                    let u1 = rng.next_f32();
-                    let u2 = rng.next_2d();
+                for (u1, u2) in chunk_uniforms(self.seed, c, n) {
                     let Some(s) = self.sampler.sample(u1, u2) else {
                         t.delta_or_none += 1;
                         continue;
