@@ -3,8 +3,9 @@
 //! its Rust twin and compare the results.
 //!
 //! The snippet is the body of a compute kernel with the whole library in scope (every module, as
-//! [`Features::all`] but with the scene's BVH choice) and the scene bound as group 0. It reads its
-//! item's inputs with `inp(k)` (the k-th `vec4f`) and writes results with `outp(k, v)`.
+//! [`Features::all`] but with the scene's BVH choice, CWBVH or BVH2) and the scene bound as group
+//! 0. It reads its item's inputs with `inp(k)` (the k-th `vec4f`) and writes results with
+//! `outp(k, v)`.
 
 use super::GpuError;
 use super::scene_buffers::{GpuParams, GpuScene, PARAMS_STRIDE};
@@ -43,6 +44,7 @@ pub fn run_snippet(
     );
     let features = Features {
         use_bvh: gpu.features().use_bvh,
+        bvh2: gpu.features().bvh2,
         ..Features::all()
     };
     let source = library_source(&features, &kernel)?;

@@ -70,7 +70,19 @@ impl GpuProgressive {
         settings: Settings,
         seed: u32,
     ) -> Result<GpuProgressive, GpuError> {
-        let gpu = GpuScene::new(ctx.clone(), scene)?;
+        GpuProgressive::with_context_and_bvh2(ctx, scene, settings, seed, false)
+    }
+
+    /// As [`GpuProgressive::with_context`], traversing a BVH2 instead of the CWBVH when `bvh2`
+    /// is set (see [`GpuScene::with_bvh2`]): for measuring the two, same estimator and image.
+    pub fn with_context_and_bvh2(
+        ctx: Arc<GpuContext>,
+        scene: Arc<Scene>,
+        settings: Settings,
+        seed: u32,
+        bvh2: bool,
+    ) -> Result<GpuProgressive, GpuError> {
+        let gpu = GpuScene::with_bvh2(ctx.clone(), scene, bvh2)?;
         let device = &ctx.device;
         let source = path_tracer_source(&gpu.features())?;
         let pipeline = ctx.pipeline(&source, || {

@@ -3,7 +3,9 @@
 //!
 //! Primitives are uploaded in the BVH's leaf order, which is the order of
 //! [`crate::geometry::Accel::primitives`], so the obvhs CWBVH nodes go up byte for byte and a hit's
-//! primitive index means the same on both sides.
+//! primitive index means the same on both sides. The optional BVH2 ([`GpuScene::with_bvh2`]) is
+//! built over that same list and reaches it through its `primitive_indices`, so its hits index the
+//! same primitives.
 
 use super::shader::Features;
 use super::{GpuContext, GpuError};
@@ -134,10 +136,74 @@ fn cdf(weights: &[f32]) -> Vec<f32> {
     out
 }
 
+/// The deepest BVH2 the traversal's stack holds (`BVH2_STACK_SIZE` in `bvh2.wgsl`): near-first
+/// traversal defers at most one node per level.
+const BVH2_MAX_DEPTH: usize = 64;
+
+/// Builds an obvhs BVH2 over `prims` (the CWBVH's leaf order) and packs it as `bvh2.wgsl` reads
+/// it: node i as two `vec4<u32>` (min.xyz, prim_count) and (max.xyz, first), then the leaves'
+/// primitive ids, four per row. A leaf's `first` becomes the word index of its ids, so the shader
+/// needs no offset uniform (and the bind group layout stays the CWBVH's).
+fn bvh2_rows(prims: &[crate::geometry::primitive::Primitive]) -> Result<Vec<[u32; 4]>, GpuError> {
+    use obvhs::{BvhBuildParams, bvh2::builder::build_bvh2};
+    let bvh = build_bvh2(
+        prims,
+        BvhBuildParams::medium_build(),
+        &mut std::time::Duration::default(),
+    );
+    // Depth of the tree, iteratively (it may be deep enough to matter).
+    let mut depth = 0;
+    let mut todo = vec![(0usize, 1usize)];
+    while let Some((i, d)) = todo.pop() {
+        depth = depth.max(d);
+        let n = &bvh.nodes[i];
+        if n.prim_count == 0 {
+            todo.push((n.first_index as usize, d + 1));
+            todo.push((n.first_index as usize + 1, d + 1));
+        }
+    }
+    if depth > BVH2_MAX_DEPTH {
+        return Err(GpuError::TooLarge(format!(
+            "the BVH2 is {depth} levels deep, its GPU traversal holds {BVH2_MAX_DEPTH}"
+        )));
+    }
+    let ids_word = 8 * bvh.nodes.len() as u32;
+    let mut rows = Vec::with_capacity(2 * bvh.nodes.len() + bvh.primitive_indices.len() / 4 + 1);
+    for n in &bvh.nodes {
+        let first = if n.prim_count == 0 {
+            n.first_index
+        } else {
+            ids_word + n.first_index
+        };
+        let (lo, hi) = (n.aabb.min, n.aabb.max);
+        rows.push([lo.x.to_bits(), lo.y.to_bits(), lo.z.to_bits(), n.prim_count]);
+        rows.push([hi.x.to_bits(), hi.y.to_bits(), hi.z.to_bits(), first]);
+    }
+    for ids in bvh.primitive_indices.chunks(4) {
+        let mut row = [0u32; 4];
+        row[..ids.len()].copy_from_slice(ids);
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
 impl GpuScene {
-    /// Flattens and uploads `scene`.
+    /// Flattens and uploads `scene`, with the CWBVH.
     pub fn new(ctx: Arc<GpuContext>, scene: Arc<Scene>) -> Result<GpuScene, GpuError> {
-        let features = Features::of(&scene);
+        GpuScene::with_bvh2(ctx, scene, false)
+    }
+
+    /// Flattens and uploads `scene`; with `bvh2` (and a scene large enough for a BVH) it also
+    /// builds an obvhs BVH2 and the programs traverse that instead of the CWBVH
+    /// ([`Features::bvh2`]), for measuring the two. The images are the same up to float rounding
+    /// either way.
+    pub fn with_bvh2(
+        ctx: Arc<GpuContext>,
+        scene: Arc<Scene>,
+        bvh2: bool,
+    ) -> Result<GpuScene, GpuError> {
+        let mut features = Features::of(&scene);
+        features.bvh2 = bvh2 && features.use_bvh;
         let mut tables: Vec<f32> = Vec::new();
 
         let prims: Vec<GpuPrim> = scene
@@ -306,7 +372,13 @@ impl GpuScene {
             None => (NONE, NONE),
         };
 
+        let bvh2_rows = if features.bvh2 {
+            bvh2_rows(scene.accel.primitives())?
+        } else {
+            Vec::new()
+        };
         let nodes: &[u8] = match scene.accel.cwbvh() {
+            Some(_) if features.bvh2 => bytemuck::cast_slice(&bvh2_rows),
             Some(bvh) => bytemuck::cast_slice(&bvh.nodes),
             None => &[],
         };

@@ -60,6 +60,7 @@ const MODULES: &[Module] = &[
     module!("sphere.wgsl"),
     module!("shape.wgsl"),
     module!("bvh.wgsl"),
+    module!("bvh2.wgsl"),
     module!("bindings.wgsl"),
 ];
 
@@ -85,6 +86,10 @@ pub struct Features {
     pub has_sphere_light: bool,
     /// A BVH (more than [`crate::geometry::Accel::LINEAR_LIMIT`] primitives).
     pub use_bvh: bool,
+    /// With [`Features::use_bvh`]: traverse a BVH2 (`bvh2.wgsl`, built at upload) instead of the
+    /// default CWBVH (`bvh.wgsl`). Kept to measure the two against each other; never set by
+    /// [`Features::of`], only by an explicit choice ([`crate::gpu::GpuScene::with_bvh2`]).
+    pub bvh2: bool,
     /// A microfacet lobe rough enough not to be a mirror (conductor or plastic coat).
     pub has_ggx: bool,
     /// Conductors.
@@ -111,6 +116,7 @@ impl Features {
             has_disk_light: true,
             has_sphere_light: true,
             use_bvh: true,
+            bvh2: false,
             has_ggx: true,
             has_conductor: true,
             has_complex_fresnel: true,
@@ -170,7 +176,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 14] {
+    fn defines(&self) -> [(&'static str, bool); 16] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -186,6 +192,8 @@ impl Features {
             ("HAS_DISK_LIGHT", self.has_lights && self.has_disk_light),
             ("HAS_SPHERE_LIGHT", self.has_lights && self.has_sphere_light),
             ("USE_BVH", self.use_bvh),
+            ("USE_CWBVH", self.use_bvh && !self.bvh2),
+            ("USE_BVH2", self.use_bvh && self.bvh2),
             ("HAS_GGX", self.has_ggx),
             ("HAS_CONDUCTOR", self.has_conductor),
             ("HAS_COMPLEX_FRESNEL", self.has_complex_fresnel),
@@ -219,6 +227,7 @@ impl Features {
             "plastic.wgsl" => self.has_plastic,
             "disk.wgsl" => self.has_disk_shape,
             "sphere.wgsl" => self.has_sphere_shape,
+            "bvh2.wgsl" => self.use_bvh && self.bvh2,
             _ => true,
         }
     }
@@ -338,6 +347,16 @@ mod tests {
             Features {
                 has_plastic: true,
                 has_conductor: true,
+                use_bvh: true,
+                ..Features::default()
+            },
+            Features {
+                bvh2: true,
+                ..Features::all()
+            },
+            Features {
+                bvh2: true,
+                has_sphere_shape: true,
                 use_bvh: true,
                 ..Features::default()
             },

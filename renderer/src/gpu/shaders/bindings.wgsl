@@ -29,8 +29,12 @@ struct Params {
 }
 
 @group(0) @binding(0) var<uniform> params: Params;
-// #if USE_BVH
+// #if USE_CWBVH
 @group(0) @binding(1) var<storage, read> nodes: array<BvhNode>;
+// #endif
+// The BVH2 alternative shares the binding with its own layout (`bvh2.wgsl`).
+// #if USE_BVH2
+@group(0) @binding(1) var<storage, read> nodes: array<vec4<u32>>;
 // #endif
 @group(0) @binding(2) var<storage, read> prims: array<Prim>;
 @group(0) @binding(3) var<storage, read> materials: array<Material>;

@@ -3,13 +3,15 @@
 // `traverse!` does (child order by ray octant, a stack of node groups), with the CPU's robust
 // child test: the ray's true interval (0, t_max), the true reciprocal, and each slab widened by a
 // bound on its rounding error, so no box the ray touches is culled. Scenes of at most 4
-// primitives are scanned linearly (no BVH code at all, see `USE_BVH`).
+// primitives are scanned linearly (no BVH code at all, see `USE_BVH`). With `USE_BVH2` the
+// traversal functions come from `bvh2.wgsl` instead (a BVH2 measured against this one); the node
+// ray below is shared.
 //
 // Node words: d0 = (p.xyz bits, e0 | e1 << 8 | e2 << 16 | imask << 24),
 // d1 = (child_base_idx, primitive_base_idx, child_meta[0..4], child_meta[4..8]),
 // d2 = (min_x[0..4], min_x[4..8], max_x[0..4], max_x[4..8]), d3 = y planes, d4 = z planes.
 
-// #if USE_BVH
+// #if USE_CWBVH
 struct BvhNode {
     d0: vec4<u32>,
     d1: vec4<u32>,
@@ -18,8 +20,11 @@ struct BvhNode {
     d4: vec4<u32>,
 }
 
-const MAX_INV: f32 = 1e20;
 const BVH_STACK_SIZE: u32 = 32u;
+// #endif
+
+// #if USE_BVH
+const MAX_INV: f32 = 1e20;
 
 // The per-ray part of the node test (`NodeRay`).
 struct NodeRay {
@@ -58,7 +63,9 @@ fn node_ray_new(o: vec3f, d: vec3f) -> NodeRay {
         oct,
     );
 }
+// #endif
 
+// #if USE_CWBVH
 fn byte_of(w: u32, j: u32) -> u32 {
     return (w >> (8u * j)) & 0xffu;
 }
@@ -112,12 +119,13 @@ struct HitT {
     prim: u32,
 }
 
+// #if !USE_BVH2
 // Closest hit along `ray` in (0, ray.t_max); prim = NONE for none.
 fn scene_intersect_t(ray: Ray) -> HitT {
     var best_t = ray.t_max;
     var best = NONE;
     let tri = triangle_ray_new(ray);
-// #if USE_BVH
+// #if USE_CWBVH
     let nray = node_ray_new(ray.o, ray.d);
     var stack: array<vec2<u32>, BVH_STACK_SIZE>;
     var sp = 0u;
@@ -176,7 +184,7 @@ fn scene_intersect_t(ray: Ray) -> HitT {
 // Whether anything blocks `ray` in (0, ray.t_max); stops at the first blocker.
 fn scene_occluded(ray: Ray) -> bool {
     let tri = triangle_ray_new(ray);
-// #if USE_BVH
+// #if USE_CWBVH
     let nray = node_ray_new(ray.o, ray.d);
     var stack: array<vec2<u32>, BVH_STACK_SIZE>;
     var sp = 0u;
@@ -227,6 +235,7 @@ fn scene_occluded(ray: Ray) -> bool {
     return false;
 // #endif
 }
+// #endif
 
 // Closest hit with its full record; prim = NONE for a miss.
 fn scene_intersect(ray: Ray) -> SurfaceHit {
