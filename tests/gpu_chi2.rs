@@ -1,16 +1,18 @@
 //! The χ² goodness-of-fit suite on samples the GPU produces: the WGSL sampling functions (BSDF
-//! sampling of every material kind, light sampling of every shape with both methods) run on the device for exactly the uniforms the test draws (`stats::Precomputed`), and
-//! their directions are histogrammed against the Rust twin's pdf, integrated per cell by the
-//! same harness as `tests/chi2_samplers.rs`. The parity tests compare the two sides pointwise;
-//! this checks the GPU's sampled distribution as a whole. (The bare cosine warp is not a case:
-//! for 1 in 500,000 uniforms the GPU's rounding puts its sample exactly on the horizon with pdf
-//! 0, which the harness counts as malformed; the diffuse material, which rejects such samples as
-//! the renderer does, covers the warp.)
+//! sampling of every material kind, light sampling of every shape with both methods) run on the
+//! device for exactly the uniforms the test draws (`stats::Precomputed`), and their directions
+//! are histogrammed against the Rust twin's pdf, integrated per cell by the same harness as
+//! `tests/chi2_samplers.rs`. The parity tests compare the two sides pointwise; this checks the
+//! GPU's sampled distribution as a whole. (The bare cosine warp is not a case: with this seed one
+//! uniform in 500,000 lands exactly on the horizon, in the Rust warp as in the WGSL one, and
+//! `stats::Warp` then reports pdf 0, which the harness counts as malformed; the diffuse
+//! material, which rejects such samples as the renderer does, covers the warp.)
 //!
 //! 500,000 samples per case (half the CPU suite's, to keep the file near a minute on lavapipe);
 //! family-wise α = 0.01, Šidák-corrected over every case of the file. A deliberately mismatched
-//! pair (GPU samples of a GGX conductor at α 0.3 against the pdf at α 0.33) must be rejected at the same
-//! per-test level. Seeded and deterministic. `LUMIS_SKIP_GPU_TESTS=1` skips it without an adapter.
+//! pair (GPU samples of a GGX conductor at α 0.3 against the pdf at α 0.33) must be rejected at
+//! the same per-test level. Seeded and deterministic. `LUMIS_SKIP_GPU_TESTS=1` skips it without
+//! an adapter.
 
 mod gpu_common;
 
