@@ -32,7 +32,7 @@ pub struct SphericalTriangleSample {
 pub fn spherical_triangle_area(a: Vec3, b: Vec3, c: Vec3) -> f32 {
     // a·((b-a)×(c-a)) = a·(b×c), but the edge differences keep small triangles' digits.
     let triple = a.dot((b - a).cross(c - a));
-    2.0 * triple.abs().atan2(1.0 + a.dot(b) + b.dot(c) + c.dot(a))
+    2.0 * crate::math::atan2(triple.abs(), 1.0 + a.dot(b) + b.dot(c) + c.dot(a))
 }
 
 /// Van Oosterom–Strackee for vertex vectors of any length: `triple_abs` is `|a·(b×c)|`, which
@@ -40,7 +40,7 @@ pub fn spherical_triangle_area(a: Vec3, b: Vec3, c: Vec3) -> f32 {
 pub(crate) fn solid_angle_from_vectors(triple_abs: f32, a: Vec3, b: Vec3, c: Vec3) -> f32 {
     let (la, lb, lc) = (a.length(), b.length(), c.length());
     let den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
-    2.0 * triple_abs.atan2(den)
+    2.0 * crate::math::atan2(triple_abs, den)
 }
 
 /// Solid angle the triangle `v` subtends from `p` (0 when degenerate or when `p` is in its plane).
@@ -70,7 +70,7 @@ impl Arvo {
         if triple == 0.0 {
             return None;
         }
-        let area = 2.0 * triple.abs().atan2(1.0 + a.dot(b) + b.dot(c) + c.dot(a));
+        let area = 2.0 * crate::math::atan2(triple.abs(), 1.0 + a.dot(b) + b.dot(c) + c.dot(a));
         if !(area > 0.0 && area.is_finite()) {
             return None;
         }
@@ -79,7 +79,7 @@ impl Arvo {
         let n_ac = a.cross(c - a).normalize_or_zero();
         let cos_alpha = n_ab.dot(n_ac).clamp(-1.0, 1.0);
         let sin_alpha = n_ab.cross(n_ac).length().min(1.0);
-        let alpha = sin_alpha.atan2(cos_alpha);
+        let alpha = crate::math::atan2(sin_alpha, cos_alpha);
         Some(Arvo {
             a,
             b,
