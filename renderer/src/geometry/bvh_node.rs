@@ -1,4 +1,6 @@
-//! A robust ray test against the eight quantized child boxes of an obvhs CWBVH node.
+//! A robust ray test against the eight quantized child boxes of an obvhs CWBVH node: the Rust
+//! model of the GPU's node test (`shaders/bvh.wgsl`), which traverses the compressed nodes as
+//! uploaded. The CPU decodes the nodes once instead ([`super::wide_bvh`]).
 //!
 //! obvhs's own node test ignores every box that ends before `t = 1e-4` (a fixed ray epsilon), so a
 //! path leaving a floor a hair away from a wall escapes through the corner, and with it the light

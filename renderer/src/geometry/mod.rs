@@ -8,6 +8,7 @@ pub mod primitive;
 pub mod ray;
 pub mod sphere;
 pub mod triangle;
+pub mod wide_bvh;
 
 pub use bvh::Accel;
 pub use primitive::{Primitive, Shape, ShapeHit};

@@ -1,4 +1,5 @@
-// Closest-hit and any-hit queries, the twin of `geometry/bvh.rs` and `geometry/bvh_node.rs`:
+// Closest-hit and any-hit queries, the twin of `geometry/bvh.rs` and `geometry/bvh_node.rs`
+// (the CPU traverses the same tree with decoded nodes, `geometry/wide_bvh.rs`):
 // obvhs's CWBVH (nodes uploaded as they are, 80 bytes = 5 × vec4<u32>) traversed as obvhs's
 // `traverse!` does (child order by ray octant, a stack of node groups), with the CPU's robust
 // child test: the ray's true interval (0, t_max), the true reciprocal, and each slab widened by a
