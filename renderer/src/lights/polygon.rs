@@ -10,7 +10,7 @@ use super::triangle::spherical_ok;
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
 use crate::geometry::ray::gamma;
 use crate::sampling::{
-    DiscreteDistribution, sample_spherical_triangle, sample_uniform_triangle,
+    DiscreteDistribution, sample_spherical_triangle_from_dirs, sample_uniform_triangle,
     spherical_triangle_area,
 };
 use glam::{Vec2, Vec3};
@@ -38,6 +38,9 @@ pub struct PolygonLight {
 /// Most triangles for which solid-angle sampling is tried; beyond it, computing every triangle's
 /// solid angle per sample costs more than the variance it saves.
 const MAX_SOLID_ANGLE_TRIANGLES: usize = 64;
+
+/// Polygons of up to this many triangles (10 vertices) keep their per-sample arrays small.
+const FEW_TRIANGLES: usize = 8;
 
 impl PolygonLight {
     /// A polygon light from its vertices and triangulation; `None` if it has no area.
@@ -75,18 +78,38 @@ impl PolygonLight {
         (p - self.origin).dot(self.n) > 0.0
     }
 
-    /// Solid angles of the triangles from `p` (in a fixed array: no allocation per sample) and their
-    /// sum, if solid-angle sampling applies. Each polygon vertex's direction is normalised once and
-    /// shared by the triangles that use it.
-    fn solid_angles(&self, p: Vec3) -> Option<([f32; MAX_SOLID_ANGLE_TRIANGLES], f32)> {
-        if self.triangles.len() > MAX_SOLID_ANGLE_TRIANGLES {
-            return None;
+    /// Calls `f` with the unit directions from `p` to the vertices, the solid angle of each
+    /// triangle and their sum, if solid-angle sampling applies. The arrays are on the stack (no
+    /// allocation per sample), sized for the polygon, and each vertex's direction is normalised
+    /// once for all the triangles that use it.
+    fn with_solid_angles<R>(
+        &self,
+        p: Vec3,
+        f: impl FnOnce(&[Vec3], &[f32], f32) -> R,
+    ) -> Option<R> {
+        match self.triangles.len() {
+            n if n <= FEW_TRIANGLES => {
+                self.solid_angles_in::<FEW_TRIANGLES, { FEW_TRIANGLES + 2 }, R>(p, f)
+            }
+            n if n <= MAX_SOLID_ANGLE_TRIANGLES => self
+                .solid_angles_in::<MAX_SOLID_ANGLE_TRIANGLES, { MAX_SOLID_ANGLE_TRIANGLES + 2 }, R>(
+                    p, f,
+                ),
+            _ => None,
         }
-        let mut dirs = [Vec3::ZERO; MAX_SOLID_ANGLE_TRIANGLES + 2];
+    }
+
+    /// [`PolygonLight::with_solid_angles`] with room for `T` triangles and `V = T + 2` vertices.
+    fn solid_angles_in<const T: usize, const V: usize, R>(
+        &self,
+        p: Vec3,
+        f: impl FnOnce(&[Vec3], &[f32], f32) -> R,
+    ) -> Option<R> {
+        let mut dirs = [Vec3::ZERO; V];
         for (d, v) in dirs.iter_mut().zip(&self.vertices) {
             *d = (*v - p).normalize_or_zero();
         }
-        let mut omegas = [0.0f32; MAX_SOLID_ANGLE_TRIANGLES];
+        let mut omegas = [0.0f32; T];
         let mut total = 0.0;
         for (o, t) in omegas.iter_mut().zip(&self.indices) {
             *o = spherical_triangle_area(
@@ -96,7 +119,13 @@ impl PolygonLight {
             );
             total += *o;
         }
-        spherical_ok(total).then_some((omegas, total))
+        spherical_ok(total).then(|| {
+            f(
+                &dirs[..self.vertices.len()],
+                &omegas[..self.triangles.len()],
+                total,
+            )
+        })
     }
 
     /// Samples a point as seen from `p`.
@@ -104,12 +133,26 @@ impl PolygonLight {
         if !self.faces(p) {
             return None;
         }
-        if method == LightSampling::SolidAngle
-            && let Some((omegas, total)) = self.solid_angles(p)
-        {
-            let (i, ux) = pick(&omegas[..self.triangles.len()], total, u.x)?;
+        let picked = if method == LightSampling::SolidAngle {
+            self.with_solid_angles(p, |dirs, omegas, total| {
+                let (i, ux) = pick(omegas, total, u.x)?;
+                let corners = self.indices[i].map(|k| dirs[k as usize]);
+                let v = &self.triangles[i];
+                let s = sample_spherical_triangle_from_dirs(
+                    v,
+                    p,
+                    corners,
+                    omegas[i],
+                    Vec2::new(ux, u.y),
+                )?;
+                Some((i, s, total))
+            })
+        } else {
+            None
+        };
+        if let Some(picked) = picked {
+            let (i, s, total) = picked?;
             let v = &self.triangles[i];
-            let s = sample_spherical_triangle(v, p, Vec2::new(ux, u.y))?;
             let b = s.barycentrics;
             let y = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
             let err = gamma(6) * ((b[0] * v[0]).abs() + (b[1] * v[1]).abs() + (b[2] * v[2]).abs());
@@ -136,7 +179,7 @@ impl PolygonLight {
             return 0.0;
         }
         if method == LightSampling::SolidAngle
-            && let Some((_, total)) = self.solid_angles(p)
+            && let Some(total) = self.with_solid_angles(p, |_, _, total| total)
         {
             return 1.0 / total;
         }

@@ -70,7 +70,13 @@ impl Arvo {
         if triple == 0.0 {
             return None;
         }
+        // As `spherical_triangle_area`, reusing the triple product.
         let area = 2.0 * crate::math::atan2(triple.abs(), 1.0 + a.dot(b) + b.dot(c) + c.dot(a));
+        Arvo::from_dirs([a, b, c], area)
+    }
+
+    /// From the unit directions and the solid angle [`spherical_triangle_area`] gives for them.
+    fn from_dirs([a, b, c]: [Vec3; 3], area: f32) -> Option<Arvo> {
         if !(area > 0.0 && area.is_finite()) {
             return None;
         }
@@ -106,7 +112,23 @@ pub fn sample_spherical_triangle(
     p: Vec3,
     u: Vec2,
 ) -> Option<SphericalTriangleSample> {
-    let t = Arvo::new(v, p)?;
+    sample_arvo(&Arvo::new(v, p)?, v, p, u)
+}
+
+/// [`sample_spherical_triangle`] for a caller that already has the unit directions from `p` to
+/// the vertices (`(v[i] − p).normalize_or_zero()`) and their [`spherical_triangle_area`], as
+/// polygon lights do when they pick a triangle by solid angle. Same result, bit for bit.
+pub fn sample_spherical_triangle_from_dirs(
+    v: &[Vec3; 3],
+    p: Vec3,
+    dirs: [Vec3; 3],
+    area: f32,
+    u: Vec2,
+) -> Option<SphericalTriangleSample> {
+    sample_arvo(&Arvo::from_dirs(dirs, area)?, v, p, u)
+}
+
+fn sample_arvo(t: &Arvo, v: &[Vec3; 3], p: Vec3, u: Vec2) -> Option<SphericalTriangleSample> {
     let (a, b, c) = (t.a, t.b, t.c);
     // Sub-triangle (a, b, c') of area A' = u0·A, with c' on the arc a→c. Arvo gives cos of the
     // arc a→c' as q = n/d; we evaluate 1 - q = (d - n)/d instead, rewritten with half-angle
