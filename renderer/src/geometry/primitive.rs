@@ -52,7 +52,7 @@ impl Shape {
     }
 
     /// The nearest hit in `(0, ray.t_max)`; `tri` is `ray` prepared for triangles.
-    #[inline]
+    #[inline(always)]
     pub fn intersect_t(&self, ray: &Ray, tri: &TriangleRay) -> Option<ShapeHit> {
         match self {
             Shape::Triangle { v, .. } => {

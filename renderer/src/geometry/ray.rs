@@ -102,7 +102,7 @@ pub fn crosses_plane_ahead(o: Vec3, d: Vec3, p0: DVec3, n: DVec3) -> bool {
 
 /// Moves `p` (with error bound `p_error`) along the normal `n` to the side `w` points to, far enough
 /// that a ray leaving from the result cannot re-hit the surface `p` lies on (pbrt-v4 `OffsetRayOrigin`).
-#[inline]
+#[inline(always)]
 pub fn offset_ray_origin(p: Vec3, p_error: Vec3, n: Vec3, w: Vec3) -> Vec3 {
     let d = n.abs().dot(p_error);
     let mut offset = d * n;
