@@ -6,17 +6,24 @@ use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
 /// Maps `u ∈ [0,1)²` to the unit disk uniformly (pdf `1/π`) with Shirley and Chiu's concentric
 /// mapping: squares go to circles, so strata stay compact and the map is continuous.
 pub fn sample_uniform_disk_concentric(u: Vec2) -> Vec2 {
+    let (r, theta) = concentric_polar(u);
+    r * Vec2::new(theta.cos(), theta.sin())
+}
+
+/// The polar form of [`sample_uniform_disk_concentric`]: the point is `r·(cos θ, sin θ)`, with a
+/// signed `r` and `θ ∈ [-π/4, 3π/4]` (where GPU sin/cos are accurate), or `(0, 0)` at the centre.
+/// Callers that need `1 − r²` get it from `r` exactly rather than from the rounded point.
+pub fn concentric_polar(u: Vec2) -> (f32, f32) {
     let o = 2.0 * u - Vec2::ONE;
     if o == Vec2::ZERO {
-        return Vec2::ZERO;
+        return (0.0, 0.0);
     }
     // Each quadrant-like wedge |x| > |y| or |y| >= |x| keeps its square "radius" as the disk radius.
-    let (r, theta) = if o.x.abs() > o.y.abs() {
+    if o.x.abs() > o.y.abs() {
         (o.x, FRAC_PI_4 * (o.y / o.x))
     } else {
         (o.y, FRAC_PI_2 - FRAC_PI_4 * (o.x / o.y))
-    };
-    r * Vec2::new(theta.cos(), theta.sin())
+    }
 }
 
 /// Inverse of [`sample_uniform_disk_concentric`]: the `u` that maps to the disk point `p`.

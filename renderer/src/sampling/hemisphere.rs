@@ -1,6 +1,6 @@
 //! Sampling the +z hemisphere: cosine-weighted (Malley's method) and uniform.
 
-use super::disk::{invert_uniform_disk_concentric, sample_uniform_disk_concentric};
+use super::disk::{concentric_polar, invert_uniform_disk_concentric};
 use crate::math::safe_sqrt;
 use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, TAU};
@@ -8,9 +8,11 @@ use std::f32::consts::{FRAC_1_PI, TAU};
 /// Cosine-weighted direction about +z (pdf `cos θ / π`): a concentric-disk point lifted onto the
 /// hemisphere (Malley's method), which keeps the disk map's low distortion.
 pub fn sample_cosine_hemisphere(u: Vec2) -> Vec3 {
-    let d = sample_uniform_disk_concentric(u);
-    let z = safe_sqrt(1.0 - d.length_squared());
-    Vec3::new(d.x, d.y, z)
+    let (r, theta) = concentric_polar(u);
+    // cos θ = √((1 − |r|)(1 + |r|)) from the radius, not from the rounded disk point: near the
+    // horizon 1 − |d|² would amplify the sin/cos rounding by 1/cos θ (and GPU sin/cos are looser).
+    let z = safe_sqrt((1.0 - r.abs()) * (1.0 + r.abs()));
+    Vec3::new(r * theta.cos(), r * theta.sin(), z)
 }
 
 /// Pdf of [`sample_cosine_hemisphere`] with respect to solid angle.

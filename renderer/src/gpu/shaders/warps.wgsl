@@ -3,27 +3,28 @@
 
 // `sample_uniform_disk_concentric` (Shirley–Chiu).
 fn sample_uniform_disk_concentric(u: vec2f) -> vec2f {
+    let rt = concentric_polar(u);
+    return rt.x * vec2f(cos(rt.y), sin(rt.y));
+}
+
+// `concentric_polar`: (signed r, θ ∈ [-π/4, 3π/4]) of the concentric disk point.
+fn concentric_polar(u: vec2f) -> vec2f {
     let o = 2.0 * u - vec2f(1.0);
     if o.x == 0.0 && o.y == 0.0 {
         return vec2f(0.0);
     }
-    var r: f32;
-    var theta: f32;
     if abs(o.x) > abs(o.y) {
-        r = o.x;
-        theta = FRAC_PI_4 * (o.y / o.x);
-    } else {
-        r = o.y;
-        theta = FRAC_PI_2 - FRAC_PI_4 * (o.x / o.y);
+        return vec2f(o.x, FRAC_PI_4 * (o.y / o.x));
     }
-    return r * vec2f(cos(theta), sin(theta));
+    return vec2f(o.y, FRAC_PI_2 - FRAC_PI_4 * (o.x / o.y));
 }
 
-// `sample_cosine_hemisphere` (Malley): pdf cosθ/π.
+// `sample_cosine_hemisphere` (Malley): pdf cosθ/π; cos θ from the radius, as on the CPU.
 fn sample_cosine_hemisphere(u: vec2f) -> vec3f {
-    let d = sample_uniform_disk_concentric(u);
-    let z = safe_sqrt(1.0 - dot(d, d));
-    return vec3f(d.x, d.y, z);
+    let rt = concentric_polar(u);
+    let r = abs(rt.x);
+    let z = safe_sqrt((1.0 - r) * (1.0 + r));
+    return vec3f(rt.x * cos(rt.y), rt.x * sin(rt.y), z);
 }
 
 // `sample_uniform_sphere`: pdf 1/4π.
