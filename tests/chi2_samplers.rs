@@ -7,7 +7,9 @@
 //!
 //! **Significance:** family-wise α = 0.01 over all [`N_TESTS`] tests, Šidák-corrected to a
 //! per-test level `1 − 0.99^(1/N_TESTS)` ≈ 5.9e-5. Each test also fails on malformed samples,
-//! samples where the pdf is 0 or that land in cells of expected count 0, reported pdfs that
+//! samples where the pdf is 0 farther than 1e-5 rad from where it is not (closer is rounding at
+//! the support's edge; more than 0.1% of those fail too) or that land in cells of expected count
+//! 0, reported pdfs that
 //! disagree with `pdf(w)`, and `∫pdf` differing from the fraction of non-delta samples.
 //!
 //! Narrow lobes (α ≤ 0.1) are histogrammed by half vector in a cap of 10α about the normal (GGX
@@ -162,4 +164,54 @@ fn chi2_rejects_broken_samplers() {
         eprintln!("{name:40} {r}");
         assert!(r.passed(), "{name}: {r}");
     }
+}
+
+/// Turns every sample of a sampler by a fixed angle about a fixed axis, pdf unchanged.
+struct Turned<A>(A, f32);
+
+impl<A: DirectionalSampler> DirectionalSampler for Turned<A> {
+    fn sample(&self, u1: f32, u2: glam::Vec2) -> Option<DirectionSample> {
+        let s = self.0.sample(u1, u2)?;
+        let turn = glam::Quat::from_axis_angle(glam::Vec3::new(0.6, 0.0, 0.8), self.1);
+        Some(DirectionSample {
+            w: (turn * s.w).normalize(),
+            ..s
+        })
+    }
+    fn pdf(&self, w: glam::Vec3) -> f32 {
+        self.0.pdf(w)
+    }
+    fn domain(&self) -> Domain {
+        self.0.domain()
+    }
+}
+
+/// The zero-pdf check tells rounding at a support's edge from sampling outside it: a quad
+/// light's samples turned by 8e-6 rad (rounding-sized) leave the support only at its edge, and
+/// pass; turned by 1e-3 rad, some land well outside it, and fail on that count alone (too few to
+/// move the χ² statistic, so that check is what catches them).
+#[test]
+fn zero_pdf_samples_off_the_edge_fail() {
+    let light = lumis::stats::LightDirections {
+        scene: suite::light_scene(suite::Shape::Quad, suite::Placement::Near),
+        light: 0,
+        p: glam::Vec3::ZERO,
+        method: lumis::lights::LightSampling::SolidAngle,
+    };
+    let run = |angle: f32| {
+        let r = ChiSquareTest::new(&Turned(light.clone(), angle))
+            .samples(1_000_000)
+            .seed(78)
+            .run();
+        eprintln!("turned by {angle:e}: {r}");
+        r
+    };
+    let slight = run(8e-6);
+    assert!(
+        slight.edge_samples > 0 && slight.zero_pdf_samples == 0,
+        "{slight}"
+    );
+    assert!(slight.passed(), "{slight}");
+    let off = run(1e-3);
+    assert!(off.zero_pdf_samples > 0 && !off.passed(), "{off}");
 }
