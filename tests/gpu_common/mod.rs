@@ -81,6 +81,23 @@ impl Compare {
         self.record(ok, what, got, want);
     }
 
+    /// Compares one value with `extra` added to the tolerance: the part of the difference that
+    /// the inputs' conditioning explains (rounding amplified by the geometry), stated per test.
+    pub fn scalar_conditioned(&mut self, got: f32, want: f32, extra: f32, what: &str) {
+        let scale = got.abs().max(want.abs());
+        let same =
+            got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()) || got == want;
+        let ok = same || (got - want).abs() <= self.atol + self.rtol * scale + extra;
+        self.record(ok, what, got, want);
+    }
+
+    /// Compares the xyz of a GPU vec4 with a `Vec3`, each with `extra` added to the tolerance.
+    pub fn v3_conditioned(&mut self, got: [f32; 4], want: Vec3, extra: f32, what: &str) {
+        for (g, w) in got[..3].iter().zip(want.to_array()) {
+            self.scalar_conditioned(*g, w, extra, what);
+        }
+    }
+
     /// Compares slices element by element.
     pub fn vec(&mut self, got: &[f32], want: &[f32], what: &str) {
         for (g, w) in got.iter().zip(want) {
