@@ -205,6 +205,7 @@ impl ViewerApp {
     /// drawn from their accumulation buffers with no readback per frame. Restarts, so a GPU
     /// render already running on a device of its own moves onto the window's.
     pub fn attach_window_device(&mut self, state: &eframe::egui_wgpu::RenderState) {
+        super::surface_race::survive_configure_races(&state.device);
         self.window_gpu = Some(GpuContext::from_device(
             state.device.clone(),
             state.queue.clone(),

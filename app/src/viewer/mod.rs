@@ -23,6 +23,7 @@ pub mod plot;
 pub mod preview;
 pub mod screenshot;
 pub mod selection;
+pub mod surface_race;
 pub mod tonemap;
 pub mod worker;
 
