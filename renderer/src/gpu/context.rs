@@ -1,6 +1,7 @@
 //! The wgpu device the backend renders with.
 
 use super::GpuError;
+use super::progressive::PathPipelines;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
@@ -16,7 +17,7 @@ pub struct GpuContext {
     /// What the adapter is ("llvmpipe (LLVM 15.0.6, 256 bits)" on Mesa's software driver).
     pub adapter_info: wgpu::AdapterInfo,
     /// Compiled path tracers by their WGSL source (see [`GpuContext::pipeline`]).
-    pipelines: Mutex<HashMap<String, wgpu::ComputePipeline>>,
+    pipelines: Mutex<HashMap<String, PathPipelines>>,
 }
 
 impl GpuContext {
@@ -58,15 +59,15 @@ impl GpuContext {
         })
     }
 
-    /// The compute pipeline for `source`, compiled by `compile` the first time only: a viewer
-    /// restarts renders with the same scene features again and again, and compiling the path
-    /// tracer takes about a second on lavapipe. (wgpu deduplicates equal bind group layouts, so
-    /// a cached pipeline accepts bind groups made from a later scene's equal layout.)
+    /// The path tracer's pipelines for `source`, compiled by `compile` the first time only: a
+    /// viewer restarts renders with the same scene features again and again, and compiling the
+    /// path tracer takes about a second on lavapipe. (wgpu deduplicates equal bind group
+    /// layouts, so a cached pipeline accepts bind groups made from a later scene's equal layout.)
     pub fn pipeline(
         &self,
         source: &str,
-        compile: impl FnOnce() -> Result<wgpu::ComputePipeline, GpuError>,
-    ) -> Result<wgpu::ComputePipeline, GpuError> {
+        compile: impl FnOnce() -> Result<PathPipelines, GpuError>,
+    ) -> Result<PathPipelines, GpuError> {
         let mut cache = self.pipelines.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(p) = cache.get(source) {
             return Ok(p.clone());

@@ -1,7 +1,9 @@
 //! [`GpuProgressive`]: the GPU twin of [`crate::engine::Progressive`].
 //!
-//! One dispatch per sample pass (one sample per pixel), all passes of a `render_pass` call in one
-//! submission; per-sample parameters sit in one uniform buffer at 256-byte dynamic offsets. The
+//! Each dispatch renders up to [`GpuProgressive::samples_per_dispatch`] samples per pixel (its z
+//! layers, folded into the accumulation in sample order by a second small dispatch, so the image
+//! does not depend on the layering), all dispatches of a `render_pass` call in one submission;
+//! per-dispatch parameters sit in one uniform buffer at 256-byte dynamic offsets. The
 //! accumulation stays on the GPU in f32: the running mean, Welford's M2 and the mean of the
 //! even-numbered samples, from which [`GpuProgressive::film`] rebuilds the CPU's Σx, Σx² and
 //! even-sample sums (Welford's update keeps the variance accurate where plain f32 sums of x²
@@ -21,12 +23,30 @@ const PASSES_PER_SUBMIT: u32 = 64;
 /// The workgroup of the render kernel (`@workgroup_size(8, 8, 1)` in `path.wgsl`).
 const TILE: u32 = 8;
 
+/// Threads a dispatch should have to fill a large GPU (an H100 holds 132 × 2048): images with
+/// fewer pixels render several samples per dispatch. At 256² one sample per dispatch ran at 0.65×
+/// the samples/s of 1024² there.
+const TARGET_THREADS: u64 = 1 << 18;
+
+/// Most samples per dispatch (each needs a scratch plane of the image).
+const MAX_SAMPLES_PER_DISPATCH: u32 = 8;
+
+/// The path tracer's entry points, compiled from one module: `render` (the samples) and `fold`
+/// (adds a multi-sample dispatch's samples to the accumulation).
+#[derive(Clone, Debug)]
+pub struct PathPipelines {
+    /// `path.wgsl`'s `render`.
+    pub render: wgpu::ComputePipeline,
+    /// `path.wgsl`'s `fold`.
+    pub fold: wgpu::ComputePipeline,
+}
+
 /// Where the accumulated image lives on the GPU, for showing it without a readback.
 #[derive(Clone, Copy, Debug)]
 pub struct AccumulationView<'a> {
     /// The buffer: three planes of `width·height` `vec4<f32>` (16 bytes each, row-major, row 0 at
     /// the top): the running mean (the image, rgb + unused w), Welford's M2, and the mean of the
-    /// even-numbered samples.
+    /// even-numbered samples (scratch planes of multi-sample dispatches may follow).
     pub buffer: &'a wgpu::Buffer,
     /// Byte offset of the mean plane (0), so a display shader can bind just that range.
     pub mean_offset: u64,
@@ -46,7 +66,8 @@ pub struct GpuProgressive {
     settings: Settings,
     seed: u32,
     spp: u32,
-    pipeline: wgpu::ComputePipeline,
+    pipelines: PathPipelines,
+    samples_per_dispatch: u32,
     params: wgpu::Buffer,
     accum: wgpu::Buffer,
     counters: wgpu::Buffer,
@@ -85,41 +106,46 @@ impl GpuProgressive {
         let gpu = GpuScene::with_bvh2(ctx.clone(), scene, bvh2)?;
         let device = &ctx.device;
         let source = path_tracer_source(&gpu.features())?;
-        let pipeline = ctx.pipeline(&source, || {
+        let pipelines = ctx.pipeline(&source, || {
             let module = create_module(device, "lumis path tracer", &source)?;
             let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some("lumis path tracer"),
                 bind_group_layouts: &[Some(gpu.layout())],
                 immediate_size: 0,
             });
-            Ok(
+            let entry = |name: &str| {
                 device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                     label: Some("lumis path tracer"),
                     layout: Some(&layout),
                     module: &module,
-                    entry_point: Some("render"),
+                    entry_point: Some(name),
                     compilation_options: Default::default(),
                     cache: None,
-                }),
-            )
+                })
+            };
+            Ok(PathPipelines {
+                render: entry("render"),
+                fold: entry("fold"),
+            })
         })?;
         let cam = &gpu.scene().camera;
         let pixels = cam.width as u64 * cam.height as u64;
-        let accum_size = 3 * pixels * 16;
-        if accum_size > device.limits().max_storage_buffer_binding_size {
+        if accum_bytes(pixels, 1) > device.limits().max_storage_buffer_binding_size {
             return Err(GpuError::TooLarge(format!(
-                "the {}x{} accumulation buffer takes {accum_size} bytes",
-                cam.width, cam.height
+                "the {}x{} accumulation buffer takes {} bytes",
+                cam.width,
+                cam.height,
+                accum_bytes(pixels, 1)
             )));
         }
-        let accum = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("lumis accumulation"),
-            size: accum_size,
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_SRC
-                | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        // A CPU adapter (lavapipe) has no occupancy to fill: one sample per dispatch there.
+        let samples_per_dispatch = match ctx.adapter_info.device_type {
+            wgpu::DeviceType::Cpu => 1,
+            _ => TARGET_THREADS.div_ceil(pixels.max(1)) as u32,
+        };
+        let samples_per_dispatch =
+            fitting_samples_per_dispatch(device, pixels, samples_per_dispatch);
+        let accum = create_accumulation(device, accum_bytes(pixels, samples_per_dispatch));
         let counters = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("lumis counters"),
             size: 16,
@@ -140,7 +166,8 @@ impl GpuProgressive {
             settings,
             seed,
             spp: 0,
-            pipeline,
+            pipelines,
+            samples_per_dispatch,
             params,
             accum,
             counters,
@@ -148,6 +175,29 @@ impl GpuProgressive {
         };
         r.clear();
         Ok(r)
+    }
+
+    /// Samples per pixel that one dispatch renders (1 on CPU adapters and for large images).
+    pub fn samples_per_dispatch(&self) -> u32 {
+        self.samples_per_dispatch
+    }
+
+    /// Renders `k` samples per dispatch from now on (clamped to 1…8 and to what the device can
+    /// hold) and restarts the accumulation. The image does not depend on `k`; this is for tests
+    /// and measurements.
+    pub fn set_samples_per_dispatch(&mut self, k: u32) {
+        let ctx = self.gpu.context().clone();
+        let cam = &self.gpu.scene().camera;
+        let pixels = cam.width as u64 * cam.height as u64;
+        self.samples_per_dispatch = fitting_samples_per_dispatch(&ctx.device, pixels, k);
+        let size = accum_bytes(pixels, self.samples_per_dispatch);
+        if size > self.accum.size() {
+            self.accum = create_accumulation(&ctx.device, size);
+            self.bind_group = self
+                .gpu
+                .bind_group(&self.params, &self.accum, &self.counters);
+        }
+        self.clear();
     }
 
     fn clear(&mut self) {
@@ -197,14 +247,17 @@ impl GpuProgressive {
         let groups = (cam.width.div_ceil(TILE), cam.height.div_ceil(TILE));
         let mut done = 0;
         while done < n {
-            let count = (n - done).min(PASSES_PER_SUBMIT);
-            let mut slots = vec![0u8; (PARAMS_STRIDE * count as u64) as usize];
-            for i in 0..count {
-                let p: GpuParams = self
-                    .gpu
-                    .params(&self.settings, self.seed, self.spp + done + i);
-                let at = (PARAMS_STRIDE * i as u64) as usize;
-                slots[at..at + size_of::<GpuParams>()].copy_from_slice(bytemuck::bytes_of(&p));
+            // One parameter slot per dispatch; each dispatch takes up to k samples.
+            let mut slots = Vec::new();
+            let mut layers = Vec::new();
+            while done < n && layers.len() < PASSES_PER_SUBMIT as usize {
+                let k = (n - done).min(self.samples_per_dispatch);
+                let mut p: GpuParams = self.gpu.params(&self.settings, self.seed, self.spp + done);
+                p.samples_per_dispatch = k;
+                slots.resize(PARAMS_STRIDE as usize * layers.len(), 0u8);
+                slots.extend_from_slice(bytemuck::bytes_of(&p));
+                layers.push(k);
+                done += k;
             }
             ctx.queue.write_buffer(&self.params, 0, &slots);
             let mut encoder = ctx.device.create_command_encoder(&Default::default());
@@ -213,14 +266,17 @@ impl GpuProgressive {
                     label: Some("lumis samples"),
                     timestamp_writes: None,
                 });
-                pass.set_pipeline(&self.pipeline);
-                for i in 0..count {
+                for (i, &k) in layers.iter().enumerate() {
                     pass.set_bind_group(0, &self.bind_group, &[(PARAMS_STRIDE * i as u64) as u32]);
-                    pass.dispatch_workgroups(groups.0, groups.1, 1);
+                    pass.set_pipeline(&self.pipelines.render);
+                    pass.dispatch_workgroups(groups.0, groups.1, k);
+                    if k > 1 {
+                        pass.set_pipeline(&self.pipelines.fold);
+                        pass.dispatch_workgroups(groups.0, groups.1, 1);
+                    }
                 }
             }
             ctx.queue.submit([encoder.finish()]);
-            done += count;
         }
         // Wait, so that timings mean something and a following `film` sees the samples.
         let _ = ctx.device.poll(wgpu::PollType::wait_indefinitely());
@@ -248,7 +304,7 @@ impl GpuProgressive {
         let cam = &self.gpu.scene().camera;
         let (w, h) = (cam.width, cam.height);
         let pixels = (w * h) as usize;
-        let bytes = ctx.read_buffer(&self.accum, self.accum.size())?;
+        let bytes = ctx.read_buffer(&self.accum, accum_bytes(pixels as u64, 1))?;
         let planes: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
         let counters = ctx.read_buffer(&self.counters, 16)?;
         let nonfinite = bytemuck::cast_slice::<u8, u32>(&counters)[0] as u64;
@@ -267,4 +323,36 @@ impl GpuProgressive {
         }
         Ok(film)
     }
+}
+
+/// Bytes of the accumulation buffer: three planes of `vec4<f32>` per pixel, and one scratch plane
+/// per sample of a dispatch when it renders more than one.
+fn accum_bytes(pixels: u64, samples_per_dispatch: u32) -> u64 {
+    let scratch = if samples_per_dispatch > 1 {
+        samples_per_dispatch as u64
+    } else {
+        0
+    };
+    (3 + scratch) * pixels * 16
+}
+
+/// `k` clamped to 1…[`MAX_SAMPLES_PER_DISPATCH`] and to what one storage binding can hold.
+fn fitting_samples_per_dispatch(device: &wgpu::Device, pixels: u64, k: u32) -> u32 {
+    let max_size = device.limits().max_storage_buffer_binding_size;
+    let mut k = k.clamp(1, MAX_SAMPLES_PER_DISPATCH);
+    while k > 1 && accum_bytes(pixels, k) > max_size {
+        k -= 1;
+    }
+    k
+}
+
+fn create_accumulation(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("lumis accumulation"),
+        size,
+        usage: wgpu::BufferUsages::STORAGE
+            | wgpu::BufferUsages::COPY_SRC
+            | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
 }

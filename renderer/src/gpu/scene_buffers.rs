@@ -83,8 +83,10 @@ pub struct GpuParams {
     pub light_pmf: u32,
     /// The mixture's light-sampling probability.
     pub mix_weight: f32,
+    /// Samples of one dispatch (its z layers), from `sample` on; see `GpuProgressive`.
+    pub samples_per_dispatch: u32,
     /// Padding.
-    pub pad: [u32; 2],
+    pub pad: u32,
     /// Camera origin; w = tan of the half horizontal field of view.
     pub cam_origin: [f32; 4],
     /// Camera forward axis; w = tan of the half vertical field of view.
@@ -548,7 +550,8 @@ impl GpuScene {
             light_cdf: self.light_cdf,
             light_pmf: self.light_pmf,
             mix_weight,
-            pad: [0; 2],
+            samples_per_dispatch: 1,
+            pad: 0,
             cam_origin: v4(cam.origin, tan_x),
             cam_forward: v4(forward, tan_y),
             cam_right: v4(right, 0.0),

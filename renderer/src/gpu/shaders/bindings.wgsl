@@ -19,8 +19,9 @@ struct Params {
     light_cdf: u32,
     light_pmf: u32,
     mix_weight: f32,
+    // Samples of this dispatch (its z layers), from `sample` on (`path.wgsl`, `fold`).
+    samples_per_dispatch: u32,
     pad0: u32,
-    pad1: u32,
     // Camera: origin, forward, right, up; tan_x, tan_y in origin.w, forward.w.
     cam_origin: vec4f,
     cam_forward: vec4f,
@@ -42,7 +43,8 @@ struct Params {
 @group(0) @binding(5) var<storage, read> light_tris: array<vec4f>;
 @group(0) @binding(6) var<storage, read> tables: array<f32>;
 // Accumulation, three planes of width·height vec4: running mean, Welford's M2, mean of the
-// even-numbered samples.
+// even-numbered samples; then, for dispatches of several samples, one plane per sample of the
+// dispatch holding its radiance until `fold` adds it in.
 @group(0) @binding(7) var<storage, read_write> accum: array<vec4f>;
 // [0] = samples that were not finite (counted as zero, like the CPU).
 @group(0) @binding(8) var<storage, read_write> counters: array<atomic<u32>>;

@@ -210,13 +210,18 @@ fn camera_ray(x: f32, y: f32) -> Ray {
     return Ray(params.cam_origin.xyz, normalize_glam(d), inf());
 }
 
+// One dispatch renders `params.samples_per_dispatch` samples per pixel, one per z layer: small
+// images then still fill a large GPU (256² pixels are a quarter of the threads an H100 holds).
+// With one layer the sample is added at once; with more, each layer leaves its radiance in a
+// scratch plane and `fold` adds them in sample order with the same updates, so the image is the
+// same bit for bit whatever the layering.
 @compute @workgroup_size(8, 8, 1)
 fn render(@builtin(global_invocation_id) gid: vec3<u32>) {
     if gid.x >= params.width || gid.y >= params.height {
         return;
     }
     let pixel = gid.y * params.width + gid.x;
-    let s = params.sample;
+    let s = params.sample + gid.z;
     rng_init(params.seed, pixel, s);
     let jitter = rng_next_2d();
     var x = radiance(camera_ray(f32(gid.x) + jitter.x, f32(gid.y) + jitter.y));
@@ -225,6 +230,28 @@ fn render(@builtin(global_invocation_id) gid: vec3<u32>) {
         atomicAdd(&counters[0], 1u);
         x = vec3f(0.0);
     }
+    if params.samples_per_dispatch == 1u {
+        accumulate(pixel, s, x);
+    } else {
+        accum[(3u + gid.z) * params.width * params.height + pixel] = vec4f(x, 0.0);
+    }
+}
+
+// Adds the layers of a multi-sample dispatch to the accumulation, in sample order.
+@compute @workgroup_size(8, 8, 1)
+fn fold(@builtin(global_invocation_id) gid: vec3<u32>) {
+    if gid.x >= params.width || gid.y >= params.height {
+        return;
+    }
+    let pixel = gid.y * params.width + gid.x;
+    let plane = params.width * params.height;
+    for (var j = 0u; j < params.samples_per_dispatch; j++) {
+        accumulate(pixel, params.sample + j, accum[(3u + j) * plane + pixel].xyz);
+    }
+}
+
+// Sample `s` (radiance `x`) into the running mean, Welford's M2 and the even-sample mean.
+fn accumulate(pixel: u32, s: u32, x: vec3f) {
     let plane = params.width * params.height;
     let mean = accum[pixel].xyz;
     let delta = x - mean;
