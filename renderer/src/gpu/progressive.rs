@@ -17,8 +17,8 @@ use crate::integrator::Settings;
 use crate::scene::Scene;
 use std::sync::Arc;
 
-/// Sample passes recorded per submission (the uniform buffer holds this many parameter slots).
-const PASSES_PER_SUBMIT: u32 = 64;
+/// Dispatches recorded per submission (the uniform buffer holds this many parameter slots).
+const DISPATCHES_PER_SUBMIT: u32 = 64;
 
 /// The workgroup of the render kernel (`@workgroup_size(8, 8, 1)` in `path.wgsl`).
 const TILE: u32 = 8;
@@ -156,7 +156,7 @@ impl GpuProgressive {
         });
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("lumis params"),
-            size: PARAMS_STRIDE * PASSES_PER_SUBMIT as u64,
+            size: PARAMS_STRIDE * DISPATCHES_PER_SUBMIT as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -250,7 +250,7 @@ impl GpuProgressive {
             // One parameter slot per dispatch; each dispatch takes up to k samples.
             let mut slots = Vec::new();
             let mut layers = Vec::new();
-            while done < n && layers.len() < PASSES_PER_SUBMIT as usize {
+            while done < n && layers.len() < DISPATCHES_PER_SUBMIT as usize {
                 let k = (n - done).min(self.samples_per_dispatch);
                 let mut p: GpuParams = self.gpu.params(&self.settings, self.seed, self.spp + done);
                 p.samples_per_dispatch = k;
