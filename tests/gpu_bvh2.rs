@@ -132,15 +132,21 @@ fn check_queries(scene: &Arc<Scene>, gpu: &GpuScene, n: usize, lo: Vec3, hi: Vec
     let mut c = Compare::new("BVH2 closest hit", 1e-5, 1e-5);
     let mut occ = Compare::new("BVH2 occlusion", 0.0, 0.0);
     let mut hits = 0;
+    let mut ties = 0;
     for (ray, o) in rays.iter().zip(out.chunks(3)) {
         let prim = o[1][3].to_bits();
         match scene.accel.intersect(ray) {
             Some(h) => {
                 hits += 1;
-                c.scalar(prim as f32, h.prim as f32, "primitive");
+                // A different primitive is a tie only where t and p agree: its normal may differ.
+                if prim != h.prim && prim != u32::MAX {
+                    ties += 1;
+                } else {
+                    c.scalar(prim as f32, h.prim as f32, "primitive");
+                    c.v3(o[1], h.n, "n");
+                }
                 c.scalar(o[0][3], h.t, "t");
                 c.v3(o[0], h.p, "p");
-                c.v3(o[1], h.n, "n");
             }
             None => c.scalar(prim as f32, u32::MAX as f32, "miss"),
         }
@@ -149,10 +155,13 @@ fn check_queries(scene: &Arc<Scene>, gpu: &GpuScene, n: usize, lo: Vec3, hi: Vec
     eprintln!("{} rays, {hits} hits", rays.len());
     assert!(hits > rays.len() / 5, "{hits} of {}", rays.len());
     // A ray through a vertex or an edge shared by triangles at exactly the same t may pick either
-    // (the two BVHs test them in different orders): then p and t agree, the primitive may not.
-    // Allow one such tie per 10,000 values; none were seen on lavapipe.
+    // (the two BVHs test them in different orders): then t and p agree (checked above, with no
+    // allowance), the primitive and its normal may not. Allow one such tie per 10,000 values
+    // compared; none were seen on lavapipe.
     let allowed = c.n / 10_000;
-    c.finish(allowed);
+    eprintln!("{ties} ties in {hits} hits, {allowed} allowed");
+    assert!(ties <= allowed, "{ties} ties in {hits} hits");
+    c.finish(0);
     occ.finish(0);
 }
 

@@ -85,6 +85,20 @@ fn unit(r: &mut Rng) -> Vec3 {
     sampling::sample_uniform_sphere(r.next_2d())
 }
 
+/// Item `k`'s (wo, wi) from two upper-hemisphere directions: one in four pairs is mirrored below
+/// the horizon (wi, wo, both, or wi exactly in the tangent plane, in turn), so eval and pdf are
+/// also compared where both sides must give 0.
+fn below_horizon(k: usize, mut wo: Vec3, mut wi: Vec3) -> (Vec3, Vec3) {
+    match k % 16 {
+        3 => wi.z = -wi.z,
+        7 => wo.z = -wo.z,
+        11 => (wo.z, wi.z) = (-wo.z, -wi.z),
+        15 => wi = Vec3::new(wi.x, wi.y, 0.0).normalize(),
+        _ => {}
+    }
+    (wo, wi)
+}
+
 /// A random unit vector in the upper hemisphere, sometimes nearly grazing.
 fn upper(r: &mut Rng) -> Vec3 {
     let mut w = unit(r);
@@ -222,10 +236,16 @@ fn ggx_matches() {
     };
     let mut r = Rng::new(7, 0, 0);
     let mut inputs = Vec::new();
-    for _ in 0..N {
+    for k in 0..N {
         let alpha = 10f32.powf(-3.0 + 3.0 * r.next_f32());
-        let wo = upper(&mut r);
-        let h = upper(&mut r);
+        let mut wo = upper(&mut r);
+        let mut h = upper(&mut r);
+        // Below the horizon, where D (h.z < 0) and the VNDF pdf (wo.z < 0) must be 0.
+        match k % 8 {
+            5 => h.z = -h.z,
+            6 => wo.z = -wo.z,
+            _ => {}
+        }
         inputs.push(f4(wo, alpha));
         inputs.push(f4(h, 0.0));
         inputs.push([r.next_f32(), r.next_f32(), 0.0, 0.0]);
@@ -240,7 +260,9 @@ fn ggx_matches() {
         2,
     );
     let mut c = Compare::new("ggx", 1e-4, 1e-6);
-    let mut s = Compare::new("ggx sample", 0.0, 1e-5);
+    let mut below = Compare::new("ggx below the horizon", 0.0, 0.0);
+    // Outliers (below) stay within 2e-4: 5× the worst seen, 4e-5 on an H100, 3.5e-5 on lavapipe.
+    let mut s = Compare::new("ggx sample", 0.0, 1e-5).outliers_within(0.0, 2e-4);
     for (i, o) in inputs.chunks(3).zip(out.chunks(2)) {
         let a = i[0][3];
         let wo = Vec3::from_slice(&i[0][..3]);
@@ -250,13 +272,25 @@ fn ggx_matches() {
         c.scalar(o[0][1], ggx::lambda(a, wo), "lambda");
         c.scalar(o[0][2], ggx::g1(a, wo), "G1");
         c.scalar(o[0][3], ggx::visible_normal_pdf(a, wo, h), "VNDF pdf");
-        s.v3(o[1], ggx::sample_visible_normal(a, wo, u), "VNDF sample");
+        if h.z < 0.0 {
+            below.scalar(o[0][0], 0.0, "gpu D");
+            below.scalar(ggx::d(a, h), 0.0, "cpu D");
+        }
+        if wo.z < 0.0 {
+            below.scalar(o[0][3], 0.0, "gpu VNDF pdf");
+            below.scalar(ggx::visible_normal_pdf(a, wo, h), 0.0, "cpu VNDF pdf");
+        } else {
+            s.v3(o[1], ggx::sample_visible_normal(a, wo, u), "VNDF sample");
+        }
     }
     c.finish(0);
+    assert!(below.n > N / 5, "{} values below the horizon", below.n);
+    below.finish(0);
     // The sampler's output is ill-conditioned where c ≈ −wo (grazing wo, u near the cap's rim):
     // a few in 10⁴ inputs move by up to ~4e-5 between the CPU's fused and the GPU's unfused
     // multiply-add. Allow 0.05%.
-    s.finish(N * 3 / 2000);
+    let allowed = c_allowance(&s, 2000);
+    s.finish(allowed);
 }
 
 /// MIS weights, including the infinite and overflowing cases; 1e-6 relative.
@@ -338,7 +372,9 @@ fn math_and_ray_offsets_match() {
     // come out a few ulp off instead (the compensation tail is lost; the cause inside Mesa's
     // optimiser is not pinned down): allowed, up to 1%. Watertightness does not depend on it (a
     // shared edge's two evaluations are exact negations either way).
-    let mut dop = Compare::new("difference_of_products", 2.0 * f32::EPSILON, 0.0);
+    // Those outliers stay within 4e-5 relative: 5× the worst on lavapipe (7.5e-6, 46 of 8192).
+    let mut dop =
+        Compare::new("difference_of_products", 2.0 * f32::EPSILON, 0.0).outliers_within(4e-5, 0.0);
     for (i, o) in inputs.chunks(4).zip(out.chunks(3)) {
         let n = Vec3::from_slice(&i[0][..3]);
         let p = Vec3::from_slice(&i[1][..3]);
@@ -406,7 +442,8 @@ fn spherical_triangle_matches() {
         2,
     );
     let mut area = Compare::new("spherical triangle area", 1e-5, 1e-7);
-    let mut dir = Compare::new("spherical triangle sample", 0.0, 1e-4);
+    // Outliers (below) stay within 1e-3: 4× the one seen on an H100 (2.5e-4; none on lavapipe).
+    let mut dir = Compare::new("spherical triangle sample", 0.0, 1e-4).outliers_within(0.0, 1e-3);
     for (i, o) in inputs.chunks(5).zip(out.chunks(2)) {
         let v = [0, 1, 2].map(|k| Vec3::from_slice(&i[k][..3]));
         let p = Vec3::from_slice(&i[3][..3]);
@@ -523,8 +560,9 @@ fn materials_match() {
     let mut inputs = Vec::new();
     for i in 0..N {
         let m = (i % scene.materials.len()) as f32;
-        inputs.push(f4(upper(&mut r), m));
-        inputs.push(f4(upper(&mut r), r.next_f32()));
+        let (wo, wi) = below_horizon(i / scene.materials.len(), upper(&mut r), upper(&mut r));
+        inputs.push(f4(wo, m));
+        inputs.push(f4(wi, r.next_f32()));
         inputs.push([r.next_f32(), r.next_f32(), 0.0, 0.0]);
     }
     let out = run(
@@ -540,7 +578,11 @@ fn materials_match() {
         3,
     );
     let mut ev = Compare::new("material eval/pdf", 2e-4, 1e-6);
-    let mut sm = Compare::new("material sample", 2e-4, 1e-4);
+    let mut below = Compare::new("material eval/pdf below the horizon", 0.0, 0.0);
+    let mut n_below = 0;
+    // Outliers (below) stay within 10× the tolerance: the GGX sampler's (4e-5 on an H100) carried
+    // through the reflection and the weight; none on lavapipe.
+    let mut sm = Compare::new("material sample", 2e-4, 1e-4).outliers_within(2e-3, 1e-3);
     for (i, o) in inputs.chunks(3).zip(out.chunks(3)) {
         let m = &scene.materials[i[0][3] as usize];
         let wo = Vec3::from_slice(&i[0][..3]);
@@ -548,6 +590,22 @@ fn materials_match() {
         let u = Vec2::new(i[2][0], i[2][1]);
         ev.v3(o[0], m.eval(wo, wi), "eval");
         ev.scalar(o[0][3], m.pdf(wo, wi), "pdf");
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            // Both sides must say 0 exactly (a lobe leaking through the horizon on either side,
+            // even by the same amount on both, is a bug).
+            n_below += 1;
+            for (side, f, pdf) in [
+                ("gpu", Vec3::from_slice(&o[0][..3]), o[0][3]),
+                ("cpu", m.eval(wo, wi), m.pdf(wo, wi)),
+            ] {
+                let what = format!(
+                    "{side}, material {}, wo.z {:e} wi.z {:e}",
+                    i[0][3], wo.z, wi.z
+                );
+                below.v3([f.x, f.y, f.z, 0.0], Vec3::ZERO, &format!("eval, {what}"));
+                below.scalar(pdf, 0.0, &format!("pdf, {what}"));
+            }
+        }
         match m.sample(wo, i[1][3], u) {
             Some(s) => {
                 sm.v3(o[1], s.wi, "wi");
@@ -559,6 +617,8 @@ fn materials_match() {
         }
     }
     ev.finish(0);
+    assert!(n_below > N / 5, "{n_below} directions below the horizon");
+    below.finish(0);
     // As for the GGX sampler: a few ill-conditioned samples (0.05%).
     sm.finish(N * 8 / 2000);
 }
@@ -605,7 +665,9 @@ fn lights_match() {
         2,
         3,
     );
-    let mut c = Compare::new("light sample", 1e-4, 1e-5);
+    // Outliers (below) stay within 1.5e-2 relative: 5× the worst on lavapipe (3.0e-3, an area pdf
+    // at |cos| 1.4e-2; 4 of 82,475 values), ~15× the H100's 1e-3.
+    let mut c = Compare::new("light sample", 1e-4, 1e-5).outliers_within(1.5e-2, 1e-5);
     for (i, o) in inputs.chunks(2).zip(out.chunks(3)) {
         let light = &scene.lights[i[0][3] as usize];
         let p = Vec3::from_slice(&i[0][..3]);
@@ -743,4 +805,69 @@ fn bvh_queries_match_the_cpu() {
     assert!(hits > rays.len() / 5, "{hits} of {}", rays.len());
     c.finish(0);
     occ.finish(0);
+}
+
+/// A record or parameter whose kind tag no `switch` case knows is not quietly black: eval and pdf
+/// are NaN and the invocation is flagged (`unknown_tag_seen` in `tags.wgsl`, which the render
+/// kernel turns into a non-finite sample that the film counts). Each dispatching function is
+/// called with one corrupted record (and with the intact record, which must stay unflagged).
+#[test]
+fn unknown_tags_are_detectable() {
+    let Some((scene, gpu)) = parity_scene() else {
+        return;
+    };
+    use lumis::materials::{ConductorFresnel, Material};
+    let conductor = scene
+        .materials
+        .iter()
+        .position(|m| {
+            matches!(m, Material::Conductor(c) if !c.is_delta()
+                && matches!(c.fresnel, ConductorFresnel::Complex { .. }))
+        })
+        .unwrap();
+    // Items: 0 intact records, 1 corrupted ones.
+    let inputs = [
+        [0.0, conductor as f32, 0.0, 0.0],
+        [1.0, conductor as f32, 0.0, 0.0],
+    ];
+    let out = run(
+        &gpu,
+        "let bad = inp(0u).x > 0.5;
+         let wo = vec3f(0.0, 0.6, 0.8); let wi = vec3f(0.6, 0.0, 0.8);
+         let p = vec3f(0.3, 1.0, 0.2);
+         var m = materials[0]; var g = materials[u32(inp(0u).y)]; var l = lights[0];
+         var prim = prims[0]; var q = params;
+         if bad {
+             m.h.x = 99u; g.h.z = 99u; l.h.x = 99u; prim.a.w = bitcast<f32>(99u); q.strategy = 99u;
+         }
+         let ray = Ray(p, normalize(prim.a.xyz - p), inf());
+         unknown_tag_seen = false; let e = material_eval(m, wo, wi).x; let e_seen = unknown_tag_seen;
+         unknown_tag_seen = false; let d = material_pdf(m, wo, wi); let d_seen = unknown_tag_seen;
+         unknown_tag_seen = false; let s = material_sample(m, wo, 0.5, vec2f(0.3, 0.7)); let s_seen = unknown_tag_seen;
+         unknown_tag_seen = false; let f = material_eval(g, wo, wi).x; let f_seen = unknown_tag_seen;
+         unknown_tag_seen = false; let ls = light_sample(l, p, vec2f(0.3, 0.7), LIGHT_SAMPLING_SOLID_ANGLE); let ls_seen = unknown_tag_seen;
+         unknown_tag_seen = false; let lp = light_pdf(l, p, ls.wi, ls.p, ls.n, LIGHT_SAMPLING_AREA); let lp_seen = unknown_tag_seen;
+         unknown_tag_seen = false; let t = shape_intersect_t(prim, ray, triangle_ray_new(ray)); let t_seen = unknown_tag_seen;
+         unknown_tag_seen = false; check_param_tags(q); let q_seen = unknown_tag_seen;
+         let seen = vec4f(select(0.0, 1.0, e_seen), select(0.0, 1.0, d_seen), select(0.0, 1.0, s_seen), select(0.0, 1.0, f_seen));
+         let seen2 = vec4f(select(0.0, 1.0, ls_seen), select(0.0, 1.0, lp_seen), select(0.0, 1.0, t_seen), select(0.0, 1.0, q_seen));
+         outp(0u, vec4f(e, d, f, lp));
+         outp(1u, seen);
+         outp(2u, seen2);
+         outp(3u, vec4f(select(0.0, 1.0, s.ok), select(0.0, 1.0, ls.ok), t, 0.0));",
+        &inputs,
+        1,
+        4,
+    );
+    let (good, bad) = (&out[..4], &out[4..]);
+    // Intact records: finite values, nothing flagged.
+    assert!(good[0].iter().all(|v| v.is_finite()), "{good:?}");
+    assert_eq!(good[1], [0.0; 4], "intact records flagged: {good:?}");
+    assert_eq!(good[2], [0.0; 4], "intact records flagged: {good:?}");
+    // Corrupted ones: material eval, pdf, conductor Fresnel and light pdf NaN; every dispatch
+    // flagged (sampling also returns no sample, the shape no hit).
+    assert!(bad[0].iter().all(|v| v.is_nan()), "{bad:?}");
+    assert_eq!(bad[1], [1.0; 4], "{bad:?}");
+    assert_eq!(bad[2], [1.0; 4], "{bad:?}");
+    assert_eq!(bad[3][..2], [0.0, 0.0], "{bad:?}");
 }

@@ -31,8 +31,8 @@ fn main() {
     let size: u32 = args.get(1).map_or(512, |s| s.parse().expect("SIZE"));
     let repeats: usize = args.get(2).map_or(20, |s| s.parse().expect("REPEATS"));
     let backend = match args.get(3).map(String::as_str) {
-        None | Some("cpu") => lumis::gpu::Backend::Cpu,
-        Some("gpu") => lumis::gpu::Backend::Gpu,
+        None | Some("cpu") => lumis::engine::Backend::Cpu,
+        Some("gpu") => lumis::engine::Backend::Gpu,
         Some(b) => panic!("backend {b}: cpu or gpu"),
     };
     let mut app = ViewerApp::new(ViewerOptions {

@@ -9,7 +9,7 @@
 use crate::cli::BenchArgs;
 use crate::render_cmd::{check_output_dir, thread_pool};
 use anyhow::{Context, anyhow, bail};
-use lumis::gpu::AnyProgressive;
+use lumis::engine::AnyProgressive;
 use lumis::image_io::Image;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::metrics::{relmse, rmse};

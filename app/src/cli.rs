@@ -296,10 +296,10 @@ pub struct ViewArgs {
 
 impl BackendArg {
     /// The renderer's backend.
-    pub fn backend(self) -> lumis::gpu::Backend {
+    pub fn backend(self) -> lumis::engine::Backend {
         match self {
-            BackendArg::Cpu => lumis::gpu::Backend::Cpu,
-            BackendArg::Gpu => lumis::gpu::Backend::Gpu,
+            BackendArg::Cpu => lumis::engine::Backend::Cpu,
+            BackendArg::Gpu => lumis::engine::Backend::Gpu,
         }
     }
 }

@@ -3,7 +3,7 @@
 use crate::cli::{CompareArgs, RenderArgs};
 use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressStyle};
-use lumis::gpu::AnyProgressive;
+use lumis::engine::AnyProgressive;
 use lumis::image_io::Image;
 use lumis::metrics::{relmse, rmse};
 use lumis::scene::Scene;

@@ -2,7 +2,7 @@
 
 use crate::cli::{BackendArg, HeuristicArg, StrategyArg, ViewArgs};
 use anyhow::bail;
-use lumis::gpu::Backend;
+use lumis::engine::Backend;
 use lumis::integrator::Heuristic;
 use lumis_app::viewer::params::{RenderParams, StrategyKind};
 use lumis_app::viewer::{ViewerOptions, run};

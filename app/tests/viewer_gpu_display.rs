@@ -9,7 +9,7 @@
 use eframe::egui_wgpu;
 use eframe::wgpu;
 use egui_kittest::Harness;
-use lumis::gpu::Backend;
+use lumis::engine::Backend;
 use lumis_app::viewer::tonemap::srgb8;
 use lumis_app::viewer::{ViewerApp, ViewerOptions};
 use std::sync::Arc;

@@ -432,7 +432,7 @@ fn the_backend_menu_switches_to_the_gpu_and_back() {
     assert_restarts(&mut h, "backend gpu", |h| {
         pick_combo(h, "Backend", "GPU (wgpu)")
     });
-    assert_eq!(h.state().params.backend, lumis::gpu::Backend::Gpu);
+    assert_eq!(h.state().params.backend, lumis::engine::Backend::Gpu);
     assert!(h.state_mut().wait_for(WAIT, |o| o.error.is_some()
         || o.lanes.iter().all(|l| !l.preview && l.spp >= 8)));
     assert_eq!(
@@ -441,5 +441,5 @@ fn the_backend_menu_switches_to_the_gpu_and_back() {
         "the GPU backend must render here (lavapipe)"
     );
     assert_restarts(&mut h, "backend cpu", |h| pick_combo(h, "Backend", "CPU"));
-    assert_eq!(h.state().params.backend, lumis::gpu::Backend::Cpu);
+    assert_eq!(h.state().params.backend, lumis::engine::Backend::Cpu);
 }

@@ -4,6 +4,13 @@
 //! Each (pixel, sample index) pair draws from its own counter-based random stream and each pixel's
 //! samples are added in sample order by one thread, so the image for a given seed and sample count
 //! is bit-identical for any thread count.
+//!
+//! [`backend`] puts this engine and the GPU's ([`crate::gpu::GpuProgressive`]) behind one
+//! interface, [`AnyProgressive`].
+
+pub mod backend;
+
+pub use backend::{AnyProgressive, Backend};
 
 use crate::integrator::{Settings, radiance};
 use crate::rng::Rng;

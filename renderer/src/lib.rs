@@ -9,9 +9,11 @@
 //! * [`materials`]: BSDFs (diffuse, GGX conductor, plastic).
 //! * [`lights`]: area lights of every shape, the background, power-based light selection.
 //! * [`integrator`]: the path tracer and its four strategies.
-//! * [`engine`]: the progressive, multi-threaded CPU accumulation.
+//! * [`engine`]: the progressive, multi-threaded CPU accumulation, and
+//!   [`engine::AnyProgressive`], the CPU or the GPU engine behind one interface.
 //! * [`gpu`]: the same estimator in wgpu compute shaders (WGSL), progressive on the GPU.
 //! * [`image_io`] and [`metrics`]: EXR/PFM/PNG and error metrics, statistical image tests.
+#![warn(missing_docs)]
 
 pub mod camera;
 pub mod engine;
@@ -23,7 +25,10 @@ pub mod lights;
 pub mod materials;
 pub mod math;
 pub mod metrics;
+pub mod mutants;
 pub mod rng;
 pub mod sampling;
 pub mod scene;
+// The χ² harness of the sampler tests: test code, only with the `testing` feature.
+#[cfg(any(test, feature = "testing"))]
 pub mod stats;

@@ -1,4 +1,5 @@
 //! Small shared math: orthonormal frames, safe functions, luminance.
+//! WGSL twin: `math.wgsl`.
 
 use glam::Vec3;
 
@@ -43,18 +44,6 @@ impl Frame {
 #[inline]
 pub fn safe_sqrt(x: f32) -> f32 {
     x.max(0.0).sqrt()
-}
-
-/// `acos` clamped to the valid domain.
-#[inline]
-pub fn safe_acos(x: f32) -> f32 {
-    x.clamp(-1.0, 1.0).acos()
-}
-
-/// `asin` clamped to the valid domain.
-#[inline]
-pub fn safe_asin(x: f32) -> f32 {
-    x.clamp(-1.0, 1.0).asin()
 }
 
 /// `atan2(y, x)` for finite arguments, within 3 ulp of the exact angle (tested below): the

@@ -1,6 +1,7 @@
 //! Counter-based random numbers: every (seed, pixel, sample) triple starts its own stream, so an
 //! image is identical for any thread count and any order of work. 32-bit state, so the GPU
 //! backend can reproduce it bit for bit.
+//! WGSL twin: `rng.wgsl`.
 
 /// PCG hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering"): a good 32→32 bit mix.
 #[inline]
@@ -8,6 +9,14 @@ pub fn pcg_hash(x: u32) -> u32 {
     let state = x.wrapping_mul(747796405).wrapping_add(2891336453);
     let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277803737);
     (word >> 22) ^ word
+}
+
+/// The uniform [`Rng::next_f32`] makes of 32 random bits: the top 24 as k/2^24, so every uniform
+/// the renderer draws is one of the 2^24 values k/2^24, k < 2^24 (exact in f32, never 1.0). Tests
+/// that enumerate what a sampler can reach go through this function.
+#[inline]
+pub fn unit_f32(bits: u32) -> f32 {
+    (bits >> 8) as f32 * (1.0 / 16_777_216.0)
 }
 
 /// A random stream for one sample of one pixel: a PCG32 (RXS-M-XS) generator whose start state is a
@@ -33,10 +42,10 @@ impl Rng {
         (word >> 22) ^ word
     }
 
-    /// Uniform in [0, 1): 24 random mantissa bits, never 1.0.
+    /// Uniform in [0, 1): 24 random mantissa bits, never 1.0 (see [`unit_f32`]).
     #[inline]
     pub fn next_f32(&mut self) -> f32 {
-        (self.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
+        unit_f32(self.next_u32())
     }
 
     /// Two uniforms in [0, 1).

@@ -108,9 +108,19 @@ pub fn test_against(
     )
 }
 
-/// `Err` with the worst blocks if the test found a bias; prints the worst block either way.
+/// `Err` with the worst blocks if the test found a bias; prints the worst block either way, and
+/// one `z-test|WHAT|ok or BIASED|failed blocks|blocks|worst |z||critical` line that
+/// `tools/power_table.py` reads (docs/testing.md).
 pub fn check_unbiased(what: &str, test: &BlockTest) -> Result<(), String> {
     let failures = test.failures();
+    let worst = test.worst().map_or(f64::NAN, |w| w.z.abs());
+    eprintln!(
+        "z-test|{what}|{}|{}|{}|{worst:.3}|{:.3}",
+        if failures.is_empty() { "ok" } else { "BIASED" },
+        failures.len(),
+        test.blocks.len(),
+        test.critical
+    );
     if !failures.is_empty() {
         let mut msg = format!(
             "{what}: {} of {} blocks differ (|z| > {:.2}):\n",

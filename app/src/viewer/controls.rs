@@ -3,7 +3,7 @@
 
 use super::app::ViewerApp;
 use super::params::StrategyKind;
-use lumis::gpu::Backend;
+use lumis::engine::Backend;
 use lumis::integrator::Heuristic;
 use lumis::lights::LightSampling;
 use std::path::PathBuf;

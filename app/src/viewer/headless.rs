@@ -2,7 +2,7 @@
 //! the first command of the README works on a server or in CI.
 
 use super::ViewerOptions;
-use lumis::gpu::AnyProgressive;
+use lumis::engine::AnyProgressive;
 use lumis::image_io::Image;
 use lumis::scene::{Scene, load_scene};
 use std::path::PathBuf;

@@ -1,12 +1,15 @@
 //! `lumis view`: the interactive viewer. The image converges live while every control restarts
 //! accumulation at once; strategies can be compared side by side, with a live convergence plot.
 //!
-//! * [`app`]: state, actions and the frame loop; [`controls`], [`selection`], [`comparison`] and
-//!   [`plot`] draw its panels.
-//! * [`worker`]: the render thread (never blocks the UI) with reduced-resolution [`preview`]s.
-//! * [`backend`]: the engine interface (CPU now, GPU later).
+//! * [`app`]: state, actions and the frame loop; [`params`], the settings the panels edit;
+//!   [`controls`], [`selection`], [`comparison`] and [`plot`] draw its panels.
+//! * [`worker`]: the render thread (never blocks the UI) with reduced-resolution [`preview`]s;
+//!   it renders on either engine through [`lumis::engine::AnyProgressive`].
+//! * [`gpu_display`]: the GPU lane's tonemapping on the window's device, without readback;
+//!   [`surface_race`]: the one wgpu surface error that is survived.
 //! * [`edit`], [`light_shape`], [`pick`], [`camera`]: edits of the scene description.
 //! * [`convergence`], [`tonemap`], [`screenshot`]: error estimates, display, saved files.
+//! * [`headless`]: the render without a display.
 
 pub mod app;
 pub mod camera;

@@ -2,7 +2,7 @@
 //! describe: one in the single view, two or three in the comparison view.
 
 use super::worker::LaneSpec;
-use lumis::gpu::Backend;
+use lumis::engine::Backend;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSampling;
 

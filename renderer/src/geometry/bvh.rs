@@ -4,6 +4,7 @@
 //! traverses the compressed nodes; the CPU traverses the same tree decoded to `f32`
 //! ([`super::wide_bvh`]), which costs 224 instead of 80 bytes a node and saves decoding the
 //! quantized boxes at every visit.
+//! WGSL twin: `bvh.wgsl`.
 
 use super::primitive::Primitive;
 use super::ray::{Ray, SurfaceHit};

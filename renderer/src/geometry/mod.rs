@@ -1,7 +1,6 @@
 //! Geometry: rays, the shapes that can be hit, robust ray offsets, and the BVH.
 
 pub mod bvh;
-pub mod bvh_node;
 pub mod disk;
 pub mod polygon;
 pub mod primitive;

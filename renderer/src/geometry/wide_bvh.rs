@@ -6,17 +6,18 @@
 //! that for the GPU, which traverses the compressed nodes); only the node format differs. Children
 //! are visited nearest first, and a closest-hit traversal drops entries that start beyond the
 //! closest hit found so far.
+//! WGSL twin: `bvh.wgsl`.
 
 use super::ray::{Ray, gamma};
 use glam::Vec4;
 use obvhs::cwbvh::CwBvh;
 use std::ops::Range;
 
-/// Reciprocal directions are clamped here, as in the GPU's node test ([`super::bvh_node`]): a
+/// Reciprocal directions are clamped here, as in the GPU's node test (`gpu/shaders/bvh.wgsl`): a
 /// clamped slab still spans any scene, and no product overflows to a NaN. Like that test, this one
 /// keeps the ray's true interval `(0, t_max)`: obvhs's own culls boxes that end before a fixed
 /// `1e-4`, which let paths escape closed rooms through their corners.
-const MAX_INV: f32 = 1e20;
+pub(crate) const MAX_INV: f32 = 1e20;
 
 /// A slab parameter is `(plane − o) · (1/d)`: three roundings, each within `γ(3)` of exact.
 /// Widening the far end by `1 + 2γ(3)` (pbrt-v4's `Bounds3::IntersectP`) keeps every box the ray

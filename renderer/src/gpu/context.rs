@@ -108,3 +108,22 @@ impl GpuContext {
         Ok(data)
     }
 }
+
+#[cfg(test)]
+impl GpuContext {
+    /// The device the library's own GPU tests share, with the rule of `tests/gpu_common`: `None`
+    /// (the test passes vacuously) when `LUMIS_SKIP_GPU_TESTS` is set; without an adapter and
+    /// without that variable the test fails.
+    pub(crate) fn for_tests() -> Option<Arc<GpuContext>> {
+        use std::sync::OnceLock;
+        if std::env::var_os("LUMIS_SKIP_GPU_TESTS").is_some() {
+            eprintln!("LUMIS_SKIP_GPU_TESTS is set: skipping a GPU test");
+            return None;
+        }
+        static CTX: OnceLock<Result<Arc<GpuContext>, String>> = OnceLock::new();
+        match CTX.get_or_init(|| GpuContext::new().map_err(|e| e.to_string())) {
+            Ok(c) => Some(c.clone()),
+            Err(e) => panic!("{e} (set LUMIS_SKIP_GPU_TESTS=1 to skip the GPU tests)"),
+        }
+    }
+}

@@ -6,10 +6,12 @@
 //! [`Features::all`] but with the scene's BVH choice, CWBVH or BVH2) and the scene bound as group
 //! 0. It reads its item's inputs with `inp(k)` (the k-th `vec4f`) and writes results with
 //! `outp(k, v)`.
+#![cfg(any(test, feature = "testing"))]
 
 use super::GpuError;
-use super::scene_buffers::{GpuParams, GpuScene, PARAMS_STRIDE};
-use super::shader::{Features, create_module, library_source};
+use super::prelude::{self, Constant};
+use super::scene::{GpuParams, GpuScene, PARAMS_STRIDE};
+use super::shader::{Features, create_module, library_source_with};
 use crate::integrator::Settings;
 use wgpu::util::DeviceExt;
 
@@ -20,6 +22,22 @@ const GROUP: u32 = 64;
 /// `out_stride` vec4s per item. Group 0 is `gpu`'s scene with the parameters of `settings` and
 /// seed 0, so snippets can also trace rays and sample lights.
 pub fn run_snippet(
+    gpu: &GpuScene,
+    settings: &Settings,
+    body: &str,
+    inputs: &[[f32; 4]],
+    in_stride: usize,
+    out_stride: usize,
+) -> Result<Vec<[f32; 4]>, GpuError> {
+    let constants = prelude::constants();
+    run_snippet_with(
+        &constants, gpu, settings, body, inputs, in_stride, out_stride,
+    )
+}
+
+/// [`run_snippet`] with the prelude written from `constants` (a test's altered table).
+pub(crate) fn run_snippet_with(
+    constants: &[Constant],
     gpu: &GpuScene,
     settings: &Settings,
     body: &str,
@@ -47,7 +65,7 @@ pub fn run_snippet(
         bvh2: gpu.features().bvh2,
         ..Features::all()
     };
-    let source = library_source(&features, &kernel)?;
+    let source = library_source_with(constants, &features, &kernel)?;
     let ctx = gpu.context();
     let device = &ctx.device;
     let module = create_module(device, "lumis snippet", &source)?;
@@ -130,4 +148,74 @@ pub fn run_snippet(
     let mut out: Vec<[f32; 4]> = bytemuck::cast_slice(&bytes).to_vec();
     out.truncate(items as usize * out_stride);
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gpu::GpuContext;
+    use crate::gpu::prelude::Value;
+    use crate::scene::{Scene, parse_scene};
+    use std::sync::Arc;
+
+    /// A scene with a plastic, for snippets that read materials.
+    fn plastic_scene(ctx: Arc<GpuContext>) -> GpuScene {
+        let json = r#"{
+          "camera": {"from": [0, 0, -3], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 40, "width": 4, "height": 4},
+          "materials": {"p": {"type": "plastic", "albedo": [0.5, 0.5, 0.5], "alpha": 0.3, "ior": 1.5}},
+          "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "p"}]
+        }"#;
+        let scene = Scene::from_desc(&parse_scene(json).unwrap()).unwrap();
+        GpuScene::new(ctx, Arc::new(scene)).unwrap()
+    }
+
+    /// A constant changed on the Rust side is what the shader computes with: the prelude is the
+    /// only definition (a module's own copy would fail to compile as a redefinition).
+    #[test]
+    fn a_changed_rust_constant_reaches_the_shader() {
+        let Some(ctx) = GpuContext::for_tests() else {
+            return;
+        };
+        let gpu = plastic_scene(ctx);
+        let body = "let m = materials[0];
+             outp(0u, vec4f(SMOOTH_ALPHA, f32(E_TABLE_SIZE), f32(MATERIAL_PLASTIC), f32(m.h.x)));
+             outp(1u, vec4f(select(0.0, 1.0, ggx_is_smooth(0.2)), coat_node_mu(1u), material_pdf(m, vec3f(0.0, 0.0, 1.0), vec3f(0.0, 0.0, 1.0)), 0.0));";
+        let run = |constants: &[Constant]| {
+            run_snippet_with(
+                constants,
+                &gpu,
+                &Settings::default(),
+                body,
+                &[[0.0; 4]],
+                1,
+                2,
+            )
+            .unwrap()
+        };
+        let normal = run(&prelude::constants());
+        assert_eq!(normal[0], [1e-3, 64.0, 2.0, 2.0]);
+        assert_eq!(normal[1][0], 0.0);
+        assert!(normal[1][2] > 0.0, "{normal:?}");
+        // SMOOTH_ALPHA 0.25 makes α = 0.2 smooth, a 4-node table moves node 1 to (1/3)³, and a
+        // renumbered MATERIAL_PLASTIC no longer matches the record's tag (which the encoder
+        // wrote from the unchanged Rust enum), so the material is unknown: NaN.
+        let changed: Vec<Constant> = prelude::constants()
+            .into_iter()
+            .map(|c| Constant {
+                value: match c.name {
+                    "SMOOTH_ALPHA" => Value::F32(0.25),
+                    "E_TABLE_SIZE" => Value::U32(4),
+                    "MATERIAL_PLASTIC" => Value::U32(7),
+                    _ => c.value,
+                },
+                ..c
+            })
+            .collect();
+        let out = run(&changed);
+        assert_eq!(out[0], [0.25, 4.0, 7.0, 2.0]);
+        assert_eq!(out[1][0], 1.0);
+        let t = 1.0f32 / 3.0;
+        assert_eq!(out[1][1], t * t * t);
+        assert!(out[1][2].is_nan(), "{out:?}");
+    }
 }

@@ -3,27 +3,27 @@
 //! * [`context`]: the device ([`GpuContext`]), created headless or shared with a viewer.
 //! * [`shader`]: the WGSL modules (`shaders/`, one per concept, each the twin of a Rust module)
 //!   and their specialisation by scene [`Features`].
-//! * [`scene_buffers`]: the scene flattened into storage buffers ([`GpuScene`]), the obvhs CWBVH
-//!   uploaded as it is.
+//! * [`prelude`]: the WGSL constants and kind tags, generated from their Rust definitions.
+//! * [`scene`]: the scene flattened into storage buffers ([`GpuScene`]), one record encoder per
+//!   kind, the obvhs CWBVH uploaded as it is.
 //! * [`progressive`]: [`GpuProgressive`], the GPU twin of [`crate::engine::Progressive`].
-//! * [`backend`]: [`AnyProgressive`], either engine behind one interface.
-//! * [`kernel`]: runs WGSL snippets against the scene on many inputs (the parity tests).
+//! * `kernel` (with the `testing` feature): runs WGSL snippets against the scene on many inputs
+//!   (the parity tests).
 //!
 //! The CPU is the reference: the GPU draws the same random streams (same PCG), evaluates the same
 //! materials, lights, strategies and Russian roulette, and its film reads back into a
 //! [`crate::engine::Film`] so the CPU's metrics and statistical tests apply unchanged.
 
-pub mod backend;
 pub mod context;
 pub mod kernel;
+pub mod prelude;
 pub mod progressive;
-pub mod scene_buffers;
+pub mod scene;
 pub mod shader;
 
-pub use backend::{AnyProgressive, Backend};
 pub use context::GpuContext;
 pub use progressive::{AccumulationView, GpuProgressive};
-pub use scene_buffers::GpuScene;
+pub use scene::GpuScene;
 pub use shader::Features;
 
 /// What can go wrong on the GPU side.

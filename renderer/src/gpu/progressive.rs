@@ -9,7 +9,7 @@
 //! even-sample sums (Welford's update keeps the variance accurate where plain f32 sums of x²
 //! would cancel).
 
-use super::scene_buffers::{GpuParams, GpuScene, PARAMS_STRIDE};
+use super::scene::{GpuParams, GpuScene, PARAMS_STRIDE};
 use super::shader::{create_module, path_tracer_source};
 use super::{GpuContext, GpuError};
 use crate::engine::{Film, PixelSums};
@@ -103,7 +103,16 @@ impl GpuProgressive {
         seed: u32,
         bvh2: bool,
     ) -> Result<GpuProgressive, GpuError> {
-        let gpu = GpuScene::with_bvh2(ctx.clone(), scene, bvh2)?;
+        GpuProgressive::from_scene(GpuScene::with_bvh2(ctx, scene, bvh2)?, settings, seed)
+    }
+
+    /// A new, empty render of an uploaded scene.
+    pub(crate) fn from_scene(
+        gpu: GpuScene,
+        settings: Settings,
+        seed: u32,
+    ) -> Result<GpuProgressive, GpuError> {
+        let ctx = gpu.context().clone();
         let device = &ctx.device;
         let source = path_tracer_source(&gpu.features())?;
         let pipelines = ctx.pipeline(&source, || {
@@ -355,4 +364,59 @@ fn create_accumulation(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
             | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gpu::scene::{LightTag, MaterialTag, Records, ShapeTag};
+    use crate::scene::parse_scene;
+
+    /// A diffuse box lit by a quad light, small enough to render in a moment.
+    fn scene() -> Arc<Scene> {
+        let json = r#"{
+          "camera": {"from": [0, 1, -3], "to": [0, 1, 0], "up": [0, 1, 0], "vfov_deg": 60, "width": 8, "height": 8},
+          "materials": {"d": {"type": "diffuse", "albedo": [0.6, 0.6, 0.6]}},
+          "shapes": [
+            {"type": "quad", "corner": [-2, 0, -2], "edge_u": [0, 0, 4], "edge_v": [4, 0, 0], "material": "d"},
+            {"type": "quad", "corner": [-2, 0, 2], "edge_u": [4, 0, 0], "edge_v": [0, 3, 0], "material": "d"},
+            {"type": "quad", "corner": [-0.5, 2.5, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "emission": [5, 5, 5]}
+          ]
+        }"#;
+        Arc::new(Scene::from_desc(&parse_scene(json).unwrap()).unwrap())
+    }
+
+    /// Non-finite samples of a 2 spp render of `scene()` with `corrupt` applied to its records.
+    fn nonfinite(ctx: &Arc<GpuContext>, corrupt: impl FnOnce(&mut Records)) -> u64 {
+        let scene = scene();
+        let mut records = Records::of(&scene);
+        corrupt(&mut records);
+        let gpu = GpuScene::upload(ctx.clone(), scene, false, records).unwrap();
+        let mut r = GpuProgressive::from_scene(gpu, Settings::default(), 1).unwrap();
+        r.render_pass(2);
+        r.film().unwrap().nonfinite
+    }
+
+    /// A record with a tag no WGSL `switch` knows makes its samples NaN, which the film counts,
+    /// instead of contributing nothing unnoticed.
+    #[test]
+    fn unknown_tags_are_counted_as_nonfinite_samples() {
+        let Some(ctx) = GpuContext::for_tests() else {
+            return;
+        };
+        assert_eq!(nonfinite(&ctx, |_| {}), 0);
+        let bad_material = MaterialTag::ALL.len() as u32;
+        let bad_light = LightTag::ALL.len() as u32;
+        let bad_shape = f32::from_bits(ShapeTag::ALL.len() as u32);
+        let pixels = 64;
+        // Every camera ray meets the floor or the wall (material 0).
+        let n = nonfinite(&ctx, |r| r.materials[0].h[0] = bad_material);
+        assert!(n > pixels, "material: {n}");
+        // Light sampling from every lit point picks the one light.
+        let n = nonfinite(&ctx, |r| r.lights[0].h[0] = bad_light);
+        assert!(n > pixels / 2, "light: {n}");
+        // The floor's first triangle.
+        let n = nonfinite(&ctx, |r| r.prims[0].a[3] = bad_shape);
+        assert!(n > 0, "shape: {n}");
+    }
 }

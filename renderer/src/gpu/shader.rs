@@ -2,8 +2,10 @@
 //!
 //! The maths lives once per side: one WGSL module per concept in `shaders/`, each the twin of the
 //! Rust module it names (`ggx.wgsl` ↔ `materials/ggx.rs`, `sphere_light.wgsl` ↔
-//! `lights/sphere.rs`, …), kept in step by `tests/gpu_parity.rs`. WGSL has no includes, so a
-//! program is the concatenation of the modules it needs.
+//! `lights/sphere.rs`, …), kept in step by `tests/gpu_parity.rs`; each names its Rust twin in its
+//! header and the twin names it back (checked below). WGSL has no includes, so a program is the
+//! concatenation of the modules it needs, after the generated prelude of shared constants and kind
+//! tags ([`super::prelude`]).
 //!
 //! Specialisation is by generated source, not by branches on uniforms: a scene's [`Features`]
 //! decide which modules are concatenated and which `// #if NAME` … `// #else` … `// #endif`
@@ -13,6 +15,7 @@
 //! megakernel).
 
 use super::GpuError;
+use super::prelude::{self, Constant};
 use crate::lights::Light;
 use crate::materials::{ConductorFresnel, Material};
 use crate::scene::Scene;
@@ -34,6 +37,7 @@ macro_rules! module {
 
 /// Every module, in concatenation order (WGSL allows any order; this one reads top-down).
 const MODULES: &[Module] = &[
+    module!("tags.wgsl"),
     module!("math.wgsl"),
     module!("rng.wgsl"),
     module!("warps.wgsl"),
@@ -176,7 +180,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 16] {
+    fn defines(&self) -> [(&'static str, bool); 17] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -200,6 +204,8 @@ impl Features {
             ("HAS_PLASTIC", self.has_plastic),
             ("HAS_DISK_SHAPE", self.has_disk_shape),
             ("HAS_SPHERE_SHAPE", self.has_sphere_shape),
+            // The mutation points of `crate::mutants` (only with the `mutants` feature).
+            ("MUTANTS", cfg!(feature = "mutants")),
         ]
     }
 
@@ -270,9 +276,20 @@ fn preprocess(file: &str, text: &str, features: &Features) -> Result<String, Gpu
     Ok(out)
 }
 
-/// The library (every module `features` wants) followed by `kernel`, the program's entry points.
+/// The prelude, the library (every module `features` wants) and `kernel`, the program's entry
+/// points.
 pub fn library_source(features: &Features, kernel: &str) -> Result<String, GpuError> {
-    let mut src = String::new();
+    library_source_with(&prelude::constants(), features, kernel)
+}
+
+/// [`library_source`] with the prelude written from `constants` (a test's altered table).
+pub(crate) fn library_source_with(
+    constants: &[Constant],
+    features: &Features,
+    kernel: &str,
+) -> Result<String, GpuError> {
+    let mut src = String::from("// ---- prelude ----\n");
+    src += &prelude::source(constants);
     for m in MODULES.iter().filter(|m| features.wants(m.name)) {
         src += &format!("// ---- {} ----\n", m.name);
         src += &preprocess(m.name, m.text, features)?;
@@ -321,6 +338,28 @@ mod tests {
     use super::*;
 
     #[test]
+    fn every_prelude_constant_is_used_by_the_shaders() {
+        // An unused one is dead, or a module kept a copy under another name.
+        let text: String = MODULES
+            .iter()
+            .chain([&PATH_MODULE])
+            .map(|m| m.text)
+            .collect();
+        let ident = |c: Option<char>| c.is_some_and(|c| c.is_ascii_alphanumeric() || c == '_');
+        for c in prelude::constants() {
+            let used = text.match_indices(c.name).any(|(i, _)| {
+                !ident(text[..i].chars().next_back())
+                    && !ident(text[i + c.name.len()..].chars().next())
+            });
+            assert!(
+                used,
+                "{} is in the prelude but no WGSL module uses it",
+                c.name
+            );
+        }
+    }
+
+    #[test]
     fn preprocessor_keeps_the_right_regions() {
         let f = Features {
             has_ggx: true,
@@ -366,5 +405,106 @@ mod tests {
                 panic!("{f:?}: {e}");
             }
         }
+    }
+}
+
+/// The WGSL twins named in the module docs and headers, for the test that they agree.
+#[cfg(test)]
+mod twins {
+    use std::collections::BTreeSet;
+    use std::path::{Path, PathBuf};
+
+    /// The text between backticks in `text` that ends with `ext`.
+    fn quoted(text: &str, ext: &str) -> BTreeSet<String> {
+        text.split('`')
+            .skip(1)
+            .step_by(2)
+            .filter(|t| t.ends_with(ext) && !t.contains(' '))
+            .map(String::from)
+            .collect()
+    }
+
+    fn src() -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+    }
+
+    fn shaders() -> PathBuf {
+        src().join("gpu/shaders")
+    }
+
+    /// The Rust modules a WGSL file's header (its leading comment lines) names, relative to
+    /// `src/`.
+    fn wgsl_names(file: &str) -> BTreeSet<String> {
+        let text = std::fs::read_to_string(shaders().join(file)).unwrap();
+        let header: Vec<&str> = text.lines().take_while(|l| l.starts_with("//")).collect();
+        quoted(&header.join("\n"), ".rs")
+    }
+
+    /// The WGSL files a Rust module's doc comment names as its twins: the paragraph of `//!`
+    /// lines starting at "WGSL twin".
+    fn rust_names(text: &str) -> BTreeSet<String> {
+        let doc: Vec<&str> = text
+            .lines()
+            .take_while(|l| l.starts_with("//!"))
+            .map(|l| l.trim_start_matches("//!").trim())
+            .collect();
+        let twin: Vec<&str> = doc
+            .iter()
+            .skip_while(|l| !l.starts_with("WGSL twin"))
+            .take_while(|l| !l.is_empty())
+            .copied()
+            .collect();
+        quoted(&twin.join(" "), ".wgsl")
+    }
+
+    fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                rust_files(&p, out);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                out.push(p);
+            }
+        }
+    }
+
+    #[test]
+    fn every_wgsl_module_and_its_rust_twins_name_each_other() {
+        let mut problems = Vec::new();
+        let mut wgsl: Vec<String> = std::fs::read_dir(shaders())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .filter(|n| n.ends_with(".wgsl"))
+            .collect();
+        wgsl.sort();
+        for w in &wgsl {
+            let names = wgsl_names(w);
+            if names.is_empty() {
+                problems.push(format!("{w}: its header names no Rust module"));
+            }
+            for r in names {
+                match std::fs::read_to_string(src().join(&r)) {
+                    Err(_) => problems.push(format!("{w}: names `{r}`, which does not exist")),
+                    Ok(text) if !rust_names(&text).contains(w) => problems.push(format!(
+                        "{r}: named by {w}, its module doc lacks \"WGSL twin: `{w}`\""
+                    )),
+                    Ok(_) => {}
+                }
+            }
+        }
+        let mut files = Vec::new();
+        rust_files(&src(), &mut files);
+        files.sort();
+        for f in files {
+            let rel = f.strip_prefix(src()).unwrap().to_str().unwrap().to_string();
+            for w in rust_names(&std::fs::read_to_string(&f).unwrap()) {
+                if !wgsl.contains(&w) {
+                    problems.push(format!("{rel}: its twin {w} does not exist"));
+                } else if !wgsl_names(&w).contains(&rel) {
+                    problems.push(format!("{w}: twin of {rel}, its header does not name it"));
+                }
+            }
+        }
+        assert!(problems.is_empty(), "\n{}", problems.join("\n"));
     }
 }

@@ -3,6 +3,7 @@
 //!
 //! Path length follows Mitsuba's `max_depth`: a path of `k` segments ends at its `k`-th vertex, so
 //! `1` keeps only emission seen by the camera and `2` adds direct lighting.
+//! WGSL twin: `path.wgsl`.
 
 use super::{Heuristic, Settings, Strategy};
 use crate::geometry::primitive::NONE;

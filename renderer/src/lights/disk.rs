@@ -1,5 +1,6 @@
 //! Emitting disks: area sampling by the concentric map. (No exact solid-angle warp for a disk
 //! exists in closed form; the light-sampling method falls back to area here.)
+//! WGSL twin: `disk_light.wgsl`.
 
 use super::{LightSample, area_sample};
 use crate::geometry::disk::Disk;

@@ -1,4 +1,5 @@
 //! Chooses a light in proportion to its emitted power.
+//! WGSL twin: `light_sampler.wgsl` and `light.wgsl`.
 
 use super::Light;
 use crate::sampling::DiscreteDistribution;

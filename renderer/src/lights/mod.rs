@@ -1,6 +1,7 @@
 //! Lights: every emitting shape is a one-sided area light; a constant background is an environment
 //! light. Each light samples a point (by area, or by solid angle where that is better) and reports
 //! the solid-angle pdf of any direction, so every strategy and MIS can weigh the same events.
+//! WGSL twin: `light.wgsl`.
 
 pub mod background;
 pub mod disk;
@@ -81,12 +82,27 @@ impl Light {
             Light::Sphere(l) => l.sample(p, u, method),
             Light::Background(l) => l.sample(u),
         }?;
+        let s = LightSample {
+            pdf: s.pdf * crate::mutants::light_pdf(self.kind_tag()),
+            ..s
+        };
         (s.pdf > 0.0 && s.pdf.is_finite() && s.le.cmpgt(Vec3::ZERO).any()).then_some(s)
     }
 
     /// Solid-angle pdf with which [`Light::sample`] from `p` yields direction `wi` hitting the light
     /// at `y` with normal `ny` (`y`, `ny` unused for the background).
     pub fn pdf(&self, p: Vec3, wi: Vec3, y: Vec3, ny: Vec3, method: LightSampling) -> f32 {
+        self.pdf_unmutated(p, wi, y, ny, method) * crate::mutants::light_pdf(self.kind_tag())
+    }
+
+    /// This light's kind tag, for [`crate::mutants`].
+    #[inline(always)]
+    fn kind_tag(&self) -> u32 {
+        crate::gpu::scene::LightTag::of(self).gpu_tag()
+    }
+
+    #[inline(always)]
+    fn pdf_unmutated(&self, p: Vec3, wi: Vec3, y: Vec3, ny: Vec3, method: LightSampling) -> f32 {
         match self {
             Light::Triangle(l) => l.pdf(p, wi, y, ny, method),
             Light::Polygon(l) => l.pdf(p, wi, y, ny, method),

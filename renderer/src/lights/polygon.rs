@@ -5,6 +5,7 @@
 //! triangle uniformly: from a point off the plane, the triangles of a planar simple polygon project to
 //! disjoint spherical triangles, so the result is uniform over the polygon's solid angle with
 //! pdf `1 / Σ Ω_i`.
+//! WGSL twin: `polygon_light.wgsl`.
 
 use super::triangle::spherical_ok;
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
@@ -37,7 +38,7 @@ pub struct PolygonLight {
 
 /// Most triangles for which solid-angle sampling is tried; beyond it, computing every triangle's
 /// solid angle per sample costs more than the variance it saves.
-const MAX_SOLID_ANGLE_TRIANGLES: usize = 64;
+pub(crate) const MAX_SOLID_ANGLE_TRIANGLES: usize = 64;
 
 /// Polygons of up to this many triangles (10 vertices) keep their per-sample arrays small.
 const FEW_TRIANGLES: usize = 8;

@@ -1,5 +1,6 @@
 //! Emitting parallelograms: area sampling, or solid-angle sampling of the spherical rectangle
 //! (Ureña, Fajardo & King 2013) when the quad is a rectangle.
+//! WGSL twin: `quad_light.wgsl`.
 
 use super::triangle::spherical_ok;
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};

@@ -1,5 +1,6 @@
 //! Emitting spheres (outwards): area sampling of the whole surface, or uniform sampling of the cone
 //! of directions the sphere subtends (pbrt-v4's construction, with a Taylor expansion for tiny cones).
+//! WGSL twin: `sphere_light.wgsl`.
 
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
 use crate::geometry::ray::{Ray, gamma};
@@ -10,7 +11,7 @@ use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
 /// Below sin²θ_max = sin²(1.5°), `1 − cos θ_max` is computed as `sin²θ_max / 2` to keep precision.
-const SMALL_CONE_SIN2: f32 = 0.000_685_23;
+pub(crate) const SMALL_CONE_SIN2: f32 = 0.000_685_23;
 
 /// A sphere that emits outwards.
 #[derive(Clone, Debug)]

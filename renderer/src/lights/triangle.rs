@@ -1,5 +1,6 @@
 //! Emitting triangles: area sampling (uniform barycentrics) or solid-angle sampling of the
 //! spherical triangle (Arvo 1995).
+//! WGSL twin: `triangle_light.wgsl`.
 
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
 use crate::geometry::ray::gamma;

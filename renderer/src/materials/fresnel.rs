@@ -1,5 +1,6 @@
 //! Fresnel reflectance: exact conductor Fresnel (complex index of refraction) and Schlick's
 //! approximation.
+//! WGSL twin: `fresnel.wgsl`.
 
 use glam::Vec3;
 

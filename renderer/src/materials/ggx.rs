@@ -6,6 +6,7 @@
 //! VNDF (same pdf, `G1(wo)·max(0, wo·h)·D(h)/wo.z`) but needs no orthonormal basis around `wo` and
 //! no branches, so it is cheaper and mirrors one-to-one in WGSL. Eto & Tokuyoshi 2023's bounded
 //! VNDF samples a *different*, more complex pdf, which every caller would then have to match.
+//! WGSL twin: `ggx.wgsl`.
 
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -77,7 +78,9 @@ pub fn half_vector(wo: Vec3, wi: Vec3) -> (Vec3, f32) {
 /// Samples a microfacet normal from the distribution of normals visible from `wo` (wo.z ≥ 0),
 /// with pdf [`visible_normal_pdf`]. Dupuy & Benyoub 2023: in the α-stretched (hemisphere)
 /// configuration the visible normals are `c + wo` for `c` uniform on the spherical cap
-/// z ∈ (−wo.z, 1]; unstretching maps them back.
+/// z ∈ (−wo.z, 1]; unstretching maps them back. The lobe's tail is set by 1 − u.y (exact in f32)
+/// through h_std.z = (1 − u.y)(1 + wo_std.z): the RNG's 24-bit uniforms reach the whole lobe in
+/// f32 down to grazing `wo` (measured by `ggx/reachability.rs`).
 #[inline]
 pub fn sample_visible_normal(alpha: f32, wo: Vec3, u: Vec2) -> Vec3 {
     let wo_std = Vec3::new(wo.x * alpha, wo.y * alpha, wo.z).normalize_or(Vec3::Z);
@@ -98,6 +101,9 @@ pub fn visible_normal_pdf(alpha: f32, wo: Vec3, h: Vec3) -> f32 {
     }
     g1(alpha, wo) * wo.dot(h).max(0.0) * d(alpha, h) / wo.z
 }
+
+#[cfg(test)]
+mod reachability;
 
 #[cfg(test)]
 pub(crate) mod tests {

@@ -9,6 +9,7 @@
 //! density with which `sample` produces `wi` through them, including the lobe-selection
 //! probability; a sample's `weight` is f·cosθi/pdf, or for a delta lobe its reflectance divided by
 //! its discrete selection probability (which is then reported as `pdf`).
+//! WGSL twin: `material.wgsl`.
 
 pub mod coat_albedo;
 pub mod conductor;
@@ -72,21 +73,33 @@ impl Material {
 
     /// Solid-angle pdf of `sample` producing `wi` through its non-delta lobes.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        match self {
+        let pdf = match self {
             Material::Diffuse(m) => m.pdf(wo, wi),
             Material::Conductor(m) => m.pdf(wo, wi),
             Material::Plastic(m) => m.pdf(wo, wi),
-        }
+        };
+        pdf * crate::mutants::bsdf_pdf(self.kind_tag())
+    }
+
+    /// This material's kind tag, for [`crate::mutants`].
+    #[inline(always)]
+    fn kind_tag(&self) -> u32 {
+        crate::gpu::scene::MaterialTag::of(self).gpu_tag()
     }
 
     /// Samples `wi`; `u_lobe` picks a lobe, `u` warps within it. `None` if no valid direction.
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        match self {
+        let mut s = match self {
             Material::Diffuse(m) => m.sample(wo, u),
             Material::Conductor(m) => m.sample(wo, u),
             Material::Plastic(m) => m.sample(wo, u_lobe, u),
-        }?
-        .checked()
+        }?;
+        if cfg!(feature = "mutants") && !s.delta {
+            let k = crate::mutants::bsdf_pdf(self.kind_tag());
+            s.pdf *= k;
+            s.weight /= k;
+        }
+        s.checked()
     }
 
     /// True if `eval` can be non-zero, i.e. light sampling is worth doing.

@@ -12,6 +12,7 @@
 //!
 //! This is the original program's "Microfacet" material done right: its F0 was not squared and
 //! both of its lobes used the full colour, so it reflected more energy than it received.
+//! WGSL twin: `plastic.wgsl`.
 
 use super::coat_albedo::CoatAlbedo;
 use super::{BsdfSample, fresnel, ggx};
@@ -129,7 +130,7 @@ impl Plastic {
             f += self.specular * (fr * d_g1o * ggx::g1(a, wi));
             pdf += p_coat * d_g1o;
         }
-        (f, pdf)
+        (f * crate::mutants::plastic_eval(), pdf)
     }
 
     /// f·cosθi of the non-delta lobes.

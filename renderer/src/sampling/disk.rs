@@ -1,4 +1,5 @@
 //! Uniform sampling of the unit disk: Shirley–Chiu concentric and polar mappings.
+//! WGSL twin: `warps.wgsl`.
 
 use glam::Vec2;
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
@@ -62,11 +63,6 @@ pub fn invert_uniform_disk_polar(p: Vec2) -> Vec2 {
         phi += TAU;
     }
     Vec2::new(p.length_squared().min(1.0), (phi / TAU).min(1.0))
-}
-
-/// Pdf of both uniform disk maps with respect to area: `1/π`.
-pub fn uniform_disk_pdf() -> f32 {
-    1.0 / PI
 }
 
 #[cfg(test)]

@@ -1,4 +1,5 @@
 //! Sampling the +z hemisphere: cosine-weighted (Malley's method) and uniform.
+//! WGSL twin: `warps.wgsl`.
 
 use super::disk::{concentric_polar, invert_uniform_disk_concentric};
 use crate::math::safe_sqrt;

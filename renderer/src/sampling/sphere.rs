@@ -1,4 +1,5 @@
 //! Uniform sampling of the unit sphere (Archimedes: z is uniform).
+//! WGSL twin: `warps.wgsl`.
 
 use crate::math::safe_sqrt;
 use glam::{Vec2, Vec3};

@@ -6,17 +6,18 @@
 //! `u0·Ω`, and `u1` picks `yv` uniformly in `h = y / √(xu² + z0² + y²)` along that line. The
 //! solid angles use Van Oosterom–Strackee with exact triple products, and the `y` step uses
 //! cancellation-free forms of `1 ± h`, so grazing and tiny rectangles keep their digits.
+//! WGSL twin: `spherical_rectangle.wgsl`.
 
 use super::spherical_triangle::solid_angle_from_vectors;
 use crate::math::safe_sqrt;
 use glam::{Vec2, Vec3};
 
 /// Largest `|cos|` between the edges accepted as a rectangle.
-const MAX_EDGE_COS: f32 = 1e-4;
+pub(crate) const MAX_EDGE_COS: f32 = 1e-4;
 
 /// Most safeguarded Newton steps polishing Ureña's closed-form abscissa (one or two suffice
 /// unless the view is grazing; each bisection fallback halves the bracket).
-const MAX_NEWTON_STEPS: usize = 32;
+pub(crate) const MAX_NEWTON_STEPS: usize = 32;
 
 /// A rectangle `corner + s·edge_u + t·edge_v` (`s, t ∈ [0, 1]`) as seen from a point, ready to be
 /// sampled uniformly by solid angle.

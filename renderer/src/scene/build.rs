@@ -108,6 +108,12 @@ impl Scene {
     /// Builds the scene. Fails only on lights the parser could not rule out (e.g. an emitter that
     /// becomes degenerate in f32).
     pub fn from_desc(desc: &SceneDesc) -> Result<Scene, SceneError> {
+        #[cfg(feature = "mutants")]
+        let desc = &{
+            let mut d = desc.clone();
+            crate::mutants::apply_to_desc(&mut d);
+            d
+        };
         let cam = &desc.camera;
         // The parser checked the view direction and `up` in f64. Rounded to f32, a `to` very close
         // to a distant `from` could coincide with it, and a tiny `up` become zero: hand the camera

@@ -19,7 +19,7 @@ use std::f64::consts::{PI, TAU};
 
 /// Which variable the histogram is over.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Space {
+enum Space {
     /// The sampled direction itself.
     Direction,
     /// The half vector of the sampled direction with this (unit) `wo`.
@@ -75,16 +75,6 @@ impl Domain {
             cap: theta_c.filter(|&t| t < 0.9 * PI),
             space: Space::HalfVector(wo.as_dvec3().normalize()),
         }
-    }
-
-    /// The space the histogram is over.
-    pub fn space(&self) -> Space {
-        self.space
-    }
-
-    /// The cap's half-angle, if any.
-    pub fn cap_angle(&self) -> Option<f64> {
-        self.cap
     }
 
     /// The `n + 1` row boundaries in `v = 1 − cos θ`, from 0 to 2 (`n` even for a cap).

@@ -1,12 +1,12 @@
-// The scene and render bindings shared by every kernel (group 0), uploaded by
-// `gpu/scene_buffers.rs`. Per-sample parameters arrive through a dynamic uniform offset.
+// The scene and render bindings shared by every kernel (group 0), uploaded by `gpu/scene/mod.rs`;
+// the per-sample parameters (`gpu/scene/params.rs`) arrive through a dynamic uniform offset.
 
 struct Params {
     width: u32,
     height: u32,
     seed: u32,
     sample: u32,
-    // Strategy: 0 light, 1 BSDF, 2 mixture, 3 MIS.
+    // STRATEGY_*, HEURISTIC_*, LIGHT_SAMPLING_*.
     strategy: u32,
     heuristic: u32,
     light_sampling: u32,
@@ -27,6 +27,29 @@ struct Params {
     cam_forward: vec4f,
     cam_right: vec4f,
     cam_up: vec4f,
+}
+
+// Flags the sample when `p` holds a tag `gpu/scene/params.rs` never writes (the heuristic and the
+// light-sampling method are read by `if`s that would take any other value for the second).
+fn check_param_tags(p: Params) {
+    switch p.strategy {
+        case STRATEGY_LIGHT, STRATEGY_BSDF, STRATEGY_MIXTURE, STRATEGY_MIS: {}
+        default: {
+            _ = unknown_tag();
+        }
+    }
+    switch p.heuristic {
+        case HEURISTIC_BALANCE, HEURISTIC_POWER: {}
+        default: {
+            _ = unknown_tag();
+        }
+    }
+    switch p.light_sampling {
+        case LIGHT_SAMPLING_AREA, LIGHT_SAMPLING_SOLID_ANGLE: {}
+        default: {
+            _ = unknown_tag();
+        }
+    }
 }
 
 @group(0) @binding(0) var<uniform> params: Params;

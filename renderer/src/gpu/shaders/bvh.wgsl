@@ -1,5 +1,5 @@
-// Closest-hit and any-hit queries, the twin of `geometry/bvh.rs` and `geometry/bvh_node.rs`
-// (the CPU traverses the same tree with decoded nodes, `geometry/wide_bvh.rs`):
+// Closest-hit and any-hit queries, the twin of `geometry/bvh.rs` (the CPU traverses the same tree
+// with decoded nodes, `geometry/wide_bvh.rs`; `gpu/scene/bvh.rs` checks it fits the stack):
 // obvhs's CWBVH (nodes uploaded as they are, 80 bytes = 5 × vec4<u32>) traversed as obvhs's
 // `traverse!` does (child order by ray octant, a stack of node groups), with the CPU's robust
 // child test: the ray's true interval (0, t_max), the true reciprocal, and each slab widened by a
@@ -20,13 +20,9 @@ struct BvhNode {
     d3: vec4<u32>,
     d4: vec4<u32>,
 }
-
-const BVH_STACK_SIZE: u32 = 32u;
 // #endif
 
 // #if USE_BVH
-const MAX_INV: f32 = 1e20;
-
 // The per-ray part of the node test (`NodeRay`).
 struct NodeRay {
     o: vec3f,

@@ -4,14 +4,14 @@
 // with the CWBVH), and widens every slab by a bound on its rounding error, so no box the ray
 // touches is culled.
 //
-// `nodes` (binding 1) is an array of vec4<u32> written by `gpu/scene_buffers.rs`: node i is rows
+// `nodes` (binding 1) is an array of vec4<u32> written by `gpu/scene/bvh.rs`: node i is rows
 // 2i = (min.xyz bits, prim_count) and 2i + 1 = (max.xyz bits, first). An inner node
 // (prim_count 0) has its children at `first` and `first + 1`; a leaf's `first` is the word index,
 // in the same buffer, of its prim_count primitive ids (indices into `prims`, the CWBVH's order, so
 // a hit's primitive means the same whichever BVH found it). The root is node 0.
 
-// Near-child-first traversal pushes at most one node per level; the upload rejects deeper trees.
-const BVH2_STACK_SIZE: u32 = 64u;
+// Near-child-first traversal pushes at most one node per level, so BVH2_STACK_SIZE (the prelude)
+// is the depth the upload accepts.
 
 // Entry distance of the ray into node `i`'s box within (0, t_max), or −1 when it misses.
 fn bvh2_box(i: u32, ray: NodeRay, t_max: f32) -> f32 {

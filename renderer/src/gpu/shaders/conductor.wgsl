@@ -1,16 +1,23 @@
 // GGX conductor (or a perfect mirror below SMOOTH_ALPHA), the twin of `materials/conductor.rs`.
 
 fn conductor_fresnel(m: Material, cos_h: f32) -> vec3f {
+    switch m.h.z {
 // #if HAS_COMPLEX_FRESNEL
-    if m.h.z == 0u {
-        return fresnel_conductor(cos_h, m.a.xyz, m.b.xyz);
-    }
+        case FRESNEL_COMPLEX: {
+            return fresnel_conductor(cos_h, m.a.xyz, m.b.xyz);
+        }
 // #endif
-    return m.a.xyz;
+        case FRESNEL_TINT: {
+            return m.a.xyz;
+        }
+        default: {
+            return vec3f(unknown_tag());
+        }
+    }
 }
 
 fn conductor_is_delta(m: Material) -> bool {
-    return m.c.x < 1e-3;
+    return m.c.x < SMOOTH_ALPHA;
 }
 
 // The half vector and wo·h of a valid reflection pair; w < 0 for none.

@@ -1,8 +1,6 @@
 // Isotropic GGX with separable Smith masking, the twin of `materials/ggx.rs`, including the
 // spherical-cap visible-normal sampler (Dupuy & Benyoub 2023).
 
-const SMOOTH_ALPHA: f32 = 1e-3;
-
 fn ggx_is_smooth(alpha: f32) -> bool {
     return alpha < SMOOTH_ALPHA;
 }

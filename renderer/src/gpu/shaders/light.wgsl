@@ -2,7 +2,7 @@
 // `switch` in the variant order of `Light` (Triangle, Polygon, Quad, Disk, Sphere, Background),
 // power-proportional selection from a CDF in `tables`.
 //
-// Record layout (see `gpu/scene_buffers.rs`): h = (kind, first triangle, triangle count, _),
+// Record layout (see `gpu/scene/lights.rs`): h = (kind, first triangle, triangle count, _),
 // le = (radiance, area).
 //   Triangle:   a, b, c = vertices, d.xyz = normal.
 //   Polygon:    a.xyz = a point of the plane, d.xyz = normal; triangles in `light_tris`
@@ -11,16 +11,6 @@
 //   Disk:       a.xyz = centre, a.w = radius, d.xyz = normal.
 //   Sphere:     a.xyz = centre, a.w = radius.
 //   Background: le.xyz only.
-
-const LIGHT_TRIANGLE: u32 = 0u;
-const LIGHT_POLYGON: u32 = 1u;
-const LIGHT_QUAD: u32 = 2u;
-const LIGHT_DISK: u32 = 3u;
-const LIGHT_SPHERE: u32 = 4u;
-const LIGHT_BACKGROUND: u32 = 5u;
-
-const LIGHT_SAMPLING_AREA: u32 = 0u;
-const LIGHT_SAMPLING_SOLID_ANGLE: u32 = 1u;
 
 struct Light {
     h: vec4<u32>,
@@ -111,8 +101,15 @@ fn light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSample {
             s = background_light_sample(l, u);
         }
 // #endif
-        default: {}
+        default: {
+            s.pdf = unknown_tag();
+        }
     }
+// #if MUTANTS
+    if l.h.x == MUTANT_LIGHT_PDF_TAG {
+        s.pdf *= MUTANT_FACTOR;
+    }
+// #endif
     if !(s.ok && s.pdf > 0.0 && is_finite_f(s.pdf) && any(s.le > vec3f(0.0))) {
         return no_light_sample();
     }
@@ -121,6 +118,13 @@ fn light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSample {
 
 // `Light::pdf`: solid-angle pdf of sampling direction wi from p, hitting y with normal ny.
 fn light_pdf(l: Light, p: vec3f, wi: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
+// #if MUTANTS
+    let pdf = light_pdf_unmutated(l, p, wi, y, ny, method);
+    return select(pdf, pdf * MUTANT_FACTOR, l.h.x == MUTANT_LIGHT_PDF_TAG);
+}
+
+fn light_pdf_unmutated(l: Light, p: vec3f, wi: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
+// #endif
     switch l.h.x {
 // #if HAS_TRIANGLE_LIGHT
         case LIGHT_TRIANGLE: {
@@ -151,7 +155,7 @@ fn light_pdf(l: Light, p: vec3f, wi: vec3f, y: vec3f, ny: vec3f, method: u32) ->
             return uniform_sphere_pdf();
         }
         default: {
-            return 0.0;
+            return unknown_tag();
         }
     }
 }

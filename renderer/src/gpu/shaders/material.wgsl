@@ -1,16 +1,12 @@
 // The closed set of materials, the twin of `materials/mod.rs`: one record per material, a `switch`
 // on the same variant order as `Material` (Diffuse, Conductor, Plastic).
 //
-// Record layout (see `gpu/scene_buffers.rs`):
-//   h = (kind, two_sided, aux, has_smooth_part); aux = Fresnel kind for conductors
-//       (0 complex, 1 tint) and the coat table's offset in `tables` for plastic.
+// Record layout (see `gpu/scene/materials.rs`):
+//   h = (kind, two_sided, aux, has_smooth_part); kind = MATERIAL_*; aux = Fresnel kind for
+//       conductors (FRESNEL_COMPLEX or FRESNEL_TINT) and the coat table's offset in `tables` for plastic.
 //   Diffuse:   a.xyz albedo.
 //   Conductor: a.xyz η (or the tint), b.xyz k, c.x α.
 //   Plastic:   a.xyz albedo, b.xyz coat tint, c = (α, F0, 1/(1 − E_avg) or 0, _).
-
-const MATERIAL_DIFFUSE: u32 = 0u;
-const MATERIAL_CONDUCTOR: u32 = 1u;
-const MATERIAL_PLASTIC: u32 = 2u;
 
 struct Material {
     h: vec4<u32>,
@@ -48,12 +44,19 @@ fn material_eval(m: Material, wo: vec3f, wi: vec3f) -> vec3f {
         }
 // #endif
         default: {
-            return vec3f(0.0);
+            return vec3f(unknown_tag());
         }
     }
 }
 
 fn material_pdf(m: Material, wo: vec3f, wi: vec3f) -> f32 {
+// #if MUTANTS
+    let pdf = material_pdf_unmutated(m, wo, wi);
+    return select(pdf, pdf * MUTANT_FACTOR, m.h.x == MUTANT_BSDF_PDF_TAG);
+}
+
+fn material_pdf_unmutated(m: Material, wo: vec3f, wi: vec3f) -> f32 {
+// #endif
     switch m.h.x {
         case MATERIAL_DIFFUSE: {
             return diffuse_pdf(wo, wi);
@@ -69,7 +72,7 @@ fn material_pdf(m: Material, wo: vec3f, wi: vec3f) -> f32 {
         }
 // #endif
         default: {
-            return 0.0;
+            return unknown_tag();
         }
     }
 }
@@ -91,8 +94,16 @@ fn material_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample 
             s = plastic_sample(m, wo, u_lobe, u);
         }
 // #endif
-        default: {}
+        default: {
+            s.pdf = unknown_tag();
+        }
     }
+// #if MUTANTS
+    if !s.delta && m.h.x == MUTANT_BSDF_PDF_TAG {
+        s.pdf *= MUTANT_FACTOR;
+        s.weight /= MUTANT_FACTOR;
+    }
+// #endif
     let ok = s.ok && s.pdf > 0.0 && is_finite_f(s.pdf) && is_finite3(s.weight) && s.wi.z > 0.0;
     if !ok {
         return no_bsdf_sample();

@@ -1,15 +1,8 @@
 // Shared math, the twin of `math.rs` (frames, safe functions, luminance) plus the f32 helpers WGSL
 // lacks (infinity, finiteness tests, copysign, ulp steps, glam's normalisations).
 
-const PI: f32 = 3.14159265358979323846;
-const INV_PI: f32 = 0.31830988618379067154;
-const TAU: f32 = 6.28318530717958647692;
-const FRAC_PI_2: f32 = 1.57079632679489661923;
-const FRAC_PI_4: f32 = 0.78539816339744830962;
-// "No light" / "no material" (u32::MAX), as `geometry::primitive::NONE`.
-const NONE: u32 = 0xffffffffu;
-// The largest f32 below 1 (`sampling::ONE_MINUS_EPSILON`).
-const ONE_MINUS_EPSILON: f32 = 0.99999994;
+// PI, INV_PI, TAU, FRAC_PI_2, FRAC_PI_4, NONE ("no light" / "no material", u32::MAX) and
+// ONE_MINUS_EPSILON (the largest f32 below 1) come from the prelude (`gpu/prelude.rs`).
 
 // WGSL rejects infinite constant expressions, so infinity comes from a private variable's bits,
 // which the front end cannot fold.

@@ -1,7 +1,5 @@
-// Multiple-importance heuristics, the twin of `integrator/mis.rs`. `heuristic`: 0 balance, 1 power.
-
-const HEURISTIC_BALANCE: u32 = 0u;
-const HEURISTIC_POWER: u32 = 1u;
+// Multiple-importance heuristics, the twin of `integrator/mis.rs`. `heuristic`: HEURISTIC_BALANCE
+// or HEURISTIC_POWER.
 
 fn mis_weight(heuristic: u32, pa: f32, pb: f32) -> f32 {
     // Bit tests: comparisons with NaN or infinity are not reliable in WGSL.

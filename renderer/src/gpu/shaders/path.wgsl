@@ -3,12 +3,8 @@
 // invocation per pixel draws one sample per dispatch and folds it into the accumulation with
 // Welford's update (stable variance in f32; the film reads back Σx and Σx² from it).
 
-const STRATEGY_LIGHT: u32 = 0u;
-const STRATEGY_BSDF: u32 = 1u;
-const STRATEGY_MIXTURE: u32 = 2u;
-const STRATEGY_MIS: u32 = 3u;
-
-// `EmissionWeight`: 0 one, 1 zero, 2 MIS, 3 mixture (BSDF branch).
+// `EmissionWeight`: 0 one, 1 zero, 2 MIS, 3 mixture (BSDF branch). Local to this kernel, not in the
+// prelude: the CPU's enum carries its data and no record or parameter holds these.
 const EW_ONE: u32 = 0u;
 const EW_ZERO: u32 = 1u;
 const EW_MIS: u32 = 2u;
@@ -162,7 +158,10 @@ fn radiance(camera_ray: Ray) -> vec3f {
                         p_bsdf = 0.0;
                     }
                 }
-                default: {}
+                case STRATEGY_BSDF: {}
+                default: {
+                    _ = unknown_tag();
+                }
             }
         }
         if do_nee {
@@ -223,8 +222,13 @@ fn render(@builtin(global_invocation_id) gid: vec3<u32>) {
     let pixel = gid.y * params.width + gid.x;
     let s = params.sample + gid.z;
     rng_init(params.seed, pixel, s);
+    check_param_tags(params);
     let jitter = rng_next_2d();
     var x = radiance(camera_ray(f32(gid.x) + jitter.x, f32(gid.y) + jitter.y));
+    if unknown_tag_seen {
+        // A record or parameter with a tag no `switch` knows (`tags.wgsl`): a NaN sample.
+        x = vec3f(unknown_tag());
+    }
     if !is_finite3(x) {
         // The CPU skips it but still counts the sample: a zero sample.
         atomicAdd(&counters[0], 1u);

@@ -1,8 +1,6 @@
 // Lambert base under a GGX dielectric coat, coupled through the coat's tabulated directional
-// albedo: the twin of `materials/plastic.rs` and `materials/coat_albedo.rs`. The table (64 nodes
-// at μ = (i/63)³) lives in `tables` at the material's offset.
-
-const E_TABLE_SIZE: u32 = 64u;
+// albedo: the twin of `materials/plastic.rs` and `materials/coat_albedo.rs`. The table
+// (E_TABLE_SIZE = 64 nodes at μ = (i/63)³) lives in `tables` at the material's offset.
 
 fn coat_node_mu(i: u32) -> f32 {
     let t = f32(i) / f32(E_TABLE_SIZE - 1u);
@@ -13,7 +11,7 @@ fn coat_node_mu(i: u32) -> f32 {
 fn coat_albedo_eval(m: Material, mu_in: f32) -> f32 {
     let mu = clamp(mu_in, 0.0, 1.0);
     let alpha = m.c.x;
-    if alpha < 1e-3 {
+    if alpha < SMOOTH_ALPHA {
         return fresnel_schlick(m.c.y, mu);
     }
     // pow(μ, 1/3) for cbrt; its rounding can pick a neighbouring node, so step to the node
@@ -61,7 +59,7 @@ fn plastic_eval_pdf(m: Material, wo: vec3f, wi: vec3f) -> vec4f {
     var pdf = (1.0 - p_coat) * INV_PI * wi.z;
 // #if HAS_GGX
     let a = m.c.x;
-    if !(a < 1e-3) {
+    if !(a < SMOOTH_ALPHA) {
         let hv = ggx_half_vector(wo, wi);
         let d_g1o = ggx_d(a, hv.xyz) * ggx_g1(a, wo) / (4.0 * wo.z);
         let fr = fresnel_schlick(m.c.y, hv.w);
@@ -69,7 +67,11 @@ fn plastic_eval_pdf(m: Material, wo: vec3f, wi: vec3f) -> vec4f {
         pdf += p_coat * d_g1o;
     }
 // #endif
+// #if MUTANTS
+    return vec4f(f * MUTANT_PLASTIC_EVAL, pdf);
+// #else
     return vec4f(f, pdf);
+// #endif
 }
 
 fn plastic_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample {
@@ -79,7 +81,7 @@ fn plastic_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample {
     let p_coat = plastic_coat_probability(m, coat_albedo_eval(m, wo.z));
     var wi: vec3f;
     if u_lobe < p_coat {
-        if m.c.x < 1e-3 {
+        if m.c.x < SMOOTH_ALPHA {
             let wm = vec3f(-wo.x, -wo.y, wo.z);
             let weight = m.b.xyz * (fresnel_schlick(m.c.y, wo.z) / p_coat);
             return BsdfSample(wm, weight, p_coat, true, true);

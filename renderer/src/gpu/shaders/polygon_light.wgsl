@@ -3,8 +3,6 @@
 // is uniform over the whole polygon's solid angle. The per-triangle solid angles are summed twice
 // (total, then the pick) instead of being kept in an array: private arrays are costly on GPUs.
 
-const MAX_SOLID_ANGLE_TRIANGLES: u32 = 64u;
-
 fn polygon_light_faces(l: Light, p: vec3f) -> bool {
     return dot(p - l.a.xyz, l.d.xyz) > 0.0;
 }

@@ -118,8 +118,6 @@ fn spawn_ray(p: vec3f, p_error: vec3f, n: vec3f, d: vec3f) -> Ray {
     return Ray(offset_ray_origin(p, p_error, n, d), d, inf());
 }
 
-const SHADOW_EPSILON: f32 = 1e-4;
-
 fn spawn_ray_to(p_from: vec3f, err_from: vec3f, n_from: vec3f, p_to: vec3f, err_to: vec3f, n_to: vec3f) -> Ray {
     let pf = offset_ray_origin(p_from, err_from, n_from, p_to - p_from);
     let pt = offset_ray_origin(p_to, err_to, n_to, pf - p_to);

@@ -1,14 +1,10 @@
 // The shapes the BVH holds, the twin of `geometry/primitive.rs`: a `switch` in the variant order
 // of `Shape` (Triangle, Disk, Sphere).
 //
-// Record layout (see `gpu/scene_buffers.rs`): a.w, b.w, c.w = bits of (kind, material, light).
+// Record layout (see `gpu/scene/shapes.rs`): a.w, b.w, c.w = bits of (kind, material, light).
 //   Triangle: a, b, c = vertices, d.xyz = unit normal.
 //   Disk:     a.xyz = centre, d.xyz = unit normal, d.w = radius.
 //   Sphere:   a.xyz = centre, d.w = radius.
-
-const SHAPE_TRIANGLE: u32 = 0u;
-const SHAPE_DISK: u32 = 1u;
-const SHAPE_SPHERE: u32 = 2u;
 
 struct Prim {
     a: vec4f,
@@ -55,6 +51,8 @@ fn shape_intersect_t(p: Prim, ray: Ray, tri: TriangleRay) -> f32 {
         }
 // #endif
         default: {
+            // No hit (a NaN t would be no hit either), but the sample is flagged.
+            _ = unknown_tag();
             return -1.0;
         }
     }
@@ -75,6 +73,7 @@ fn shape_surface_hit(p: Prim, ray: Ray, t: f32, prim: u32) -> SurfaceHit {
             return SurfaceHit(t, sp.p, sp.p_error, sp.n, prim);
         }
 // #endif
+        // SHAPE_TRIANGLE (an unknown kind never gets here: `shape_intersect_t` flags it and misses).
         default: {
             // Barycentrics recomputed once per closest hit, as on the CPU.
             let full = Ray(ray.o, ray.d, inf());

@@ -2,8 +2,6 @@
 // cones through sin²θ), or by area with the sample re-traced so its point and pdf are exactly what
 // the intersection of its f32 direction gives.
 
-const SMALL_CONE_SIN2: f32 = 0.00068523;
-
 // (sin²θ_max, 1 − cos θ_max) of the cone from p; x < 0 when p is inside.
 fn sphere_light_cone(l: Light, p: vec3f) -> vec2f {
     let pc = p - l.a.xyz;

@@ -2,9 +2,6 @@
 // `sampling/spherical_rectangle.rs`: closed-form abscissa polished by safeguarded Newton steps,
 // cancellation-free forms of 1 ± h.
 
-const MAX_EDGE_COS: f32 = 1e-4;
-const MAX_NEWTON_STEPS: u32 = 32u;
-
 struct SphericalRectangle {
     corner: vec3f,
     edge_u: vec3f,

@@ -1,9 +1,6 @@
 // Uniform solid-angle sampling of a spherical triangle (Arvo 1995), the twin of
 // `sampling/spherical_triangle.rs`, with the same versine and half-angle forms.
 
-const MIN_SPHERICAL_SAMPLE_AREA: f32 = 3e-4;
-const MAX_SPHERICAL_SAMPLE_AREA: f32 = 6.22;
-
 // Van Oosterom–Strackee solid angle of the unit vectors a, b, c.
 fn spherical_triangle_area(a: vec3f, b: vec3f, c: vec3f) -> f32 {
     let triple = dot(a, cross(b - a, c - a));

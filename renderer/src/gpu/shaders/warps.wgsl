@@ -1,5 +1,6 @@
-// The planar warps of `sampling/` (disk.rs, hemisphere.rs, sphere.rs, triangle.rs): the forward
-// maps the renderer uses. Their pdfs are constants the callers inline, as on the CPU.
+// The planar warps of `sampling/` (`sampling/disk.rs`, `sampling/hemisphere.rs`,
+// `sampling/sphere.rs`, `sampling/triangle.rs`): the forward maps the renderer uses. Their pdfs
+// are constants the callers inline, as on the CPU.
 
 // `sample_uniform_disk_concentric` (Shirley–Chiu).
 fn sample_uniform_disk_concentric(u: vec2f) -> vec2f {

@@ -1,8 +1,9 @@
-//! [`AnyProgressive`]: the CPU or the GPU engine behind one interface, for front ends (the
-//! command line, the viewer) that let the user pick the backend.
+//! [`AnyProgressive`]: the CPU engine ([`Progressive`]) or its GPU twin
+//! ([`GpuProgressive`]) behind one interface, for front ends (the command line, the viewer) that
+//! let the user pick the [`Backend`].
 
-use super::{AccumulationView, GpuContext, GpuError, GpuProgressive};
-use crate::engine::{Film, Progressive};
+use super::{Film, Progressive};
+use crate::gpu::{AccumulationView, GpuContext, GpuError, GpuProgressive};
 use crate::integrator::Settings;
 use crate::scene::Scene;
 use std::borrow::Cow;

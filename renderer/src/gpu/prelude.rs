@@ -1,0 +1,312 @@
+//! The WGSL prelude: every constant and kind tag the shaders share with Rust, written as
+//! `const NAME: TYPE = VALUE;` from the Rust definitions themselves and put in front of every
+//! program by [`super::shader::library_source`]. A change on the Rust side therefore reaches the
+//! shaders, and a hand-written copy left in a module is a redefinition that naga rejects.
+//!
+//! Kind tags (materials, lights, shapes, strategies, …) are `#[repr(u32)]` enums declared with
+//! `gpu_tags!` next to the record encoder that writes them (`gpu/scene/`): the encoder stores
+//! `tag as u32`, the prelude lists [`Tag::ALL`](super::scene::MaterialTag::ALL) under the names
+//! the WGSL `switch`es use. What a `switch` does with a tag no case knows is in `tags.wgsl`: it
+//! flags the sample, which the film counts as non-finite.
+//! WGSL twin: `tags.wgsl`.
+
+use super::scene::{
+    BVH2_STACK_SIZE, CWBVH_STACK_SIZE, FresnelTag, HeuristicTag, LightSamplingTag, LightTag,
+    MaterialTag, ShapeTag, StrategyTag,
+};
+use crate::geometry::{primitive, ray, wide_bvh};
+use crate::lights::{polygon, sphere};
+use crate::materials::{coat_albedo, ggx};
+use crate::sampling::{self, spherical_rectangle};
+
+/// A constant's value, with its WGSL type.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Value {
+    /// `f32`; finite (WGSL has no literal for infinity or NaN).
+    F32(f32),
+    /// `u32`.
+    U32(u32),
+}
+
+/// One `const NAME: TYPE = VALUE;` of the prelude.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Constant {
+    /// The WGSL name.
+    pub name: &'static str,
+    /// The value.
+    pub value: Value,
+}
+
+impl Constant {
+    /// The WGSL declaration. An f32 is written with the shortest digits that round-trip (`{:e}`)
+    /// and the `f` suffix, so naga rounds the decimal straight to f32 (an abstract float would
+    /// round twice, through f64): the shader holds the same bits as Rust.
+    pub fn wgsl(&self) -> String {
+        match self.value {
+            Value::F32(v) => {
+                assert!(v.is_finite(), "{}: WGSL has no literal for {v}", self.name);
+                format!("const {}: f32 = {v:e}f;", self.name)
+            }
+            Value::U32(v) => format!("const {}: u32 = {v}u;", self.name),
+        }
+    }
+}
+
+/// A count or size that must fit a u32 (checked at compile time where used in a constant).
+const fn count(n: usize) -> u32 {
+    assert!(n <= u32::MAX as usize);
+    n as u32
+}
+
+/// Declares a `#[repr(u32)]` enum of GPU kind tags with `ALL`, every variant and the name of its
+/// WGSL constant: the single definition the record encoder and the prelude both read. Variants
+/// take the discriminants 0, 1, … in order.
+macro_rules! gpu_tags {
+    (
+        $(#[$meta:meta])*
+        $vis:vis enum $name:ident {
+            $($(#[$vmeta:meta])* $variant:ident => $wgsl:literal,)+
+        }
+    ) => {
+        $(#[$meta])*
+        #[repr(u32)]
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        $vis enum $name {
+            $($(#[$vmeta])* $variant,)+
+        }
+
+        impl $name {
+            /// Every tag with the name of its WGSL constant (in the generated prelude).
+            pub const ALL: &'static [($name, &'static str)] = &[$(($name::$variant, $wgsl),)+];
+
+            /// The value GPU records and parameters hold.
+            pub const fn gpu_tag(self) -> u32 {
+                self as u32
+            }
+        }
+
+        impl From<$name> for u32 {
+            fn from(t: $name) -> u32 {
+                t.gpu_tag()
+            }
+        }
+    };
+}
+pub(crate) use gpu_tags;
+
+fn f32c(name: &'static str, v: f32) -> Constant {
+    Constant {
+        name,
+        value: Value::F32(v),
+    }
+}
+
+fn u32c(name: &'static str, v: u32) -> Constant {
+    Constant {
+        name,
+        value: Value::U32(v),
+    }
+}
+
+fn tags<T: Copy + Into<u32>>(all: &[(T, &'static str)]) -> impl Iterator<Item = Constant> {
+    all.iter().map(|&(t, name)| u32c(name, t.into()))
+}
+
+/// Every constant of the prelude, from its Rust definition.
+pub fn constants() -> Vec<Constant> {
+    use std::f32::consts;
+    let mut c = vec![
+        // math.wgsl
+        f32c("PI", consts::PI),
+        f32c("INV_PI", consts::FRAC_1_PI),
+        f32c("TAU", consts::TAU),
+        f32c("FRAC_PI_2", consts::FRAC_PI_2),
+        f32c("FRAC_PI_4", consts::FRAC_PI_4),
+        u32c("NONE", primitive::NONE),
+        f32c("ONE_MINUS_EPSILON", sampling::ONE_MINUS_EPSILON),
+        // Materials.
+        f32c("SMOOTH_ALPHA", ggx::SMOOTH_ALPHA),
+        u32c("E_TABLE_SIZE", const { count(coat_albedo::E_TABLE_SIZE) }),
+        // Lights and their warps.
+        f32c("SMALL_CONE_SIN2", sphere::SMALL_CONE_SIN2),
+        f32c("MAX_EDGE_COS", spherical_rectangle::MAX_EDGE_COS),
+        u32c(
+            "MAX_NEWTON_STEPS",
+            const { count(spherical_rectangle::MAX_NEWTON_STEPS) },
+        ),
+        f32c(
+            "MIN_SPHERICAL_SAMPLE_AREA",
+            sampling::MIN_SPHERICAL_SAMPLE_AREA,
+        ),
+        f32c(
+            "MAX_SPHERICAL_SAMPLE_AREA",
+            sampling::MAX_SPHERICAL_SAMPLE_AREA,
+        ),
+        u32c(
+            "MAX_SOLID_ANGLE_TRIANGLES",
+            const { count(polygon::MAX_SOLID_ANGLE_TRIANGLES) },
+        ),
+        // Rays and BVHs.
+        f32c("SHADOW_EPSILON", ray::SHADOW_EPSILON),
+        f32c("MAX_INV", wide_bvh::MAX_INV),
+        u32c("BVH_STACK_SIZE", const { count(CWBVH_STACK_SIZE) }),
+        u32c("BVH2_STACK_SIZE", const { count(BVH2_STACK_SIZE) }),
+    ];
+    c.extend(tags(MaterialTag::ALL));
+    c.extend(tags(FresnelTag::ALL));
+    c.extend(tags(LightTag::ALL));
+    c.extend(tags(ShapeTag::ALL));
+    c.extend(tags(StrategyTag::ALL));
+    c.extend(tags(HeuristicTag::ALL));
+    c.extend(tags(LightSamplingTag::ALL));
+    #[cfg(feature = "mutants")]
+    c.extend(mutant_constants(crate::mutants::active()));
+    c
+}
+
+/// The WGSL side of [`crate::mutants`]: the active mutant's factor and the tags it applies to
+/// (`NONE` where it applies to none), read by the `// #if MUTANTS` regions of the shaders.
+#[cfg(feature = "mutants")]
+pub fn mutant_constants(m: &crate::mutants::Mutant) -> Vec<Constant> {
+    use crate::mutants::{FACTOR, Mutant};
+    let (light, bsdf) = match m {
+        Mutant::LightPdf(t) => (*t, primitive::NONE),
+        Mutant::BsdfPdf(t) => (primitive::NONE, *t),
+        _ => (primitive::NONE, primitive::NONE),
+    };
+    let plastic = if *m == Mutant::PlasticEval {
+        FACTOR
+    } else {
+        1.0
+    };
+    vec![
+        f32c("MUTANT_FACTOR", FACTOR),
+        u32c("MUTANT_LIGHT_PDF_TAG", light),
+        u32c("MUTANT_BSDF_PDF_TAG", bsdf),
+        f32c("MUTANT_PLASTIC_EVAL", plastic),
+    ]
+}
+
+/// The prelude's WGSL for `constants`.
+pub fn source(constants: &[Constant]) -> String {
+    let mut s = String::from("// Generated from the Rust definitions by `gpu/prelude.rs`.\n");
+    for c in constants {
+        s += &c.wgsl();
+        s.push('\n');
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use wgpu::naga;
+
+    /// The prelude as naga reads it: each constant's name and literal.
+    fn parsed(src: &str) -> Vec<(String, naga::Literal)> {
+        let module = naga::front::wgsl::parse_str(src).unwrap_or_else(|e| panic!("{e}\n{src}"));
+        module
+            .constants
+            .iter()
+            .map(|(_, c)| {
+                let name = c.name.clone().expect("named");
+                match module.global_expressions[c.init] {
+                    naga::Expression::Literal(l) => (name, l),
+                    ref e => panic!("{name}: not a literal: {e:?}"),
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn every_constant_reaches_wgsl_with_its_rust_bits() {
+        let table = constants();
+        let got = parsed(&source(&table));
+        assert_eq!(got.len(), table.len());
+        for (c, (name, lit)) in table.iter().zip(&got) {
+            assert_eq!(c.name, name);
+            match (c.value, *lit) {
+                (Value::F32(want), naga::Literal::F32(v)) => {
+                    assert_eq!(v.to_bits(), want.to_bits(), "{name}: {v:e} vs {want:e}")
+                }
+                (Value::U32(want), naga::Literal::U32(v)) => assert_eq!(v, want, "{name}"),
+                (want, got) => panic!("{name}: {got:?} for {want:?}"),
+            }
+        }
+        // Names are unique (WGSL would reject a redefinition; say which).
+        let mut names: Vec<_> = table.iter().map(|c| c.name).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), table.len(), "duplicate names");
+    }
+
+    #[test]
+    fn the_prelude_holds_the_shared_constants_with_their_rust_values() {
+        use crate::sampling::{MAX_SPHERICAL_SAMPLE_AREA, MIN_SPHERICAL_SAMPLE_AREA};
+        let table = constants();
+        let value = |name: &str| {
+            table
+                .iter()
+                .find(|c| c.name == name)
+                .unwrap_or_else(|| panic!("{name} is not in the prelude"))
+                .value
+        };
+        for (name, want) in [
+            ("SMOOTH_ALPHA", Value::F32(ggx::SMOOTH_ALPHA)),
+            ("E_TABLE_SIZE", Value::U32(coat_albedo::E_TABLE_SIZE as u32)),
+            ("SMALL_CONE_SIN2", Value::F32(sphere::SMALL_CONE_SIN2)),
+            ("SHADOW_EPSILON", Value::F32(ray::SHADOW_EPSILON)),
+            (
+                "MAX_NEWTON_STEPS",
+                Value::U32(spherical_rectangle::MAX_NEWTON_STEPS as u32),
+            ),
+            (
+                "MAX_EDGE_COS",
+                Value::F32(spherical_rectangle::MAX_EDGE_COS),
+            ),
+            (
+                "MIN_SPHERICAL_SAMPLE_AREA",
+                Value::F32(MIN_SPHERICAL_SAMPLE_AREA),
+            ),
+            (
+                "MAX_SPHERICAL_SAMPLE_AREA",
+                Value::F32(MAX_SPHERICAL_SAMPLE_AREA),
+            ),
+            (
+                "MAX_SOLID_ANGLE_TRIANGLES",
+                Value::U32(polygon::MAX_SOLID_ANGLE_TRIANGLES as u32),
+            ),
+            ("MAX_INV", Value::F32(wide_bvh::MAX_INV)),
+            ("NONE", Value::U32(u32::MAX)),
+            ("ONE_MINUS_EPSILON", Value::F32(sampling::ONE_MINUS_EPSILON)),
+            ("BVH_STACK_SIZE", Value::U32(CWBVH_STACK_SIZE as u32)),
+            ("BVH2_STACK_SIZE", Value::U32(BVH2_STACK_SIZE as u32)),
+            ("MATERIAL_DIFFUSE", Value::U32(0)),
+            ("MATERIAL_PLASTIC", Value::U32(2)),
+            ("LIGHT_BACKGROUND", Value::U32(5)),
+            ("SHAPE_SPHERE", Value::U32(2)),
+            ("STRATEGY_MIS", Value::U32(3)),
+            ("HEURISTIC_POWER", Value::U32(1)),
+            ("LIGHT_SAMPLING_SOLID_ANGLE", Value::U32(1)),
+            ("FRESNEL_TINT", Value::U32(1)),
+        ] {
+            assert_eq!(value(name), want, "{name}");
+        }
+    }
+
+    #[test]
+    fn tags_are_consecutive_from_zero() {
+        fn check<T: Copy + Into<u32>>(all: &[(T, &str)]) {
+            for (i, &(t, name)) in all.iter().enumerate() {
+                assert_eq!(t.into(), i as u32, "{name}");
+            }
+        }
+        check(MaterialTag::ALL);
+        check(FresnelTag::ALL);
+        check(LightTag::ALL);
+        check(ShapeTag::ALL);
+        check(StrategyTag::ALL);
+        check(HeuristicTag::ALL);
+        check(LightSamplingTag::ALL);
+    }
+}

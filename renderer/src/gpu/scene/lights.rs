@@ -1,0 +1,152 @@
+//! Light records (`Light` in `light.wgsl`), one per [`Light`], the triangles of polygon lights,
+//! the power-proportional selection tables, and the lights' kind tags.
+//! WGSL twin: `light.wgsl` (the record layout and the `switch` on [`LightTag`]).
+
+use super::v4;
+use crate::geometry::primitive::NONE;
+use crate::gpu::prelude::gpu_tags;
+use crate::lights::Light;
+use crate::scene::Scene;
+use bytemuck::{Pod, Zeroable};
+
+/// A light record (`Light` in `light.wgsl`): `h` = (kind, first triangle, triangle count, _),
+/// four vec4 of geometry per kind and `le` = (radiance, area) (see the top of `light.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuLight {
+    pub(crate) h: [u32; 4],
+    pub(crate) a: [f32; 4],
+    pub(crate) b: [f32; 4],
+    pub(crate) c: [f32; 4],
+    pub(crate) d: [f32; 4],
+    pub(crate) le: [f32; 4],
+}
+
+gpu_tags! {
+    /// A light record's kind (`h.x`), in the variant order of [`Light`].
+    pub enum LightTag {
+        /// [`Light::Triangle`].
+        Triangle => "LIGHT_TRIANGLE",
+        /// [`Light::Polygon`].
+        Polygon => "LIGHT_POLYGON",
+        /// [`Light::Quad`].
+        Quad => "LIGHT_QUAD",
+        /// [`Light::Disk`].
+        Disk => "LIGHT_DISK",
+        /// [`Light::Sphere`].
+        Sphere => "LIGHT_SPHERE",
+        /// [`Light::Background`].
+        Background => "LIGHT_BACKGROUND",
+    }
+}
+
+impl LightTag {
+    /// The tag of `l`.
+    pub fn of(l: &Light) -> LightTag {
+        match l {
+            Light::Triangle(_) => LightTag::Triangle,
+            Light::Polygon(_) => LightTag::Polygon,
+            Light::Quad(_) => LightTag::Quad,
+            Light::Disk(_) => LightTag::Disk,
+            Light::Sphere(_) => LightTag::Sphere,
+            Light::Background(_) => LightTag::Background,
+        }
+    }
+}
+
+/// A prefix sum in f64 normalised to end at exactly 1, rounded to f32 (the CPU's
+/// `DiscreteDistribution` keeps it in f64; f32 is all the GPU has).
+fn cdf(weights: &[f32]) -> Vec<f32> {
+    let total: f64 = weights.iter().map(|&w| w as f64).sum();
+    let mut acc = 0.0f64;
+    let mut out = vec![0.0f32];
+    for &w in weights {
+        acc += w as f64;
+        out.push((acc / total) as f32);
+    }
+    out
+}
+
+/// The records of `scene`'s lights; polygon lights append their triangles to `light_tris` (three
+/// vec4 each, the first two w's holding the triangle's interval of the by-area CDF).
+pub(super) fn encode(scene: &Scene, light_tris: &mut Vec<[f32; 4]>) -> Vec<GpuLight> {
+    scene
+        .lights
+        .iter()
+        .map(|l| {
+            let z = [0.0; 4];
+            let mut g = GpuLight {
+                h: [LightTag::of(l).gpu_tag(), 0, 0, 0],
+                a: z,
+                b: z,
+                c: z,
+                d: z,
+                le: z,
+            };
+            match l {
+                Light::Triangle(t) => {
+                    g.a = v4(t.v[0], 0.0);
+                    g.b = v4(t.v[1], 0.0);
+                    g.c = v4(t.v[2], 0.0);
+                    g.d = v4(t.n, 0.0);
+                    g.le = v4(t.le, t.area);
+                }
+                Light::Polygon(p) => {
+                    let areas: Vec<f32> = p
+                        .triangles
+                        .iter()
+                        .map(crate::geometry::triangle::triangle_area)
+                        .collect();
+                    let c = cdf(&areas);
+                    g.h[1] = (light_tris.len() / 3) as u32;
+                    g.h[2] = p.triangles.len() as u32;
+                    for (i, t) in p.triangles.iter().enumerate() {
+                        light_tris.push(v4(t[0], c[i]));
+                        light_tris.push(v4(t[1], c[i + 1]));
+                        light_tris.push(v4(t[2], 0.0));
+                    }
+                    g.a = v4(p.origin, 0.0);
+                    g.d = v4(p.n, 0.0);
+                    g.le = v4(p.le, p.area);
+                }
+                Light::Quad(q) => {
+                    g.a = v4(q.corner, 0.0);
+                    g.b = v4(q.edge_u, 0.0);
+                    g.c = v4(q.edge_v, 0.0);
+                    g.d = v4(q.n, 0.0);
+                    g.le = v4(q.le, q.area);
+                }
+                Light::Disk(k) => {
+                    g.a = v4(k.disk.center, k.disk.radius);
+                    g.d = v4(k.disk.n, 0.0);
+                    g.le = v4(k.le, k.disk.area());
+                }
+                Light::Sphere(s) => {
+                    g.a = v4(s.sphere.center, s.sphere.radius);
+                    g.le = v4(s.le, s.sphere.area());
+                }
+                Light::Background(b) => {
+                    g.le = v4(b.le, 0.0);
+                }
+            }
+            g
+        })
+        .collect()
+}
+
+/// Light selection: the CPU's power distribution, its CDF and pmf appended side by side to
+/// `tables`; their offsets, or `NONE` when the scene has nothing to sample.
+pub(super) fn selection(scene: &Scene, tables: &mut Vec<f32>) -> (u32, u32) {
+    match &scene.light_sampler {
+        Some(sampler) => {
+            let powers: Vec<f32> = scene.lights.iter().map(|l| l.power().max(0.0)).collect();
+            let c = cdf(&powers);
+            let cdf_offset = tables.len() as u32;
+            tables.extend_from_slice(&c);
+            let pmf_offset = tables.len() as u32;
+            tables.extend((0..scene.lights.len()).map(|i| sampler.pmf(i)));
+            (cdf_offset, pmf_offset)
+        }
+        None => (NONE, NONE),
+    }
+}

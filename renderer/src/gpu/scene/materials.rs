@@ -1,0 +1,105 @@
+//! Material records (`Material` in `material.wgsl`), one per [`Material`], and their kind tags.
+//! WGSL twin: `material.wgsl` (the record layout and the `switch` on [`MaterialTag`]).
+
+use super::v4;
+use crate::gpu::prelude::gpu_tags;
+use crate::materials::{ConductorFresnel, Material};
+use crate::scene::Scene;
+use bytemuck::{Pod, Zeroable};
+
+/// A material record (`Material` in `material.wgsl`): `h` = (kind, two-sided, aux, has a smooth
+/// part), then three vec4 of parameters per kind (see the comment at the top of `material.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct GpuMaterial {
+    pub(crate) h: [u32; 4],
+    pub(crate) a: [f32; 4],
+    pub(crate) b: [f32; 4],
+    pub(crate) c: [f32; 4],
+}
+
+gpu_tags! {
+    /// A material record's kind (`h.x`), in the variant order of [`Material`].
+    pub enum MaterialTag {
+        /// [`Material::Diffuse`].
+        Diffuse => "MATERIAL_DIFFUSE",
+        /// [`Material::Conductor`].
+        Conductor => "MATERIAL_CONDUCTOR",
+        /// [`Material::Plastic`].
+        Plastic => "MATERIAL_PLASTIC",
+    }
+}
+
+impl MaterialTag {
+    /// The tag of `m`.
+    pub fn of(m: &Material) -> MaterialTag {
+        match m {
+            Material::Diffuse(_) => MaterialTag::Diffuse,
+            Material::Conductor(_) => MaterialTag::Conductor,
+            Material::Plastic(_) => MaterialTag::Plastic,
+        }
+    }
+}
+
+gpu_tags! {
+    /// A conductor's Fresnel kind (`h.z` of its record).
+    pub enum FresnelTag {
+        /// [`ConductorFresnel::Complex`]: η in `a`, k in `b`.
+        Complex => "FRESNEL_COMPLEX",
+        /// [`ConductorFresnel::Tint`]: the reflectance in `a`.
+        Tint => "FRESNEL_TINT",
+    }
+}
+
+/// The records of `scene`'s materials; a plastic's coat table is appended to `tables` and its
+/// record holds the offset.
+pub(super) fn encode(scene: &Scene, tables: &mut Vec<f32>) -> Vec<GpuMaterial> {
+    scene
+        .materials
+        .iter()
+        .zip(&scene.two_sided)
+        .map(|(m, &two_sided)| {
+            let kind = MaterialTag::of(m).gpu_tag();
+            let smooth = m.has_smooth_part() as u32;
+            let z = [0.0; 4];
+            match m {
+                Material::Diffuse(d) => GpuMaterial {
+                    h: [kind, two_sided as u32, 0, smooth],
+                    a: v4(d.albedo, 0.0),
+                    b: z,
+                    c: z,
+                },
+                Material::Conductor(c) => {
+                    let (fresnel, a, b) = match c.fresnel {
+                        ConductorFresnel::Complex { eta, k } => (FresnelTag::Complex, eta, k),
+                        ConductorFresnel::Tint(r) => (FresnelTag::Tint, r, glam::Vec3::ZERO),
+                    };
+                    GpuMaterial {
+                        h: [kind, two_sided as u32, fresnel.gpu_tag(), smooth],
+                        a: v4(a, 0.0),
+                        b: v4(b, 0.0),
+                        c: [c.alpha, 0.0, 0.0, 0.0],
+                    }
+                }
+                Material::Plastic(p) => {
+                    let offset = tables.len() as u32;
+                    tables.extend_from_slice(p.coat().table());
+                    let f0 = crate::materials::fresnel::schlick_f0_from_ior(p.ior());
+                    // As `Plastic::new`: no light reaches the base of a coat that reflects all.
+                    let e_avg = p.coat().average();
+                    let diffuse_norm = if 1.0 - e_avg > 1e-6 {
+                        1.0 / (1.0 - e_avg)
+                    } else {
+                        0.0
+                    };
+                    GpuMaterial {
+                        h: [kind, two_sided as u32, offset, smooth],
+                        a: v4(p.albedo(), 0.0),
+                        b: v4(p.specular(), 0.0),
+                        c: [p.alpha(), f0, diffuse_norm, 0.0],
+                    }
+                }
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,259 @@
+//! [`GpuScene`]: the scene flattened into GPU storage buffers, one record encoder per kind
+//! ([`materials`], [`lights`], [`shapes`], [`bvh`]) whose layouts the WGSL records mirror, and
+//! the per-dispatch uniform ([`params`]). Each kind's tags are a `#[repr(u32)]` enum next to its
+//! encoder, which the generated WGSL prelude (`gpu/prelude.rs`) names for the shaders.
+//! WGSL twin: `bindings.wgsl` (the bind group this module creates).
+//!
+//! Primitives are uploaded in the BVH's leaf order, which is the order of
+//! [`crate::geometry::Accel::primitives`], so the obvhs CWBVH nodes go up byte for byte and a hit's
+//! primitive index means the same on both sides. The optional BVH2 ([`GpuScene::with_bvh2`]) is
+//! built over that same list and reaches it through its `primitive_indices`, so its hits index the
+//! same primitives.
+
+pub mod bvh;
+pub mod lights;
+pub mod materials;
+pub mod params;
+pub mod shapes;
+
+pub use bvh::{BVH2_STACK_SIZE, CWBVH_STACK_SIZE};
+pub use lights::{GpuLight, LightTag};
+pub use materials::{FresnelTag, GpuMaterial, MaterialTag};
+pub use params::{GpuParams, HeuristicTag, LightSamplingTag, PARAMS_STRIDE, StrategyTag};
+pub use shapes::{GpuPrim, ShapeTag};
+
+use super::shader::Features;
+use super::{GpuContext, GpuError};
+use crate::scene::Scene;
+use std::sync::Arc;
+use wgpu::util::DeviceExt;
+
+/// The scene on the GPU.
+pub struct GpuScene {
+    ctx: Arc<GpuContext>,
+    scene: Arc<Scene>,
+    features: Features,
+    nodes: wgpu::Buffer,
+    prims: wgpu::Buffer,
+    materials: wgpu::Buffer,
+    lights: wgpu::Buffer,
+    light_tris: wgpu::Buffer,
+    tables: wgpu::Buffer,
+    light_cdf: u32,
+    light_pmf: u32,
+    layout: wgpu::BindGroupLayout,
+}
+
+/// Every record of a scene but the BVH nodes, as the storage buffers will hold them.
+pub(crate) struct Records {
+    pub(crate) prims: Vec<GpuPrim>,
+    pub(crate) materials: Vec<GpuMaterial>,
+    pub(crate) lights: Vec<GpuLight>,
+    pub(crate) light_tris: Vec<[f32; 4]>,
+    /// Coat albedo tables, then the light-selection CDF and pmf.
+    pub(crate) tables: Vec<f32>,
+    pub(crate) light_cdf: u32,
+    pub(crate) light_pmf: u32,
+}
+
+impl Records {
+    /// Encodes every record of `scene`.
+    pub(crate) fn of(scene: &Scene) -> Records {
+        let mut tables = Vec::new();
+        let mut light_tris = Vec::new();
+        let prims = shapes::encode(scene);
+        let materials = materials::encode(scene, &mut tables);
+        let lights = lights::encode(scene, &mut light_tris);
+        let (light_cdf, light_pmf) = lights::selection(scene, &mut tables);
+        Records {
+            prims,
+            materials,
+            lights,
+            light_tris,
+            tables,
+            light_cdf,
+            light_pmf,
+        }
+    }
+}
+
+fn v4(v: glam::Vec3, w: f32) -> [f32; 4] {
+    [v.x, v.y, v.z, w]
+}
+
+fn bits(u: u32) -> f32 {
+    f32::from_bits(u)
+}
+
+impl GpuScene {
+    /// Flattens and uploads `scene`, with the CWBVH.
+    pub fn new(ctx: Arc<GpuContext>, scene: Arc<Scene>) -> Result<GpuScene, GpuError> {
+        GpuScene::with_bvh2(ctx, scene, false)
+    }
+
+    /// Flattens and uploads `scene`; with `bvh2` (and a scene large enough for a BVH) it also
+    /// builds an obvhs BVH2 and the programs traverse that instead of the CWBVH
+    /// ([`Features::bvh2`]), for measuring the two. The images are the same up to float rounding
+    /// either way.
+    pub fn with_bvh2(
+        ctx: Arc<GpuContext>,
+        scene: Arc<Scene>,
+        bvh2: bool,
+    ) -> Result<GpuScene, GpuError> {
+        let records = Records::of(&scene);
+        GpuScene::upload(ctx, scene, bvh2, records)
+    }
+
+    /// Uploads `records` (those of `scene`, possibly altered by a test) with `scene`'s BVH.
+    pub(crate) fn upload(
+        ctx: Arc<GpuContext>,
+        scene: Arc<Scene>,
+        bvh2: bool,
+        records: Records,
+    ) -> Result<GpuScene, GpuError> {
+        let mut features = Features::of(&scene);
+        features.bvh2 = bvh2 && features.use_bvh;
+        let bvh2_rows = if features.bvh2 {
+            bvh::bvh2_rows(scene.accel.primitives())?
+        } else {
+            Vec::new()
+        };
+        let nodes: &[u8] = match scene.accel.cwbvh() {
+            Some(_) if features.bvh2 => bytemuck::cast_slice(&bvh2_rows),
+            Some(cwbvh) => {
+                bvh::check_cwbvh(cwbvh)?;
+                bytemuck::cast_slice(&cwbvh.nodes)
+            }
+            None => &[],
+        };
+        let device = &ctx.device;
+        let limit = device.limits().max_storage_buffer_binding_size as usize;
+        for (what, size) in [
+            ("BVH nodes", nodes.len()),
+            ("primitives", records.prims.len() * size_of::<GpuPrim>()),
+        ] {
+            if size > limit {
+                return Err(GpuError::TooLarge(format!(
+                    "{what} take {size} bytes, the device binds at most {limit}"
+                )));
+            }
+        }
+        // Bindings may not be empty: pad every buffer to at least one 16-byte element.
+        let storage = |label: &str, data: &[u8]| {
+            let mut bytes = data.to_vec();
+            if bytes.is_empty() {
+                bytes.resize(80, 0);
+            }
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: &bytes,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        };
+        let r = &records;
+        let layout = Self::create_layout(device);
+        Ok(GpuScene {
+            nodes: storage("lumis nodes", nodes),
+            prims: storage("lumis prims", bytemuck::cast_slice(&r.prims)),
+            materials: storage("lumis materials", bytemuck::cast_slice(&r.materials)),
+            lights: storage("lumis lights", bytemuck::cast_slice(&r.lights)),
+            light_tris: storage("lumis light triangles", bytemuck::cast_slice(&r.light_tris)),
+            tables: storage("lumis tables", bytemuck::cast_slice(&r.tables)),
+            light_cdf: r.light_cdf,
+            light_pmf: r.light_pmf,
+            layout,
+            features,
+            scene,
+            ctx,
+        })
+    }
+
+    fn create_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+        let storage = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let mut entries = vec![wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: true,
+                min_binding_size: wgpu::BufferSize::new(size_of::<GpuParams>() as u64),
+            },
+            count: None,
+        }];
+        entries.extend((1..=6).map(|b| storage(b, true)));
+        entries.push(storage(7, false));
+        entries.push(storage(8, false));
+        device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("lumis scene"),
+            entries: &entries,
+        })
+    }
+
+    /// The context the buffers live in.
+    pub fn context(&self) -> &Arc<GpuContext> {
+        &self.ctx
+    }
+
+    /// The scene.
+    pub fn scene(&self) -> &Arc<Scene> {
+        &self.scene
+    }
+
+    /// What the scene uses (decides the specialised program).
+    pub fn features(&self) -> Features {
+        self.features
+    }
+
+    /// The layout of bind group 0 (`bindings.wgsl`).
+    pub fn layout(&self) -> &wgpu::BindGroupLayout {
+        &self.layout
+    }
+
+    /// Bind group 0 with the scene and the given parameter, accumulation and counter buffers.
+    pub fn bind_group(
+        &self,
+        params: &wgpu::Buffer,
+        accum: &wgpu::Buffer,
+        counters: &wgpu::Buffer,
+    ) -> wgpu::BindGroup {
+        fn whole(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+            wgpu::BindGroupEntry {
+                binding,
+                resource: buffer.as_entire_binding(),
+            }
+        }
+        self.ctx
+            .device
+            .create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("lumis scene"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                            buffer: params,
+                            offset: 0,
+                            size: wgpu::BufferSize::new(size_of::<GpuParams>() as u64),
+                        }),
+                    },
+                    whole(1, &self.nodes),
+                    whole(2, &self.prims),
+                    whole(3, &self.materials),
+                    whole(4, &self.lights),
+                    whole(5, &self.light_tris),
+                    whole(6, &self.tables),
+                    whole(7, accum),
+                    whole(8, counters),
+                ],
+            })
+    }
+}
