@@ -25,6 +25,8 @@ pub enum Command {
     Bench(BenchArgs),
     /// Open the interactive viewer (renders headless to a PNG when there is no display).
     View(ViewArgs),
+    /// Combine part files from `render --sample-range` into one, exactly.
+    Merge(MergeArgs),
 }
 
 /// Direct-lighting strategy names.
@@ -136,8 +138,12 @@ pub struct RenderArgs {
     /// Scene file (JSON).
     pub scene: PathBuf,
     /// Samples per pixel.
-    #[arg(long)]
-    pub spp: u32,
+    #[arg(long, required_unless_present = "sample_range")]
+    pub spp: Option<u32>,
+    /// Render only the sample indices START..END (END excluded) of the full render, instead of
+    /// --spp, and write a part file (.exr) for `lumis merge`.
+    #[arg(long, value_name = "START..END", conflicts_with = "spp", value_parser = parse_sample_range)]
+    pub sample_range: Option<std::ops::Range<u32>>,
     /// Random seed.
     #[arg(long, default_value_t = 0)]
     pub seed: u32,
@@ -157,6 +163,23 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub exposure: f32,
     /// Output image: .exr or .pfm (linear float RGB) or .png (sRGB).
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
+}
+
+/// `--sample-range`'s value, `START..END` (END excluded), non-empty.
+fn parse_sample_range(text: &str) -> Result<std::ops::Range<u32>, String> {
+    lumis_app::part_file::parse_range(text)
+}
+
+/// `lumis merge`.
+#[derive(Args, Debug)]
+pub struct MergeArgs {
+    /// Part files written by `lumis render --sample-range` (or by `lumis merge`), of one scene,
+    /// seed and estimator, with disjoint sample ranges.
+    #[arg(required = true)]
+    pub parts: Vec<PathBuf>,
+    /// Output part file (.exr): the mean of all their samples, and the sums to merge it again.
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
 }

@@ -2,6 +2,7 @@
 
 mod bench_cmd;
 mod cli;
+mod merge_cmd;
 mod render_cmd;
 mod view_cmd;
 
@@ -29,6 +30,7 @@ fn main() {
         cli::Command::Compare(a) => render_cmd::compare(&a),
         cli::Command::Bench(a) => bench_cmd::bench(&a),
         cli::Command::View(a) => view_cmd::view(&a),
+        cli::Command::Merge(a) => merge_cmd::merge(&a),
     };
     if let Err(e) = result {
         eprintln!("lumis: {e:#}");

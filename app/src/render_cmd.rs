@@ -1,34 +1,48 @@
 //! `lumis render` and `lumis compare`.
 
-use crate::cli::{CompareArgs, RenderArgs};
+use crate::cli::{BackendArg, CompareArgs, RenderArgs};
 use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressStyle};
-use lumis::engine::AnyProgressive;
+use lumis::engine::{AnyProgressive, Progressive};
 use lumis::image_io::Image;
 use lumis::metrics::{relmse, rmse};
 use lumis::scene::Scene;
+use lumis_app::part_file::{Part, Provenance, format_ranges};
 use std::sync::Arc;
 use std::time::Instant;
 
 /// Renders a scene headless and writes the image.
 pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
     let settings = args.estimator.settings()?;
-    if args.spp == 0 {
+    // clap requires exactly one of --spp and --sample-range.
+    let (first, spp) = match (&args.sample_range, args.spp) {
+        (Some(r), _) => (r.start, r.end - r.start),
+        (None, spp) => (0, spp.unwrap_or(0)),
+    };
+    if spp == 0 {
         bail!("--spp must be at least 1");
     }
     check_output_extension(&args.output)?;
+    if args.sample_range.is_some() {
+        check_part_options(args)?;
+    }
     check_output_dir(&args.output)?;
     let scene = Arc::new(Scene::load(&args.scene)?);
     let pool = thread_pool(args.threads)?;
-    let mut render = AnyProgressive::new(args.backend.backend(), scene, settings, args.seed)?;
-    let bar = ProgressBar::new(args.spp as u64);
+    let mut render = match args.sample_range {
+        Some(_) => AnyProgressive::Cpu(Progressive::with_first_sample(
+            scene, settings, args.seed, first,
+        )),
+        None => AnyProgressive::new(args.backend.backend(), scene, settings, args.seed)?,
+    };
+    let bar = ProgressBar::new(spp as u64);
     bar.set_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} spp  {elapsed_precise} (eta {eta})")
             .expect("valid progress template"),
     );
     let start = Instant::now();
     let mut pass = 1u32;
-    while render.spp() < args.spp {
+    while render.spp() < spp {
         // The time limit never stops the first pass: a 0-spp image would be silently black.
         if let Some(limit) = args.time_limit
             && render.spp() > 0
@@ -36,7 +50,7 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
         {
             break;
         }
-        let n = pass.min(args.spp - render.spp());
+        let n = pass.min(spp - render.spp());
         let t = Instant::now();
         pool.install(|| render.render_pass(n));
         bar.set_position(render.spp() as u64);
@@ -51,20 +65,58 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
     let film = render.film()?;
-    let img = Image {
-        width: film.width,
-        height: film.height,
-        data: film.mean(),
+    // A time limit can end a part early: it holds (and says) only the samples rendered.
+    let rendered = first..first + film.spp;
+    if args.sample_range.is_some() {
+        let provenance = Provenance::new(&args.scene, args.seed, &settings)?;
+        Part {
+            film: film.clone().into_owned(),
+            samples: vec![rendered.clone()],
+            provenance,
+        }
+        .write(&args.output)?;
+    } else {
+        let img = Image {
+            width: film.width,
+            height: film.height,
+            data: film.mean(),
+        };
+        img.write(&args.output, args.exposure)?;
+    }
+    let total = film.spp as f64 * film.width as f64 * film.height as f64;
+    let range = match args.sample_range {
+        Some(_) => format!(
+            " samples={}",
+            format_ranges(std::slice::from_ref(&rendered))
+        ),
+        None => String::new(),
     };
-    img.write(&args.output, args.exposure)?;
-    let samples = film.spp as f64 * film.width as f64 * film.height as f64;
     println!(
-        "spp={} seconds={:.3} samples_per_second={:.4e} nonfinite={}",
+        "spp={} seconds={:.3} samples_per_second={:.4e} nonfinite={}{range}",
         film.spp,
         seconds,
-        samples / seconds,
+        total / seconds,
         film.nonfinite
     );
+    Ok(())
+}
+
+/// What `--sample-range` needs besides a valid range: the CPU backend, whose film holds the
+/// exact f64 sums, and an EXR output to hold them.
+fn check_part_options(args: &RenderArgs) -> anyhow::Result<()> {
+    if args.backend == BackendArg::Gpu {
+        bail!(
+            "--sample-range needs --backend cpu: the GPU accumulates f32 running means from \
+             sample 0, which cannot start at an offset or merge exactly"
+        );
+    }
+    let ext = args.output.extension().and_then(|e| e.to_str());
+    if !ext.is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
+        bail!(
+            "{}: --sample-range writes a part file, which must end in .exr",
+            args.output.display()
+        );
+    }
     Ok(())
 }
 
