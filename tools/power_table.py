@@ -58,8 +58,9 @@ SCENES = {
         "gpu_mutants": ["light_pdf:sphere@gpu", "bsdf_pdf:conductor@gpu"],
     },
     "plastic_lights": {
+        # plastic_furnace builds scenes of its own: only the plastic's own mutants apply there.
         "cpu": [("strategy_agreement", "plastic_scene_strategies_agree"),
-                ("plastic_furnace", "")],
+                ("plastic_furnace", "", ["bsdf_pdf:plastic", "plastic_eval"])],
         "gpu": [],
         # Shape 6 is the triangle light; plastic_green the α = 0.3 sphere.
         "mutants": ["emission:6", "albedo:plastic_green", "light_pdf:triangle", "bsdf_pdf:plastic",
@@ -70,14 +71,15 @@ SCENES = {
 # The combinations tested on the whole image only (heavy tails): every emission scaled by a factor,
 # to measure the smallest bias each detects. Rows of the z-test lines whose WHAT contains one of the
 # `rows` strings are kept.
-SWEEP_FACTORS = ["1.005", "1.01", "1.02"]
 SWEEPS = {
     "veach_mis": {
+        "factors": ["1.03", "1.05", "1.1", "1.2", "1.5"],
         "cpu": [("reference_scenes", "veach_mis_matches_reference")],
         "gpu": [("gpu_images", "gpu_veach_mis_matches_reference")],
         "rows": ["veach_mis Light ", "veach_mis Bsdf "],
     },
     "plastic_lights": {
+        "factors": ["1.005", "1.01", "1.02", "1.03"],
         "cpu": [("strategy_agreement", "plastic_scene_strategies_agree")],
         "gpu": [],
         "rows": ["plastic_lights Light SolidAngle max_depth None", "plastic_lights Light Area max_depth None"],
@@ -146,7 +148,7 @@ MUTATION_CHECK = ["plastic_eval"] + [f"light_pdf:{k}" for k in
                                      ["triangle", "polygon", "quad", "disk", "sphere", "background"]]
 # The binaries that test the light samplers and the plastic directly (a few minutes for all
 # mutants); the image tests' view of the same mutants is the power table.
-CHECK_BINARIES = ["irradiance", "plastic_furnace", "chi2_samplers"]
+CHECK_BINARIES = ["irradiance", "furnace", "plastic_furnace", "chi2_samplers", "strategy_agreement"]
 
 
 def mutation_check(out):
@@ -172,21 +174,23 @@ def sweep(out, backends):
     """Every emission × F for the whole-image combinations of SWEEPS; a table of |z| per factor."""
     bins = sorted({b for sp in SWEEPS.values() for be in backends for b, _ in sp[be]})
     exes = build(bins)
-    lines = ["| z-test (whole image) | " + " | ".join(f"× {f}" for f in SWEEP_FACTORS) + " |",
-             "|---|" + "---|" * len(SWEEP_FACTORS)]
+    lines = []
     with open("out/power_sweep.log", "w") as log:
-        for spec in SWEEPS.values():
+        for scene, spec in SWEEPS.items():
+            factors = spec["factors"]
             rows = {}
-            for f in SWEEP_FACTORS:
+            for f in factors:
                 for be in backends:
                     for binary, filt in spec[be]:
                         for z in run_test(exes[binary], binary, filt, f"emission_all:{f}", log)[0]:
                             if any(r in z[0] for r in spec["rows"]):
                                 rows.setdefault(z[0], {})[f] = z
+            lines += ["", f"{scene}:", "", "| z-test (whole image) | " + " | ".join(
+                f"× {f}" for f in factors) + " |", "|---|" + "---|" * len(factors)]
             for what, by_f in rows.items():
                 lines.append(f"| {what} | " + " | ".join(
-                    cell(by_f[f]) if f in by_f else "" for f in SWEEP_FACTORS) + " |")
-    replace_section(out, "power-sweep", "\n".join(lines))
+                    cell(by_f[f]) if f in by_f else "" for f in factors) + " |")
+    replace_section(out, "power-sweep", "\n".join(lines).strip())
 
 
 def replace_section(path, name, body):
@@ -219,7 +223,7 @@ def main():
     os.makedirs("out", exist_ok=True)
     backends = ["cpu"] if args.cpu_only else ["cpu", "gpu"]
     scenes = [s for s in SCENES if not args.only or s in args.only]
-    bins = sorted({b for s in scenes for be in backends for b, _ in SCENES[s][be]})
+    bins = sorted({t[0] for s in scenes for be in backends for t in SCENES[s][be]})
     exes = build(bins)
     sections = []
     with open("out/power_table.log", "w") as log:
@@ -231,7 +235,9 @@ def main():
             rows, fails = {}, {}
             for mutant in mutants:
                 for be in (["gpu"] if mutant.endswith("@gpu") else backends):
-                    for binary, filt in spec[be]:
+                    for binary, filt, *only in spec[be]:
+                        if mutant and only and mutant not in only[0]:
+                            continue
                         zs, failed = run_test(exes[binary], binary, filt, mutant, log)
                         for z in zs:
                             rows.setdefault(z[0], {})[mutant] = z
