@@ -3,8 +3,9 @@
 //! `docs/testing.md` holds a table of which image test catches which local bias, made by running
 //! the real test binaries with one mutant switched on at a time (`tools/power_table.py`). The
 //! mutation points are compiled in only with the `mutants` cargo feature, which nothing enables by
-//! default; without it every factor below is the constant 1 and [`apply_to_desc`] does nothing, so
-//! shipped builds and the normal test suite carry no trace of them.
+//! default; without it every factor below is the constant 1 and the renderer never calls
+//! [`apply_to_desc`], so shipped builds carry no trace of them. [`scale_albedo`] and
+//! [`scale_emission`] are plain functions; the normal suite uses them for its in-suite power checks.
 //!
 //! The mutant is chosen by the environment variable `LUMIS_MUTANT`, read once:
 //!
@@ -18,7 +19,7 @@
 //! | `plastic_eval` | the plastic's f (both lobes, non-delta) × 1.03, in eval and sample alike |
 //!
 //! On the GPU the same points are constants of the generated WGSL prelude
-//! ([`crate::gpu::prelude::mutant_constants`]), so a mutant reaches both backends; a value ending
+//! (`gpu::prelude::mutant_constants`, built with the feature), so a mutant reaches both backends; a value ending
 //! in `@gpu` (`light_pdf:disk@gpu`) mutates only the WGSL twin, as a bug on that side alone would.
 
 #[cfg(feature = "mutants")]
