@@ -35,7 +35,7 @@
 
 mod common;
 
-use common::{METHODS, STRATEGIES, build, json_vec, render};
+use common::{METHODS, STRATEGIES, build, closed_form_z, json_vec, render};
 use glam::Vec3;
 use lumis::integrator::{Settings, Strategy};
 use lumis::lights::LightSampling;
@@ -149,16 +149,7 @@ impl Tally {
         let n = means.len() as f64;
         let mean = means.iter().sum::<f64>() / n;
         let sd = (vars.iter().sum::<f64>() / (n * n)).sqrt();
-        let diff = mean - expected;
-        let slack = 1e-5 * expected.abs() + 1e-7;
-        let ok = diff.abs() <= critical() * sd + slack;
-        let z = if sd > 0.0 {
-            diff / sd
-        } else if diff.abs() <= slack {
-            0.0
-        } else {
-            f64::INFINITY
-        };
+        let (z, ok) = closed_form_z(mean, sd, expected, critical());
         self.comparisons += 1;
         let line = format!("{what}: mean {mean:.6} vs {expected:.6} (sd {sd:.2e}, z = {z:.2})");
         if z.abs() > self.worst_z || self.worst.is_empty() {

@@ -11,7 +11,9 @@
 mod common;
 mod gpu_common;
 
-use common::{STRATEGIES, check_unbiased, data_dir, reference};
+use common::{
+    LOCAL_BIAS_MATERIALS, STRATEGIES, check_unbiased, data_dir, reference, scene_with_scaled_albedo,
+};
 use gpu_common::context;
 use lumis::engine::{Film, Progressive};
 use lumis::gpu::GpuProgressive;
@@ -193,16 +195,8 @@ fn gpu_veach_mis_matches_reference() {
 /// scene at this file's spp and seed. The full table is in `docs/testing.md`.
 #[test]
 fn local_bias_is_detected() {
-    for (name, material) in [
-        ("analytic_polygon", "floor"),
-        ("analytic_disk", "floor"),
-        ("seed_cornell", "red"),
-        ("veach_mis", "diffuse"),
-    ] {
-        let path = data_dir().join("scenes").join(format!("{name}.json"));
-        let mut desc = lumis::scene::load_scene(&path).unwrap();
-        lumis::mutants::scale_albedo(&mut desc, material, 1.03).unwrap();
-        let biased = Arc::new(Scene::from_desc(&desc).unwrap());
+    for (name, material) in LOCAL_BIAS_MATERIALS {
+        let biased = scene_with_scaled_albedo(name, material, 1.03);
         let mis = STRATEGIES[3];
         // Same seed as `check_scene`'s MIS render (index 3).
         let s = settings(mis, LightSampling::SolidAngle);

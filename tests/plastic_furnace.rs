@@ -68,7 +68,7 @@
 
 mod common;
 
-use common::{METHODS, STRATEGIES, build, render};
+use common::{METHODS, STRATEGIES, build, closed_form_z, render};
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::materials::Plastic;
 use lumis::metrics::{normal_two_sided_critical, sidak};
@@ -354,16 +354,7 @@ struct Tally {
 impl Tally {
     fn compare(&mut self, what: &str, label: &str, mean: f64, var: f64, expected: f64) {
         let sd = var.sqrt();
-        let diff = mean - expected;
-        let slack = 1e-5 * expected.abs() + 1e-7;
-        let ok = diff.abs() <= critical() * sd + slack;
-        let z = if sd > 0.0 {
-            diff / sd
-        } else if diff.abs() <= slack {
-            0.0
-        } else {
-            f64::INFINITY
-        };
+        let (z, ok) = closed_form_z(mean, sd, expected, critical());
         self.comparisons += 1;
         self.zs.push(z);
         let line = format!("{what}: {mean:.6} vs {expected:.6} (sd {sd:.2e}, z = {z:.2})");

@@ -184,16 +184,8 @@ fn analytic_disk_matches_closed_form() {
 /// `docs/testing.md` (`tools/power_table.py`).
 #[test]
 fn local_bias_is_detected() {
-    for (name, material) in [
-        ("analytic_polygon", "floor"),
-        ("analytic_disk", "floor"),
-        ("seed_cornell", "red"),
-        ("veach_mis", "diffuse"),
-    ] {
-        let path = data_dir().join("scenes").join(format!("{name}.json"));
-        let mut desc = lumis::scene::load_scene(&path).unwrap();
-        lumis::mutants::scale_albedo(&mut desc, material, 1.03).unwrap();
-        let biased = std::sync::Arc::new(lumis::scene::Scene::from_desc(&desc).unwrap());
+    for (name, material) in LOCAL_BIAS_MATERIALS {
+        let biased = scene_with_scaled_albedo(name, material, 1.03);
         let mis = STRATEGIES[3];
         // Same seed as the strategy loop's MIS render (index 3).
         let r = render(

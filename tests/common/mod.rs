@@ -108,6 +108,41 @@ pub fn test_against(
     )
 }
 
+/// A mean against a closed-form value: `z = (mean − expected) / sd` and whether it passes at
+/// `critical`. A relative slack of 1e-5 of the expected value (plus 1e-7) absorbs f32 rounding; it
+/// matters only where `sd` is 0, where z is then 0 within the slack and infinite beyond it.
+pub fn closed_form_z(mean: f64, sd: f64, expected: f64, critical: f64) -> (f64, bool) {
+    let diff = mean - expected;
+    let slack = 1e-5 * expected.abs() + 1e-7;
+    let ok = diff.abs() <= critical * sd + slack;
+    let z = if sd > 0.0 {
+        diff / sd
+    } else if diff.abs() <= slack {
+        0.0
+    } else {
+        f64::INFINITY
+    };
+    (z, ok)
+}
+
+/// One material per shared scene whose albedo × 1.03 the in-suite power checks
+/// (`local_bias_is_detected`, CPU and GPU) inject: a wall, or the floor under the light.
+pub const LOCAL_BIAS_MATERIALS: [(&str, &str); 4] = [
+    ("analytic_polygon", "floor"),
+    ("analytic_disk", "floor"),
+    ("seed_cornell", "red"),
+    ("veach_mis", "diffuse"),
+];
+
+/// `tests/data/scenes/NAME.json` with the albedo of `material` scaled by `factor`, through the
+/// scene description as a real error would enter it.
+pub fn scene_with_scaled_albedo(name: &str, material: &str, factor: f64) -> Arc<Scene> {
+    let path = data_dir().join("scenes").join(format!("{name}.json"));
+    let mut desc = lumis::scene::load_scene(&path).unwrap_or_else(|e| panic!("{e}"));
+    lumis::mutants::scale_albedo(&mut desc, material, factor).unwrap_or_else(|e| panic!("{e}"));
+    Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}")))
+}
+
 /// `Err` with the worst blocks if the test found a bias; prints the worst block either way, and
 /// one `z-test|WHAT|ok or BIASED|failed blocks|blocks|worst |z||critical` line that
 /// `tools/power_table.py` reads (docs/testing.md).

@@ -69,16 +69,7 @@ pub(crate) fn run_snippet_with(
     let ctx = gpu.context();
     let device = &ctx.device;
     let module = create_module(device, "lumis snippet", &source)?;
-    let io_entry = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    };
+    let io_entry = super::scene::storage_layout_entry;
     let io_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("lumis snippet io"),
         entries: &[io_entry(0, true), io_entry(1, false)],
