@@ -1,12 +1,14 @@
 //! χ² goodness-of-fit tests of every sampling routine against its own pdf (issue 3): the warps,
-//! every material's `sample` at θo ∈ {0°, 30°, 60°, 85°, 89°}, light sampling (area and solid
-//! angle) of every light shape from near, far, grazing and below-horizon points, and the
-//! one-sample strategy mixture at w ∈ {0, 0.25, 0.5, 1}. The samplers and their names are in
+//! every material's `sample` at θo ∈ {0°, 30°, 60°, 85°, 89°} (the rough dielectric, issue 15, at
+//! α ∈ {0.01, 0.05, 0.1, 0.3, 0.6, 1} × η ∈ {1.1, 1.5, 2.4} from outside and from inside, over
+//! the whole sphere), light sampling (area and solid angle) of every light shape from near, far,
+//! grazing and below-horizon points, and the one-sample strategy mixture at
+//! w ∈ {0, 0.25, 0.5, 1}. The samplers and their names are in
 //! `lumis::stats::suite`; a failing case can be looked at with
 //! `cargo run --release -p lumis-renderer --example warptest -- NAME`.
 //!
 //! **Significance:** family-wise α = 0.01 over all [`N_TESTS`] tests, Šidák-corrected to a
-//! per-test level `1 − 0.99^(1/N_TESTS)` ≈ 5.9e-5. Each test also fails on malformed samples,
+//! per-test level `1 − 0.99^(1/N_TESTS)` ≈ 2.9e-5. Each test also fails on malformed samples,
 //! samples where the pdf is 0 farther than 1e-5 rad from where it is not (closer is rounding at
 //! the support's edge; more than 0.1% of those fail too) or that land in cells of expected count
 //! 0, reported pdfs that
@@ -14,8 +16,11 @@
 //!
 //! Narrow lobes (α ≤ 0.1) are histogrammed by half vector in a cap of 10α about the normal (GGX
 //! lobes are round there at every incidence; uniform-θ rows resolve the peak radially), lights in
-//! a cap about the cone they subtend (a far light covers 4096 cells, not one); see
-//! `lumis::stats::domain`.
+//! a cap about the cone they subtend (a far light covers 4096 cells, not one); the dielectric by
+//! generalised half vector, reflections and refractions in two halves of the grid, each capped
+//! about the normal (10α, or 45° for α > 0.1); see `lumis::stats::domain`. The smooth dielectric
+//! has only delta samples, nothing to histogram: its discrete probabilities are tested with the
+//! material.
 //!
 //! Everything is seeded: the same samples on every run and thread count.
 
@@ -29,7 +34,7 @@ use rayon::prelude::*;
 /// Family-wise significance level.
 const ALPHA: f64 = 0.01;
 /// Number of χ² tests in the family (every case of the suite).
-const N_TESTS: usize = 170;
+const N_TESTS: usize = 350;
 
 /// Runs every case with `samples` samples and asserts that all pass; prints one line per case
 /// and the smallest p-value.
@@ -75,6 +80,11 @@ fn chi2_warps() {
 #[test]
 fn chi2_materials() {
     run_cases("materials", suite::material_cases(), 1_000_000, 2000);
+}
+
+#[test]
+fn chi2_dielectrics() {
+    run_cases("dielectrics", suite::dielectric_cases(), 1_000_000, 5000);
 }
 
 #[test]
@@ -124,6 +134,66 @@ impl<A: DirectionalSampler, B: DirectionalSampler> DirectionalSampler for Mismat
     }
 }
 
+/// A transmitting BSDF's sampler whose refraction pdf (reported and evaluated) is `scale` times
+/// the true one; reflections untouched (a wrong Fresnel split).
+struct ScaledTransmission(BsdfSampler, f32);
+
+impl DirectionalSampler for ScaledTransmission {
+    fn sample(&self, u1: f32, u2: glam::Vec2) -> Option<DirectionSample> {
+        let s = self.0.sample(u1, u2)?;
+        let k = if s.w.z * self.0.wo.z < 0.0 {
+            self.1
+        } else {
+            1.0
+        };
+        Some(DirectionSample {
+            pdf: s.pdf * k,
+            ..s
+        })
+    }
+    fn pdf(&self, w: glam::Vec3) -> f32 {
+        let k = if w.z * self.0.wo.z < 0.0 { self.1 } else { 1.0 };
+        self.0.pdf(w) * k
+    }
+    fn domain(&self) -> Domain {
+        self.0.domain()
+    }
+}
+
+/// A dielectric's sampler that refracts through the sampled microfacet with the relative IOR
+/// `factor` times the true one, and claims the true pdf of the direction it returns.
+struct WrongEta(BsdfSampler, f32);
+
+impl DirectionalSampler for WrongEta {
+    fn sample(&self, u1: f32, u2: glam::Vec2) -> Option<DirectionSample> {
+        let s = self.0.sample(u1, u2)?;
+        let wo = self.0.wo;
+        if s.w.z * wo.z > 0.0 {
+            return Some(s);
+        }
+        let Material::Dielectric(d) = self.0.material else {
+            unreachable!("a dielectric")
+        };
+        // The sampled microfacet is the pair's generalised half vector.
+        let etap = if wo.z > 0.0 { d.ior } else { 1.0 / d.ior };
+        let wm = (s.w * etap + wo).normalize();
+        let wm = if wm.z < 0.0 { -wm } else { wm };
+        let (wi, _) = lumis::math::refract(wo, wm, d.ior * self.1)?;
+        let wi = wi.normalize();
+        Some(DirectionSample {
+            w: wi,
+            pdf: self.0.pdf(wi),
+            delta: false,
+        })
+    }
+    fn pdf(&self, w: glam::Vec3) -> f32 {
+        self.0.pdf(w)
+    }
+    fn domain(&self) -> Domain {
+        self.0.domain()
+    }
+}
+
 fn ggx(alpha: f32) -> BsdfSampler {
     let fresnel = ConductorFresnel::Tint(glam::Vec3::ONE);
     BsdfSampler::at_angle(Material::Conductor(Conductor { alpha, fresnel }), 30.0)
@@ -158,8 +228,46 @@ fn chi2_rejects_broken_samplers() {
         &Mismatched(ggx(0.3), ggx(0.33)),
         1_000_000,
     );
-    // The correct versions pass.
-    for (name, s) in [("ggx 0.3", ggx(0.3)), ("ggx 0.33", ggx(0.33))] {
+    // (c) Glass, in generalised half-vector space: the refraction pdf 3% high (the reflection
+    // split too low), and refraction through the sampled microfacet with η 0.2% (narrow) or 1%
+    // (α 0.3) too high. The χ² statistic alone rejects these; the ∫pdf check alone catches
+    // the first from 0.5%.
+    let rough_out = || BsdfSampler::at_angle(suite::dielectric(0.3, 1.5), 30.0);
+    let narrow_in = || BsdfSampler::inside_at_angle(suite::dielectric(0.05, 1.5), 30.0);
+    check(
+        "pdf_T x1.03 dielectric a0.3 out th30",
+        &ScaledTransmission(rough_out(), 1.03),
+        1_000_000,
+    );
+    check(
+        "pdf_T x1.03 dielectric a0.05 in th30",
+        &ScaledTransmission(narrow_in(), 1.03),
+        1_000_000,
+    );
+    check(
+        "eta x1.01 dielectric a0.3 out th30",
+        &WrongEta(rough_out(), 1.01),
+        1_000_000,
+    );
+    check(
+        "eta x1.002 dielectric a0.05 in th30",
+        &WrongEta(narrow_in(), 1.002),
+        1_000_000,
+    );
+    // The correct versions pass (the wrappers change nothing at factor 1).
+    let correct: [(&str, Box<dyn DirectionalSampler>); 4] = [
+        ("ggx 0.3", Box::new(ggx(0.3))),
+        ("ggx 0.33", Box::new(ggx(0.33))),
+        (
+            "pdf_T x1 dielectric a0.3 out th30",
+            Box::new(ScaledTransmission(rough_out(), 1.0)),
+        ),
+        (
+            "eta x1 dielectric a0.05 in th30",
+            Box::new(WrongEta(narrow_in(), 1.0)),
+        ),
+    ];
+    for (name, s) in correct {
         let r = ChiSquareTest::new(&s).samples(1_000_000).seed(77).run();
         eprintln!("{name:40} {r}");
         assert!(r.passed(), "{name}: {r}");

@@ -7,13 +7,17 @@
 //! pdf too (the harness's 1% test), as are malformed samples and `∫pdf` against the fraction of
 //! samples drawn.
 //!
-//! **Cases** (48):
+//! **Cases** (84):
 //! * warps: the cosine hemisphere (`sample_cosine_hemisphere`). WGSL has no bare uniform-cone
 //!   warp; the sphere light's solid-angle sampling is one (uniform in the cone it subtends), and
 //!   runs here through both of its branches: the ordinary cone (near) and the sin²θ form of tiny
 //!   cones (a sphere 200 radii away).
 //! * `material_sample` at θo ∈ {0°, 60°, 85°}: diffuse; conductors at α 0.05 and 1 with gold's
 //!   complex Fresnel and at α 0.3 with a tint; plastics at α 0.05, 0.3 and 1 with IOR 1.5.
+//! * `material_sample` of the rough dielectric (issue 15) over the whole sphere, from outside and
+//!   inside: 36 of `stats::suite`'s 180 cases, α 0.01, 0.3 and 1 × IOR 1.1, 1.5, 2.4 × both
+//!   sides × two angles each, including total internal reflection and grazing incidence
+//!   (`dielectric_subset`).
 //! * `light_sample` of every shape of `stats::suite` (triangle, hexagon, concave star polygon,
 //!   quad, disk, sphere) from the suite's near and grazing points, by area and by solid angle.
 //! * the one-sample strategy mixture (w = ½) of a plastic under a quad light, composed from
@@ -21,10 +25,12 @@
 //!   `stats::Mixture` composes their Rust twins.
 //!
 //! **Budget:** 500,000 samples per case (half the CPU suite's 1M), which keeps the file near a
-//! minute on lavapipe on two cores. **Significance:** family-wise α = 0.01, Šidák-corrected over
-//! the 48 cases (per test ≈ 2.1e-4). **Control:** a deliberately broken GPU sampler (the conductor
-//! sampled at α·1.1, i.e. 0.33, against the α 0.3 density) must be rejected by the χ² statistic
-//! at the same per-test level. Every case has its own seed: the run is deterministic.
+//! minute on lavapipe on two cores (measured: 40 s, of which the dielectric cases 14 s).
+//! **Significance:** family-wise α = 0.01, Šidák-corrected over the 84 cases (per test ≈ 1.2e-4).
+//! **Control:** a deliberately broken GPU sampler (the conductor sampled at α·1.1, i.e. 0.33,
+//! against the α 0.3 density) must be rejected by the χ² statistic at the same per-test level
+//! (so must a dielectric whose lobe choice sees η·1.1: all 36 of its cases fail, checked by hand).
+//! Every case has its own seed: the run is deterministic.
 //!
 //! `LUMIS_SKIP_GPU_TESTS=1` skips the file where no adapter exists (see `gpu_common`).
 
@@ -36,6 +42,7 @@ use lumis::gpu::GpuScene;
 use lumis::gpu::kernel::run_snippet;
 use lumis::integrator::Settings;
 use lumis::lights::LightSampling;
+use lumis::materials::{Dielectric, Material};
 use lumis::scene::Scene;
 use lumis::stats::suite::{self, Placement, Shape};
 use lumis::stats::{
@@ -70,6 +77,13 @@ const MATERIALS: &str = r#"{
     {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "diffuse"}
   ]
 }"#;
+
+/// The rough dielectric cases, a subset of `stats::suite::dielectric_samplers` (all 180 would
+/// add 70 s on lavapipe, these 36 add 14 s): every α of [`DIELECTRIC_ALPHAS`] × every IOR × both
+/// sides, each at two of the suite's angles, rotating through them so that every angle is
+/// reached on each side: inside 30° and 60° fall on both sides of the critical angles (60° is
+/// total internal reflection at η 1.5 and 2.4), 89° is grazing (`dielectric_subset`).
+const DIELECTRIC_ALPHAS: [f32; 3] = [0.01, 0.3, 1.0];
 
 /// The materials tested, by name in [`MATERIALS`].
 const MATERIAL_CASES: [&str; 7] = [
@@ -220,6 +234,52 @@ fn mixture_body(material: usize, wo: Vec3, method: LightSampling, weight: f32) -
     )
 }
 
+/// The subset of [`suite::dielectric_samplers`] the GPU runs (see [`DIELECTRIC_ALPHAS`]).
+fn dielectric_subset() -> Vec<(String, BsdfSampler)> {
+    let thetas = suite::DIELECTRIC_THETAS_DEG;
+    let mut wanted = Vec::new();
+    for (i, a) in DIELECTRIC_ALPHAS.into_iter().enumerate() {
+        for (j, ior) in suite::DIELECTRIC_IORS.into_iter().enumerate() {
+            for (k, side) in ["out", "in"].into_iter().enumerate() {
+                let first = (i + 2 * j + k) % thetas.len();
+                for t in [first, (first + 2) % thetas.len()] {
+                    wanted.push(format!("dielectric/a{a}/ior{ior}/{side}/th{}", thetas[t]));
+                }
+            }
+        }
+    }
+    let subset: Vec<_> = suite::dielectric_samplers()
+        .into_iter()
+        .filter(|(name, _)| wanted.contains(name))
+        .collect();
+    assert_eq!(subset.len(), wanted.len(), "cases missing from the suite");
+    subset
+}
+
+/// A scene holding the dielectric of every sampler in `cases` as `dielectric_a{α}_ior{η}`.
+fn dielectric_scene(cases: &[(String, BsdfSampler)]) -> Arc<Scene> {
+    let mut materials = serde_json::Map::new();
+    for (_, s) in cases {
+        let Material::Dielectric(d) = &s.material else {
+            unreachable!("a dielectric case")
+        };
+        materials.insert(
+            dielectric_name(d),
+            serde_json::json!({"type": "dielectric", "ior": d.ior, "alpha": d.alpha}),
+        );
+    }
+    let desc = serde_json::json!({
+        "camera": {"from": [0, 2, -6], "to": [0, 1, 0], "up": [0, 1, 0], "vfov_deg": 50, "width": 2, "height": 2},
+        "materials": materials,
+        "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": materials.keys().next().unwrap()}]
+    });
+    build(&desc.to_string())
+}
+
+fn dielectric_name(d: &Dielectric) -> String {
+    format!("dielectric_a{}_ior{}", d.alpha, d.ior)
+}
+
 /// The index of the material called `name`.
 fn material_index(scene: &Scene, name: &str) -> usize {
     scene
@@ -306,6 +366,24 @@ fn gpu_samples_pass_chi_square() {
         "cone",
     );
 
+    // The rough dielectric from both sides, over the whole sphere.
+    let dielectrics = dielectric_subset();
+    let glass = dielectric_scene(&dielectrics);
+    scenes.push(Arc::clone(&glass));
+    for (name, density) in dielectrics {
+        let Material::Dielectric(d) = &density.material else {
+            unreachable!()
+        };
+        let index = material_index(&glass, &dielectric_name(d));
+        assert_eq!(glass.materials[index], density.material);
+        cases.push(Case {
+            name,
+            scene: scenes.len() - 1,
+            body: material_body(index, density.wo),
+            density: Box::new(density),
+        });
+    }
+
     // The strategy mixture.
     let mixture = build(MIXTURE_SCENE);
     scenes.push(Arc::clone(&mixture));
@@ -329,7 +407,7 @@ fn gpu_samples_pass_chi_square() {
     });
 
     let tests = cases.len();
-    assert_eq!(tests, 48, "update the doc comment's case count");
+    assert_eq!(tests, 84, "update the doc comment's case count");
     let gpus: Vec<GpuScene> = scenes
         .iter()
         .map(|s| GpuScene::new(ctx.clone(), Arc::clone(s)).expect("upload"))

@@ -12,7 +12,7 @@ pub mod backend;
 
 pub use backend::{AnyProgressive, Backend};
 
-use crate::integrator::{Settings, radiance};
+use crate::integrator::{Settings, radiance_specialised};
 use crate::rng::Rng;
 use crate::scene::Scene;
 use glam::Vec3;
@@ -234,6 +234,7 @@ impl Progressive {
         let seed = self.seed;
         let cancel = &*self.cancel;
         let nonfinite = AtomicU64::new(0);
+        let transmission = scene.has_transmission();
         let mut pixels = self.film.pixels.clone();
         pixels
             .par_chunks_mut(width)
@@ -249,7 +250,11 @@ impl Progressive {
                         let mut rng = Rng::new(seed, pixel_index, s);
                         let jitter = rng.next_2d();
                         let ray = scene.camera.ray(x as f32 + jitter.x, y as f32 + jitter.y);
-                        let l = radiance(scene, ray, &mut rng, settings);
+                        let l = if transmission {
+                            radiance_specialised::<true>(scene, ray, &mut rng, settings)
+                        } else {
+                            radiance_specialised::<false>(scene, ray, &mut rng, settings)
+                        };
                         if !l.is_finite() {
                             bad += 1;
                             continue;

@@ -94,6 +94,29 @@ pub fn reflect(w: Vec3, n: Vec3) -> Vec3 {
     2.0 * w.dot(n) * n - w
 }
 
+/// Refraction of `w` (pointing away from the surface) through the interface with normal `n` and
+/// relative IOR `eta` = η on the side `n` points away from / η on the side it points to (pbrt-v4
+/// `Refract`). If `w` is on the other side of `n`, the interface is seen with 1/η. Returns the
+/// transmitted direction (unit if `w` and `n` are) and the relative IOR η_t/η_i actually used, or
+/// `None` under total internal reflection.
+#[inline]
+pub fn refract(w: Vec3, n: Vec3, eta: f32) -> Option<(Vec3, f32)> {
+    let mut cos_i = n.dot(w);
+    let (mut eta, mut n) = (eta, n);
+    if cos_i < 0.0 {
+        eta = 1.0 / eta;
+        cos_i = -cos_i;
+        n = -n;
+    }
+    let sin2_i = (1.0 - cos_i * cos_i).max(0.0);
+    let sin2_t = sin2_i / (eta * eta);
+    if sin2_t >= 1.0 {
+        return None;
+    }
+    let cos_t = safe_sqrt(1.0 - sin2_t);
+    Some((-w / eta + (cos_i / eta - cos_t) * n, eta))
+}
+
 /// `a * b - c * d` without catastrophic cancellation: the products of two f32 are exact in f64, so
 /// this rounds once (Kahan's FMA trick gives the same accuracy but needs hardware FMA to be fast).
 #[inline]
@@ -104,6 +127,30 @@ pub fn difference_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Snell's law η_i sinθ_i = η_t sinθ_t, the transmitted side, the reported η, the round trip
+    /// back to `w`, and total internal reflection beyond the critical angle.
+    #[test]
+    fn refract_obeys_snell_and_inverts() {
+        for eta in [1.1f32, 1.5, 2.4] {
+            for deg in [0.0f32, 10.0, 45.0, 80.0, 89.0] {
+                let t = deg.to_radians();
+                let w = Vec3::new(t.sin(), 0.0, t.cos());
+                let (wt, e) = refract(w, Vec3::Z, eta).unwrap();
+                assert_eq!(e, eta);
+                assert!(wt.z < 0.0 && (wt.length() - 1.0).abs() < 1e-6);
+                let sin_t = (wt.x * wt.x + wt.y * wt.y).sqrt();
+                assert!((t.sin() - eta * sin_t).abs() < 1e-6, "{eta} {deg}");
+                assert!(wt.x <= 0.0, "the tangential part flips side");
+                let (back, e2) = refract(wt, Vec3::Z, eta).unwrap();
+                assert!((e2 - 1.0 / eta).abs() < 1e-7 && (back - w).length() < 1e-5);
+            }
+            let crit = (1.0 / eta).asin();
+            let inside = |a: f32| Vec3::new(a.sin(), 0.0, -a.cos());
+            assert!(refract(inside(crit + 1e-3), Vec3::Z, eta).is_none());
+            assert!(refract(inside(crit - 1e-3), Vec3::Z, eta).is_some());
+        }
+    }
 
     #[test]
     fn frame_is_orthonormal_and_inverts() {

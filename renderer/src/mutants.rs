@@ -231,6 +231,9 @@ pub fn scale_albedo(
         MaterialDesc::Conductor { .. } => {
             return Err(format!("conductor {name} has a complex IOR, no albedo"));
         }
+        MaterialDesc::Dielectric { .. } => {
+            return Err(format!("dielectric {name} has no albedo"));
+        }
     }
     Ok(())
 }

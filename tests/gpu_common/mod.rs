@@ -80,8 +80,8 @@ impl Compare {
     }
 
     /// Records one comparison: `scale` is what the relative tolerances apply to, `extra` the
-    /// comparison's conditioning term (added to the tolerance and to the cap).
-    fn record(&mut self, got: f32, want: f32, scale: f32, extra: f32, what: &str) {
+    /// comparison's conditioning term added to the tolerance, `cap_extra` the one added to the cap.
+    fn record(&mut self, got: f32, want: f32, scale: f32, extra: f32, cap_extra: f32, what: &str) {
         self.n += 1;
         let same =
             got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()) || got == want;
@@ -105,7 +105,7 @@ impl Compare {
             self.worst_rel = Some((rel, text.clone()));
         }
         if let Some((rtol, atol)) = self.cap
-            && (diff.is_nan() || diff > atol + rtol * scale + extra)
+            && (diff.is_nan() || diff > atol + rtol * scale + cap_extra)
         {
             self.beyond_cap += 1;
             if self.cap_examples.len() < 8 {
@@ -122,14 +122,29 @@ impl Compare {
 
     /// Compares one value, the relative tolerance applying to `scale`.
     pub fn scalar_scaled(&mut self, got: f32, want: f32, scale: f32, what: &str) {
-        self.record(got, want, scale, 0.0, what);
+        self.record(got, want, scale, 0.0, 0.0, what);
     }
 
     /// Compares one value with `extra` added to the tolerance: the part of the difference that
     /// the inputs' conditioning explains (rounding amplified by the geometry), stated per test.
     pub fn scalar_conditioned(&mut self, got: f32, want: f32, extra: f32, what: &str) {
         let scale = got.abs().max(want.abs());
-        self.record(got, want, scale, extra, what);
+        self.record(got, want, scale, extra, extra, what);
+    }
+
+    /// [`Compare::scalar_conditioned`] with a larger conditioning term for the outlier cap: where
+    /// the inputs' error has a bound for most values and a wider one for rare ill-conditioned
+    /// ones (stated per test), each carried through the same conditioning.
+    pub fn scalar_conditioned_capped(
+        &mut self,
+        got: f32,
+        want: f32,
+        extra: f32,
+        cap_extra: f32,
+        what: &str,
+    ) {
+        let scale = got.abs().max(want.abs());
+        self.record(got, want, scale, extra, cap_extra, what);
     }
 
     /// Compares the xyz of a GPU vec4 with a `Vec3`, each with `extra` added to the tolerance.

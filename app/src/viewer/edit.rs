@@ -1,22 +1,41 @@
 //! Edits of the scene description behind the sliders: a material's roughness, colour and IOR,
 //! and a light's shape, size and radiance. The viewer rebuilds the scene from the edited
-//! description, so the renderer needs no mutation API.
+//! description, so the renderer needs no mutation API. Every edit keeps the description valid
+//! for the scene format (what the parser accepts), since nothing re-parses it.
 
 use super::light_shape::{Keep, LightShape, PlanarLight};
 use glam::DVec3;
 use lumis::scene::{FresnelDesc, GeometryDesc, MaterialDesc, SceneDesc};
+use std::ops::RangeInclusive;
+
+/// One-click IORs offered for a dielectric.
+pub const DIELECTRIC_PRESETS: [(&str, f64); 3] =
+    [("water", 1.33), ("glass", 1.5), ("diamond", 2.42)];
+
+/// How close to 1 a dielectric's IOR may get: the format forbids exactly 1 (an interface that
+/// does nothing), and a value within a rounding of 1 would become 1 in the renderer's f32.
+pub const DIELECTRIC_IOR_GAP: f64 = 0.01;
 
 /// GGX roughness α of a material, when it has one.
 pub fn alpha(m: &MaterialDesc) -> Option<f64> {
     match m {
-        MaterialDesc::Conductor { alpha, .. } | MaterialDesc::Plastic { alpha, .. } => Some(*alpha),
+        MaterialDesc::Conductor { alpha, .. }
+        | MaterialDesc::Plastic { alpha, .. }
+        | MaterialDesc::Dielectric { alpha, .. } => Some(*alpha),
         MaterialDesc::Diffuse { .. } => None,
     }
 }
 
-/// Sets the GGX roughness α (ignored for diffuse materials).
+/// Sets the GGX roughness α, clamped to [0, 1] (ignored for diffuse materials, and for a
+/// non-finite value).
 pub fn set_alpha(m: &mut MaterialDesc, value: f64) {
-    if let MaterialDesc::Conductor { alpha, .. } | MaterialDesc::Plastic { alpha, .. } = m {
+    if !value.is_finite() {
+        return;
+    }
+    if let MaterialDesc::Conductor { alpha, .. }
+    | MaterialDesc::Plastic { alpha, .. }
+    | MaterialDesc::Dielectric { alpha, .. } = m
+    {
         *alpha = value.clamp(0.0, 1.0);
     }
 }
@@ -30,7 +49,7 @@ pub fn colour(m: &MaterialDesc) -> Option<DVec3> {
             fresnel: FresnelDesc::Reflectance(r),
             ..
         } => Some(*r),
-        MaterialDesc::Conductor { .. } => None,
+        MaterialDesc::Conductor { .. } | MaterialDesc::Dielectric { .. } => None,
     }
 }
 
@@ -43,22 +62,61 @@ pub fn set_colour(m: &mut MaterialDesc, value: DVec3) {
             fresnel: FresnelDesc::Reflectance(r),
             ..
         } => *r = value,
-        MaterialDesc::Conductor { .. } => {}
+        MaterialDesc::Conductor { .. } | MaterialDesc::Dielectric { .. } => {}
     }
 }
 
-/// The index of refraction of a plastic's coating.
+/// The index of refraction of a plastic's coating or of a dielectric's inside.
 pub fn ior(m: &MaterialDesc) -> Option<f64> {
     match m {
-        MaterialDesc::Plastic { ior, .. } => Some(*ior),
+        MaterialDesc::Plastic { ior, .. } | MaterialDesc::Dielectric { ior, .. } => Some(*ior),
         _ => None,
     }
 }
 
-/// Sets a plastic's IOR (kept above 1, as the format requires).
+/// Sets the IOR, kept valid for the format: a plastic's above 1; a dielectric's in
+/// [1/10, 10] (the format's upper bound, and its inverse) and never within
+/// [`DIELECTRIC_IOR_GAP`] of 1 (snapped to 1 ± the gap, on the side it came from; exactly 1
+/// goes up). A non-finite value changes nothing.
 pub fn set_ior(m: &mut MaterialDesc, value: f64) {
-    if let MaterialDesc::Plastic { ior, .. } = m {
-        *ior = value.max(1.0001);
+    if !value.is_finite() {
+        return;
+    }
+    match m {
+        MaterialDesc::Plastic { ior, .. } => *ior = value.max(1.0001),
+        MaterialDesc::Dielectric { ior, .. } => *ior = dielectric_ior(value),
+        _ => {}
+    }
+}
+
+fn dielectric_ior(value: f64) -> f64 {
+    let max = f64::from(lumis::materials::dielectric::MAX_IOR);
+    let n = value.clamp(1.0 / max, max);
+    if (n - 1.0).abs() >= DIELECTRIC_IOR_GAP {
+        n
+    } else if n < 1.0 {
+        1.0 - DIELECTRIC_IOR_GAP
+    } else {
+        1.0 + DIELECTRIC_IOR_GAP
+    }
+}
+
+/// The IOR slider's range: 1 to 3 (a dielectric's 1 is snapped away by [`set_ior`]; a
+/// plastic's starts just above), widened to hold `current`, since a slider clamps the value
+/// it shows and a loaded IOR outside the range would otherwise change on mere selection.
+pub fn ior_slider_range(m: &MaterialDesc, current: f64) -> RangeInclusive<f64> {
+    let lo: f64 = match m {
+        MaterialDesc::Dielectric { .. } => 1.0,
+        _ => 1.01,
+    };
+    lo.min(current)..=current.max(3.0)
+}
+
+/// The IOR presets of a material: [`DIELECTRIC_PRESETS`] for a dielectric, none otherwise.
+pub fn ior_presets(m: &MaterialDesc) -> &'static [(&'static str, f64)] {
+    match m {
+        MaterialDesc::Dielectric { .. } => &DIELECTRIC_PRESETS,
+        _ => &[],
     }
 }
 
@@ -187,5 +245,118 @@ impl LightEdit {
             }
             LightGeometry::Fixed => None,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use lumis::scene::{load_scene, parse_scene_value};
+
+    fn glass(alpha: f64) -> MaterialDesc {
+        MaterialDesc::Dielectric { ior: 1.5, alpha }
+    }
+
+    /// Writes `m` into a real scene and parses it back: the format's own check of the edit.
+    fn reparsed(m: &MaterialDesc) -> Result<MaterialDesc, String> {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/seed_cornell.json");
+        let mut desc = load_scene(std::path::Path::new(path)).unwrap();
+        desc.materials[0].material = m.clone();
+        desc.materials[0].two_sided = false;
+        let back = parse_scene_value(&desc.to_json()).map_err(|e| e.to_string())?;
+        Ok(back.materials[0].material.clone())
+    }
+
+    #[test]
+    fn dielectric_ior_and_roughness_are_editable_with_presets() {
+        let mut m = glass(0.0);
+        assert_eq!(ior(&m), Some(1.5));
+        assert_eq!(alpha(&m), Some(0.0));
+        assert_eq!(colour(&m), None, "a dielectric has no colour knob");
+        assert_eq!(ior_presets(&m), &DIELECTRIC_PRESETS);
+        assert!(ior_presets(&MaterialDesc::Diffuse { albedo: DVec3::ONE }).is_empty());
+        for (name, n) in DIELECTRIC_PRESETS {
+            set_ior(&mut m, n);
+            assert_eq!(m, MaterialDesc::Dielectric { ior: n, alpha: 0.0 }, "{name}");
+            assert_eq!(reparsed(&m), Ok(m.clone()), "{name}");
+        }
+        set_ior(&mut m, 2.0);
+        set_alpha(&mut m, 0.25);
+        assert_eq!(
+            m,
+            MaterialDesc::Dielectric {
+                ior: 2.0,
+                alpha: 0.25
+            }
+        );
+    }
+
+    #[test]
+    fn no_edit_makes_an_invalid_dielectric() {
+        let iors = [
+            1.0,
+            1.0 + 1e-12,
+            1.0 - 1e-12,
+            1.0 + f64::EPSILON,
+            1.0000001, // 1 in f32
+            0.999,
+            1.009,
+            0.0,
+            -1.0,
+            1e-300,
+            9.99,
+            10.0,
+            10.5,
+            1e300,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        let alphas = [-1.0, 0.0, 0.5, 1.0, 1.5, f64::NAN, f64::INFINITY];
+        for start in [1.5, 0.75] {
+            for &n in &iors {
+                for &a in &alphas {
+                    let mut m = MaterialDesc::Dielectric {
+                        ior: start,
+                        alpha: 0.3,
+                    };
+                    set_ior(&mut m, n);
+                    set_alpha(&mut m, a);
+                    let MaterialDesc::Dielectric { ior, alpha } = m else {
+                        unreachable!()
+                    };
+                    assert!(ior != 1.0 && ior as f32 != 1.0, "ior {n} → {ior}");
+                    assert!((1.0 - ior).abs() >= DIELECTRIC_IOR_GAP, "ior {n} → {ior}");
+                    assert!((0.0..=1.0).contains(&alpha), "alpha {a} → {alpha}");
+                    assert_eq!(reparsed(&m), Ok(m.clone()), "ior {n}, alpha {a}");
+                }
+            }
+        }
+        // Near 1 the IOR is pushed out on the side it came from; exactly 1 goes up.
+        let snapped = |n| {
+            let mut m = glass(0.0);
+            set_ior(&mut m, n);
+            ior(&m).unwrap()
+        };
+        assert_eq!(snapped(1.0), 1.0 + DIELECTRIC_IOR_GAP);
+        assert_eq!(snapped(0.995), 1.0 - DIELECTRIC_IOR_GAP);
+        assert_eq!(snapped(1.2), 1.2);
+        assert_eq!(snapped(0.8), 0.8, "an inverted interface stays legal");
+        assert_eq!(snapped(f64::NAN), 1.5, "a non-finite value changes nothing");
+    }
+
+    #[test]
+    fn the_ior_slider_shows_a_loaded_value_without_clamping_it() {
+        let d = glass(0.0);
+        assert_eq!(ior_slider_range(&d, 1.5), 1.0..=3.0);
+        assert_eq!(ior_slider_range(&d, 0.75), 0.75..=3.0);
+        assert_eq!(ior_slider_range(&d, 4.0), 1.0..=4.0);
+        let p = MaterialDesc::Plastic {
+            albedo: DVec3::ONE,
+            alpha: 0.1,
+            ior: 1.5,
+            specular: DVec3::ONE,
+        };
+        assert_eq!(ior_slider_range(&p, 1.5), 1.01..=3.0);
     }
 }

@@ -97,13 +97,28 @@ impl ViewerApp {
                 changed = true;
             }
         }
-        if let Some(mut n) = edit::ior(m)
-            && ui
-                .add(egui::Slider::new(&mut n, 1.01..=3.0).text("IOR"))
+        if let Some(mut n) = edit::ior(m) {
+            let range = edit::ior_slider_range(m, n);
+            if ui
+                .add(egui::Slider::new(&mut n, range).text("IOR"))
                 .changed()
-        {
-            edit::set_ior(m, n);
-            changed = true;
+            {
+                edit::set_ior(m, n);
+                changed = true;
+            }
+            let presets = edit::ior_presets(m);
+            if !presets.is_empty() {
+                ui.horizontal(|ui| {
+                    for &(name, value) in presets {
+                        let on = edit::ior(m) == Some(value);
+                        // Re-picking the current preset changes nothing: no restart.
+                        if ui.selectable_label(on, format!("{name} {value}")).clicked() && !on {
+                            edit::set_ior(m, value);
+                            changed = true;
+                        }
+                    }
+                });
+            }
         }
         if changed {
             self.scene_changed();

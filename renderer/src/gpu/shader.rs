@@ -50,6 +50,7 @@ const MODULES: &[Module] = &[
     module!("diffuse.wgsl"),
     module!("conductor.wgsl"),
     module!("plastic.wgsl"),
+    module!("dielectric.wgsl"),
     module!("light.wgsl"),
     module!("light_sampler.wgsl"),
     module!("triangle_light.wgsl"),
@@ -102,6 +103,8 @@ pub struct Features {
     pub has_complex_fresnel: bool,
     /// Plastics.
     pub has_plastic: bool,
+    /// Dielectrics (glass): transmission in the path tracer.
+    pub has_dielectric: bool,
     /// Disk shapes.
     pub has_disk_shape: bool,
     /// Sphere shapes.
@@ -125,6 +128,7 @@ impl Features {
             has_conductor: true,
             has_complex_fresnel: true,
             has_plastic: true,
+            has_dielectric: true,
             has_disk_shape: true,
             has_sphere_shape: true,
         }
@@ -165,6 +169,10 @@ impl Features {
                     f.has_plastic = true;
                     f.has_ggx |= !is_smooth(p.alpha());
                 }
+                Material::Dielectric(d) => {
+                    f.has_dielectric = true;
+                    f.has_ggx |= !d.is_delta();
+                }
             }
         }
         for p in scene.accel.primitives() {
@@ -180,7 +188,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 17] {
+    fn defines(&self) -> [(&'static str, bool); 18] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -202,6 +210,7 @@ impl Features {
             ("HAS_CONDUCTOR", self.has_conductor),
             ("HAS_COMPLEX_FRESNEL", self.has_complex_fresnel),
             ("HAS_PLASTIC", self.has_plastic),
+            ("HAS_DIELECTRIC", self.has_dielectric),
             ("HAS_DISK_SHAPE", self.has_disk_shape),
             ("HAS_SPHERE_SHAPE", self.has_sphere_shape),
             // The mutation points of `crate::mutants` (only with the `mutants` feature).
@@ -227,10 +236,11 @@ impl Features {
             "disk_light.wgsl" => lights && self.has_disk_light,
             "sphere_light.wgsl" => lights && self.has_sphere_light,
             "background_light.wgsl" => lights && self.has_background,
-            "fresnel.wgsl" => self.has_conductor || self.has_plastic,
+            "fresnel.wgsl" => self.has_conductor || self.has_plastic || self.has_dielectric,
             "ggx.wgsl" => self.has_ggx,
             "conductor.wgsl" => self.has_conductor,
             "plastic.wgsl" => self.has_plastic,
+            "dielectric.wgsl" => self.has_dielectric,
             "disk.wgsl" => self.has_disk_shape,
             "sphere.wgsl" => self.has_sphere_shape,
             "bvh2.wgsl" => self.use_bvh && self.bvh2,
@@ -399,12 +409,101 @@ mod tests {
                 use_bvh: true,
                 ..Features::default()
             },
+            // Glass on and off: smooth only (no GGX, no lights), rough under a light, and
+            // everything but glass.
+            Features {
+                has_dielectric: true,
+                has_sphere_shape: true,
+                ..Features::default()
+            },
+            Features {
+                has_dielectric: true,
+                has_ggx: true,
+                has_lights: true,
+                has_quad_light: true,
+                ..Features::default()
+            },
+            Features {
+                has_dielectric: false,
+                ..Features::all()
+            },
         ] {
             let src = path_tracer_source(&f).unwrap();
             if let Err(e) = validate(&src) {
                 panic!("{f:?}: {e}");
             }
         }
+    }
+
+    /// What transmission adds to a program, by name: none of it may be in a program without a
+    /// dielectric, which is then the reflection-only path tracer it was before glass existed.
+    const TRANSMISSION_CODE: [&str; 7] = [
+        "dielectric",
+        "refract",
+        "transmits",
+        "eta_scale",
+        "bs.eta",
+        "s.eta",
+        "    eta: f32,",
+    ];
+
+    /// The code of the program without the prelude (which lists every kind tag whatever the
+    /// scene) and without comments.
+    fn program_body(f: &Features) -> String {
+        let src = path_tracer_source(f).unwrap();
+        let body = src.find("// ---- tags.wgsl").unwrap();
+        src[body..]
+            .lines()
+            .map(|l| l.split("//").next().unwrap())
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+
+    #[test]
+    fn scenes_without_glass_carry_no_transmission_code() {
+        let glass = Features {
+            has_dielectric: true,
+            has_ggx: true,
+            has_lights: true,
+            ..Features::default()
+        };
+        let with = program_body(&glass);
+        for name in TRANSMISSION_CODE {
+            assert!(with.contains(name), "a glass program lacks {name:?}");
+        }
+        let without = [
+            Features::default(),
+            Features {
+                has_conductor: true,
+                has_plastic: true,
+                has_ggx: true,
+                has_lights: true,
+                has_quad_light: true,
+                ..Features::default()
+            },
+            Features {
+                has_dielectric: false,
+                ..Features::all()
+            },
+        ];
+        for f in without {
+            let body = program_body(&f);
+            for name in TRANSMISSION_CODE {
+                assert!(
+                    !body.contains(name),
+                    "{f:?}: {name:?} in a program without glass"
+                );
+            }
+        }
+        // Smooth glass alone needs Fresnel and refraction but no GGX.
+        let smooth = program_body(&Features {
+            has_dielectric: true,
+            ..Features::default()
+        });
+        assert!(
+            smooth.contains("fn fresnel_dielectric(") && smooth.contains("fn refract_through(")
+        );
+        assert!(!smooth.contains("fn ggx_d("));
     }
 }
 

@@ -4,7 +4,7 @@ pub mod mis;
 pub mod path;
 
 pub use mis::Heuristic;
-pub use path::radiance;
+pub use path::{radiance, radiance_specialised};
 
 use crate::lights::LightSampling;
 

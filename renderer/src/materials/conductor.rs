@@ -93,6 +93,7 @@ impl Conductor {
                 weight,
                 pdf: 1.0,
                 delta: true,
+                eta: 1.0,
             });
         }
         let h = ggx::sample_visible_normal(self.alpha, wo, u);
@@ -107,6 +108,7 @@ impl Conductor {
             weight,
             pdf,
             delta: false,
+            eta: 1.0,
         })
     }
 }

@@ -45,6 +45,7 @@ impl Diffuse {
             weight: self.albedo,
             pdf: FRAC_1_PI * wi.z,
             delta: false,
+            eta: 1.0,
         })
     }
 }

@@ -1,5 +1,5 @@
-//! Fresnel reflectance: exact conductor Fresnel (complex index of refraction) and Schlick's
-//! approximation.
+//! Fresnel reflectance: exact dielectric and conductor Fresnel (real and complex index of
+//! refraction) and Schlick's approximation.
 //! WGSL twin: `fresnel.wgsl`.
 
 use glam::Vec3;
@@ -92,6 +92,48 @@ pub fn fresnel_conductor(cos_theta_i: f32, eta: Vec3, k: Vec3) -> Vec3 {
         fresnel_complex(cos_theta_i, eta.y, k.y),
         fresnel_complex(cos_theta_i, eta.z, k.z),
     )
+}
+
+/// Unpolarised Fresnel reflectance of a dielectric interface (pbrt-v4 `FrDielectric`).
+///
+/// `cos_theta_i` is the cosine of the incident direction with the normal of the side of index 1;
+/// `eta` is the relative IOR η_inside/η_outside. A negative cosine means the direction is inside:
+/// then the interface is seen with 1/η. Total internal reflection gives 1.
+#[inline]
+pub fn fresnel_dielectric(cos_theta_i: f32, eta: f32) -> f32 {
+    let mut cos_i = cos_theta_i.clamp(-1.0, 1.0);
+    let mut eta = eta;
+    if cos_i < 0.0 {
+        eta = 1.0 / eta;
+        cos_i = -cos_i;
+    }
+    let sin2_i = 1.0 - cos_i * cos_i;
+    let sin2_t = sin2_i / (eta * eta);
+    if sin2_t >= 1.0 {
+        return 1.0;
+    }
+    let cos_t = crate::math::safe_sqrt(1.0 - sin2_t);
+    let r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    let r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    (0.5 * (r_parl * r_parl + r_perp * r_perp)).clamp(0.0, 1.0)
+}
+
+/// [`fresnel_dielectric`] of a refraction whose two cosines are both known: `cos_out` of the
+/// direction outside (index 1) and `cos_in` of the one inside (index `eta`), both ≥ 0.
+///
+/// The same value as `fresnel_dielectric(cos_out, eta)` when `cos_in` is the Snell cosine, but
+/// symmetric in the pair: near the critical angle, recomputing one cosine from the other as
+/// √(1 − sin²) cancels, and the two directions of a refraction would see different Fresnel terms.
+#[inline]
+pub fn fresnel_dielectric_pair(cos_out: f32, cos_in: f32, eta: f32) -> f32 {
+    let r_parl = (eta * cos_out - cos_in) / (eta * cos_out + cos_in);
+    let r_perp = (cos_out - eta * cos_in) / (cos_out + eta * cos_in);
+    let f = 0.5 * (r_parl * r_parl + r_perp * r_perp);
+    if f.is_finite() {
+        f.clamp(0.0, 1.0)
+    } else {
+        1.0
+    }
 }
 
 /// Schlick's approximation F0 + (1 − F0)(1 − cosθ)⁵, scalar F0.
@@ -228,5 +270,56 @@ mod tests {
         }
         let rgb = fresnel_schlick_rgb(Vec3::new(0.04, 0.5, 1.0), 0.3);
         assert!((rgb.x - fresnel_schlick(0.04, 0.3)).abs() < 1e-7 && rgb.z == 1.0);
+    }
+
+    /// Closed forms: normal incidence ((η−1)/(η+1))², Brewster's angle (p-polarised part 0, so
+    /// F = r_s²/2), total internal reflection beyond the critical angle, and the inside view
+    /// equals the outside view with 1/η.
+    #[test]
+    fn dielectric_fresnel_closed_forms() {
+        for eta in [1.1f32, 1.5, 2.4, 0.7] {
+            let f0 = ((eta - 1.0) / (eta + 1.0)).powi(2);
+            assert!((fresnel_dielectric(1.0, eta) - f0).abs() < 1e-6, "{eta}");
+            assert!((fresnel_dielectric(-1.0, eta) - f0).abs() < 1e-6, "{eta}");
+            let tb = eta.atan();
+            let (ci, si) = (tb.cos(), tb.sin());
+            let ct = (1.0 - si * si / (eta * eta)).sqrt();
+            let rs = (ci - eta * ct) / (ci + eta * ct);
+            assert!(
+                (fresnel_dielectric(ci, eta) - 0.5 * rs * rs).abs() < 1e-6,
+                "{eta}"
+            );
+            for c in [0.05f32, 0.3, 0.7, 0.99] {
+                assert_eq!(
+                    fresnel_dielectric(-c, eta),
+                    fresnel_dielectric(c, 1.0 / eta)
+                );
+            }
+        }
+        // With the Snell cosine, the pair form is the same function, from either side (away from
+        // the critical angle, where recomputing the outside cosine from the inside one cancels).
+        for c in [0.01f32, 0.3, 0.7, 1.0] {
+            let cos_in = (1.0 - (1.0 - c * c) / 2.25).sqrt();
+            let (a, b) = (
+                fresnel_dielectric(c, 1.5),
+                fresnel_dielectric_pair(c, cos_in, 1.5),
+            );
+            assert!((a - b).abs() < 1e-6, "{c}: {a} {b}");
+            if c >= 0.3 {
+                assert!((fresnel_dielectric(-cos_in, 1.5) - b).abs() < 1e-5, "{c}");
+            }
+        }
+        // Inside glass of η = 1.5 the critical angle is asin(1/1.5) ≈ 41.8°.
+        let crit = (1.0f32 / 1.5).asin();
+        assert_eq!(fresnel_dielectric(-(crit + 1e-3).cos(), 1.5), 1.0);
+        assert!(fresnel_dielectric(-(crit - 1e-2).cos(), 1.5) < 1.0);
+        assert_eq!(fresnel_dielectric(0.0, 1.5), 1.0);
+        // Reflectance rises monotonically to 1 at grazing from outside.
+        let mut prev = 0.0;
+        for i in (0..=100).rev() {
+            let f = fresnel_dielectric(i as f32 / 100.0, 1.5);
+            assert!(f >= prev - 1e-7, "{i}");
+            prev = f;
+        }
     }
 }

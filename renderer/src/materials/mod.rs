@@ -1,9 +1,11 @@
-//! Materials (BSDFs): Lambertian diffuse, GGX conductor and a rough plastic.
+//! Materials (BSDFs): Lambertian diffuse, GGX conductor, a rough plastic and a dielectric.
 //!
 //! Everything works in the local shading frame: normal = +z, `wo` points towards the viewer and
 //! `wi` towards the light, both unit and pointing away from the surface. The integrator flips the
-//! frame of two-sided materials so that `wo.z > 0`; all materials here are reflection only, so
-//! `wo.z <= 0` or `wi.z <= 0` gives zero.
+//! frame of two-sided materials so that `wo.z > 0`; the reflection-only materials give zero for
+//! `wo.z <= 0` or `wi.z <= 0`. The dielectric alone ([`Material::transmits`]) sees both sides:
+//! its frame is never flipped, `wo.z < 0` means the viewer is inside, and `wi` may lie on either
+//! side.
 //!
 //! Conventions (Mitsuba 3): `eval` returns f·cosθi of the non-delta lobes; `pdf` is the solid-angle
 //! density with which `sample` produces `wi` through them, including the lobe-selection
@@ -13,6 +15,7 @@
 
 pub mod coat_albedo;
 pub mod conductor;
+pub mod dielectric;
 pub mod diffuse;
 pub mod fresnel;
 pub mod ggx;
@@ -21,6 +24,7 @@ pub mod plastic;
 mod testing;
 
 pub use conductor::{Conductor, ConductorFresnel};
+pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
 pub use plastic::Plastic;
 
@@ -29,7 +33,8 @@ use glam::{Vec2, Vec3};
 /// One sampled direction of a BSDF.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BsdfSample {
-    /// Sampled direction towards the light (local frame, unit, `wi.z > 0`).
+    /// Sampled direction towards the light (local frame, unit; `wi.z > 0` unless the material
+    /// transmits, and never 0).
     pub wi: Vec3,
     /// f·cosθi/pdf for a non-delta sample, or the delta lobe's reflectance / selection probability.
     pub weight: Vec3,
@@ -38,14 +43,26 @@ pub struct BsdfSample {
     pub pdf: f32,
     /// True if `wi` came from a delta (perfectly specular) lobe: `eval`/`pdf` do not see it.
     pub delta: bool,
+    /// η' = η(wi side)/η(wo side) of a refraction, 1 for a reflection: the weight of a refraction
+    /// holds radiance's 1/η'², which Russian roulette multiplies back out (pbrt-v4's `etaScale`).
+    pub eta: f32,
 }
 
 impl BsdfSample {
     /// The sample if its pdf is positive and everything is finite; `None` otherwise, so that no
     /// NaN/Inf ever leaves a material.
-    pub(crate) fn checked(self) -> Option<BsdfSample> {
-        let ok =
-            self.pdf > 0.0 && self.pdf.is_finite() && self.weight.is_finite() && self.wi.z > 0.0;
+    /// `transmits` allows `wi` below the surface.
+    pub(crate) fn checked(self, transmits: bool) -> Option<BsdfSample> {
+        let side_ok = if transmits {
+            self.wi.z != 0.0
+        } else {
+            self.wi.z > 0.0
+        };
+        let ok = self.pdf > 0.0
+            && self.pdf.is_finite()
+            && self.weight.is_finite()
+            && self.eta.is_finite()
+            && side_ok;
         ok.then_some(self)
     }
 }
@@ -59,6 +76,8 @@ pub enum Material {
     Conductor(Conductor),
     /// Lambert base under a GGX dielectric coat, energy conserving.
     Plastic(Plastic),
+    /// Glass: smooth or rough reflection and refraction between index 1 and `ior`.
+    Dielectric(Dielectric),
 }
 
 impl Material {
@@ -68,6 +87,7 @@ impl Material {
             Material::Diffuse(m) => m.eval(wo, wi),
             Material::Conductor(m) => m.eval(wo, wi),
             Material::Plastic(m) => m.eval(wo, wi),
+            Material::Dielectric(m) => Vec3::splat(m.eval_pdf(wo, wi).0),
         }
     }
 
@@ -77,6 +97,7 @@ impl Material {
             Material::Diffuse(m) => m.pdf(wo, wi),
             Material::Conductor(m) => m.pdf(wo, wi),
             Material::Plastic(m) => m.pdf(wo, wi),
+            Material::Dielectric(m) => m.eval_pdf(wo, wi).1,
         };
         pdf * crate::mutants::bsdf_pdf(self.kind_tag())
     }
@@ -93,13 +114,14 @@ impl Material {
             Material::Diffuse(m) => m.sample(wo, u),
             Material::Conductor(m) => m.sample(wo, u),
             Material::Plastic(m) => m.sample(wo, u_lobe, u),
+            Material::Dielectric(m) => m.sample(wo, u_lobe, u),
         }?;
         if cfg!(feature = "mutants") && !s.delta {
             let k = crate::mutants::bsdf_pdf(self.kind_tag());
             s.pdf *= k;
             s.weight /= k;
         }
-        s.checked()
+        s.checked(self.transmits())
     }
 
     /// True if `eval` can be non-zero, i.e. light sampling is worth doing.
@@ -108,7 +130,15 @@ impl Material {
             Material::Diffuse(_) => true,
             Material::Conductor(m) => !m.is_delta(),
             Material::Plastic(m) => m.has_smooth_part(),
+            Material::Dielectric(m) => !m.is_delta(),
         }
+    }
+
+    /// True if light passes through: `wo` and `wi` may lie on either side, the frame is never
+    /// flipped, and two-sidedness does not apply.
+    #[inline]
+    pub fn transmits(&self) -> bool {
+        matches!(self, Material::Dielectric(_))
     }
 
     /// Purely specular: `eval` is always 0 and every sample is a delta sample.
@@ -122,6 +152,7 @@ impl Material {
             Material::Diffuse(m) => m.albedo,
             Material::Conductor(m) => m.normal_reflectance(),
             Material::Plastic(m) => m.albedo_hint(),
+            Material::Dielectric(_) => Vec3::ONE,
         }
     }
 }

@@ -159,6 +159,7 @@ impl Plastic {
                     weight,
                     pdf: p_coat,
                     delta: true,
+                    eta: 1.0,
                 });
             }
             reflect(wo, ggx::sample_visible_normal(self.alpha, wo, u)).normalize()
@@ -171,6 +172,7 @@ impl Plastic {
             weight: f / pdf,
             pdf,
             delta: false,
+            eta: 1.0,
         })
     }
 

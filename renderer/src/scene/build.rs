@@ -13,7 +13,7 @@ use crate::lights::{
     BackgroundLight, DiskLight, Light, LightSampler, PolygonLight, QuadLight, SphereLight,
     TriangleLight,
 };
-use crate::materials::{Conductor, ConductorFresnel, Diffuse, Material, Plastic};
+use crate::materials::{Conductor, ConductorFresnel, Dielectric, Diffuse, Material, Plastic};
 use glam::{DVec3, Vec3};
 
 /// Largest supported extent of a scene's bounding box (on its longest axis). The BVH builder
@@ -72,6 +72,10 @@ fn material(desc: &MaterialDesc) -> Material {
             *ior as f32,
             v(*specular),
         )),
+        MaterialDesc::Dielectric { ior, alpha } => Material::Dielectric(Dielectric {
+            ior: *ior as f32,
+            alpha: *alpha as f32,
+        }),
     }
 }
 
@@ -105,6 +109,11 @@ fn quad_triangles(corner: Vec3, eu: Vec3, ev: Vec3) -> [[Vec3; 3]; 2] {
 }
 
 impl Scene {
+    /// True if a material transmits light (a dielectric): the path tracer then runs its
+    /// transmission code ([`crate::integrator::path::radiance_specialised`]).
+    pub fn has_transmission(&self) -> bool {
+        self.materials.iter().any(Material::transmits)
+    }
     /// Builds the scene. Fails only on lights the parser could not rule out (e.g. an emitter that
     /// becomes degenerate in f32).
     pub fn from_desc(desc: &SceneDesc) -> Result<Scene, SceneError> {

@@ -78,6 +78,14 @@ pub enum MaterialDesc {
         /// Tint of the specular reflection, in [0, 1].
         specular: DVec3,
     },
+    /// A boundary between index 1 (the side the normal points to) and `ior`; smooth at α = 0,
+    /// else rough (Walter et al. 2007, GGX). Never two-sided.
+    Dielectric {
+        /// Index of refraction of the inside, in (0, 10], ≠ 1.
+        ior: f64,
+        /// GGX roughness α, in [0, 1].
+        alpha: f64,
+    },
 }
 
 /// A conductor's Fresnel term.
@@ -254,8 +262,11 @@ fn material_json(m: &NamedMaterial) -> Value {
             "type": "plastic", "albedo": vec3(*albedo), "alpha": alpha,
             "ior": ior, "specular": vec3(*specular),
         }),
+        MaterialDesc::Dielectric { ior, alpha } => {
+            json!({"type": "dielectric", "ior": ior, "alpha": alpha})
+        }
     };
-    if !m.two_sided {
+    if !m.two_sided && !matches!(m.material, MaterialDesc::Dielectric { .. }) {
         obj["two_sided"] = json!(false);
     }
     obj

@@ -104,6 +104,20 @@ fn parse_camera(obj: &Obj) -> Result<CameraDesc, SceneError> {
     obj.only_keys(&["from", "to", "up", "vfov_deg", "width", "height"], false)?;
     let (from, to, up) = (obj.vec3("from")?, obj.vec3("to")?, obj.vec3("up")?);
 
+    // The camera's position bounds every ray origin: beyond the supported scene size, f32 ray
+    // arithmetic has no digits left for the scene (and traversal would see infinities).
+    let limit = crate::scene::build::MAX_SCENE_SIZE as f64;
+    for (key, p) in [("from", from), ("to", to)] {
+        if p.abs().max_element() > limit {
+            let msg = format!(
+                "coordinate {:e} is beyond the supported scene size {:e} (single precision)",
+                p.abs().max_element(),
+                crate::scene::build::MAX_SCENE_SIZE
+            );
+            return Err(SceneError::new(obj.at(key), msg));
+        }
+    }
+
     // Relative to the coordinates' magnitude, so a camera 1e5 units out still works.
     let view = to - from;
     let scale = from.abs().max(to.abs()).max_element();
@@ -215,6 +229,18 @@ mod tests {
     fn camera_rules() {
         let cases = [
             ("from", json!([0, 1, 0]), "camera.to", "`to` equals `from`"),
+            (
+                "from",
+                json!([1.8446744073709552e19, 1, 0]),
+                "camera.from",
+                "beyond the supported scene size",
+            ),
+            (
+                "to",
+                json!([0, -2e15, 0]),
+                "camera.to",
+                "beyond the supported scene size",
+            ),
             (
                 "up",
                 json!([0, 0, 2]),

@@ -1,4 +1,4 @@
-//! The `materials` map: diffuse, conductor and plastic, with their range rules.
+//! The `materials` map: diffuse, conductor, plastic and dielectric, with their range rules.
 
 use super::desc::{FresnelDesc, MaterialDesc, NamedMaterial};
 use super::error::SceneError;
@@ -60,14 +60,35 @@ fn parse_material(name: &str, obj: &Obj) -> Result<NamedMaterial, SceneError> {
                 specular,
             }
         }
+        "dielectric" => {
+            if obj.get("two_sided").is_some() {
+                let msg = "a dielectric is never two-sided: its two sides are its two media";
+                return Err(SceneError::new(obj.at("two_sided"), msg));
+            }
+            obj.only_keys(&["type", "ior", "alpha"], true)?;
+            let ior = obj.opt_number("ior")?.unwrap_or(1.5);
+            let max = crate::materials::dielectric::MAX_IOR as f64;
+            if !(ior > 0.0 && ior != 1.0 && ior <= max) {
+                let msg = format!("ior {ior} must be positive, not 1, and at most {max}");
+                return Err(SceneError::new(obj.at("ior"), msg));
+            }
+            let alpha = match obj.get("alpha") {
+                Some(_) => alpha(obj)?,
+                None => 0.0,
+            };
+            MaterialDesc::Dielectric { ior, alpha }
+        }
         other => {
             return Err(SceneError::new(
                 obj.at("type"),
-                format!("unknown material type `{other}` (expected diffuse, conductor or plastic)"),
+                format!(
+                    "unknown material type `{other}` (expected diffuse, conductor, plastic or \
+                     dielectric)"
+                ),
             ));
         }
     };
-    let two_sided = obj.opt_bool("two_sided")?.unwrap_or(true);
+    let two_sided = kind != "dielectric" && obj.opt_bool("two_sided")?.unwrap_or(true);
     Ok(NamedMaterial {
         name: name.to_owned(),
         material,
@@ -213,6 +234,44 @@ mod tests {
             json!({"type": "plastic", "albedo": [0, 0, 0], "alpha": 0, "ior": 1}),
         );
         expect_err(&s, "materials.plastic.ior", "greater than 1");
+    }
+
+    #[test]
+    fn dielectric_defaults_and_rules() {
+        let glass = |v: Value| with("white", v);
+        let d = parse_scene_value(&glass(json!({"type": "dielectric"}))).unwrap();
+        let m = &d.materials[3];
+        assert_eq!(
+            m.material,
+            MaterialDesc::Dielectric {
+                ior: 1.5,
+                alpha: 0.0
+            }
+        );
+        assert!(!m.two_sided, "a dielectric's two sides are its two media");
+        let ok = glass(json!({"type": "dielectric", "ior": 0.75, "alpha": 0.3}));
+        assert!(parse_scene_value(&ok).is_ok(), "an ior below 1 is a bubble");
+        let p = "materials.white";
+        for bad in [0.0, -1.5, 1.0, 10.5, 1e30] {
+            let s = glass(json!({"type": "dielectric", "ior": bad}));
+            expect_err(
+                &s,
+                &format!("{p}.ior"),
+                "must be positive, not 1, and at most 10",
+            );
+        }
+        let s = glass(json!({"type": "dielectric", "ior": "NaN"}));
+        expect_err(&s, &format!("{p}.ior"), "expected a number");
+        for bad in [-0.1, 1.01] {
+            let s = glass(json!({"type": "dielectric", "alpha": bad}));
+            expect_err(&s, &format!("{p}.alpha"), "outside [0, 1]");
+        }
+        for two_sided in [true, false] {
+            let s = glass(json!({"type": "dielectric", "two_sided": two_sided}));
+            expect_err(&s, &format!("{p}.two_sided"), "never two-sided");
+        }
+        let s = glass(json!({"type": "dielectric", "albedo": [1, 1, 1]}));
+        expect_err(&s, &format!("{p}.albedo"), "unknown key `albedo`");
     }
 
     #[test]

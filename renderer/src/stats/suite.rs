@@ -1,6 +1,7 @@
 //! The samplers of the statistical suite, by name: every warp, every material at several
-//! incidence angles, every light shape from several points with both sampling methods, and the
-//! strategy mixture. Each list entry is one line; the tests and `examples/warptest.rs` share them.
+//! incidence angles (the rough dielectric from outside and from inside), every light shape from
+//! several points with both sampling methods, and the strategy mixture. Each list entry is one
+//! line; the tests and `examples/warptest.rs` share them.
 //!
 //! Light geometry: the receiver sits at the origin with normal +z (so BSDF and world frames
 //! coincide for the mixture). Plane lights have circumradius 1, the sphere radius 1.
@@ -11,7 +12,7 @@ use super::mixture_sampler::Mixture;
 use super::sampler::DirectionalSampler;
 use super::warp_sampler::Warp;
 use crate::lights::LightSampling;
-use crate::materials::{Conductor, ConductorFresnel, Diffuse, Material, Plastic};
+use crate::materials::{Conductor, ConductorFresnel, Dielectric, Diffuse, Material, Plastic};
 use crate::math::Frame;
 use crate::scene::{Scene, parse_scene};
 use glam::Vec3;
@@ -42,6 +43,14 @@ pub const CONDUCTOR_ALPHAS: [f32; 6] = [0.01, 0.05, 0.1, 0.3, 0.6, 1.0];
 pub const PLASTIC_ALPHAS: [f32; 3] = [0.05, 0.3, 1.0];
 /// Plastic coat IORs.
 pub const PLASTIC_IORS: [f32; 3] = [1.1, 1.5, 3.0];
+/// Rough dielectric roughnesses (the smooth one is delta only: no density to histogram).
+pub const DIELECTRIC_ALPHAS: [f32; 6] = [0.01, 0.05, 0.1, 0.3, 0.6, 1.0];
+/// Dielectric IORs (inside relative to outside).
+pub const DIELECTRIC_IORS: [f32; 3] = [1.1, 1.5, 2.4];
+/// Incidence angles of the dielectric, from outside and from inside (degrees from the normal on
+/// the viewer's side). Inside, the critical angles are 65.4° (η 1.1), 41.8° (1.5) and 24.6°
+/// (2.4): 30° and 60° fall on both sides of them.
+pub const DIELECTRIC_THETAS_DEG: [f32; 5] = [0.0, 30.0, 60.0, 85.0, 89.0];
 /// Mixture weights of light sampling.
 pub const MIX_WEIGHTS: [f32; 4] = [0.0, 0.25, 0.5, 1.0];
 
@@ -66,6 +75,11 @@ pub fn plastic(alpha: f32, ior: f32) -> Material {
         ior,
         Vec3::ONE,
     ))
+}
+
+/// A rough (or smooth, α < 1e-3) dielectric.
+pub fn dielectric(alpha: f32, ior: f32) -> Material {
+    Material::Dielectric(Dielectric { ior, alpha })
 }
 
 /// A coloured Lambertian.
@@ -217,6 +231,37 @@ pub fn material_cases() -> Vec<Case> {
     out
 }
 
+/// The rough dielectric at every α × IOR × side × angle of the `DIELECTRIC_*` lists, named
+/// `dielectric/a{α}/ior{η}/{out|in}/th{θ}`, as BSDF samplers (the GPU suite builds its own
+/// samplers from their `material` and `wo`, and uses these as the density).
+pub fn dielectric_samplers() -> Vec<(String, BsdfSampler)> {
+    let mut out = Vec::new();
+    for a in DIELECTRIC_ALPHAS {
+        for ior in DIELECTRIC_IORS {
+            let m = dielectric(a, ior);
+            for (side, inside) in [("out", false), ("in", true)] {
+                for th in DIELECTRIC_THETAS_DEG {
+                    let s = if inside {
+                        BsdfSampler::inside_at_angle(m.clone(), th)
+                    } else {
+                        BsdfSampler::at_angle(m.clone(), th)
+                    };
+                    out.push((format!("dielectric/a{a}/ior{ior}/{side}/th{th}"), s));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// [`dielectric_samplers`] as cases.
+pub fn dielectric_cases() -> Vec<Case> {
+    dielectric_samplers()
+        .into_iter()
+        .map(|(name, s)| case(name, s))
+        .collect()
+}
+
 /// Every light shape × placement × method.
 pub fn light_cases() -> Vec<Case> {
     let mut out = Vec::new();
@@ -256,6 +301,7 @@ pub fn mixture_cases() -> Vec<Case> {
 pub fn all_cases() -> Vec<Case> {
     let mut v = warp_cases();
     v.extend(material_cases());
+    v.extend(dielectric_cases());
     v.extend(light_cases());
     v.extend(mixture_cases());
     v

@@ -27,6 +27,8 @@ gpu_tags! {
         Conductor => "MATERIAL_CONDUCTOR",
         /// [`Material::Plastic`].
         Plastic => "MATERIAL_PLASTIC",
+        /// [`Material::Dielectric`].
+        Dielectric => "MATERIAL_DIELECTRIC",
     }
 }
 
@@ -37,6 +39,7 @@ impl MaterialTag {
             Material::Diffuse(_) => MaterialTag::Diffuse,
             Material::Conductor(_) => MaterialTag::Conductor,
             Material::Plastic(_) => MaterialTag::Plastic,
+            Material::Dielectric(_) => MaterialTag::Dielectric,
         }
     }
 }
@@ -99,6 +102,13 @@ pub(super) fn encode(scene: &Scene, tables: &mut Vec<f32>) -> Vec<GpuMaterial> {
                         c: [p.alpha(), f0, diffuse_norm, 0.0],
                     }
                 }
+                // Never two-sided: its two sides are its two media.
+                Material::Dielectric(d) => GpuMaterial {
+                    h: [kind, 0, 0, smooth],
+                    a: [d.ior, d.alpha, 0.0, 0.0],
+                    b: z,
+                    c: z,
+                },
             }
         })
         .collect()

@@ -64,7 +64,7 @@ fn conductor_sample(m: Material, wo: vec3f, u: vec2f) -> BsdfSample {
     }
     if conductor_is_delta(m) {
         let wi = vec3f(-wo.x, -wo.y, wo.z);
-        return BsdfSample(wi, conductor_fresnel(m, wo.z), 1.0, true, true);
+        return reflection_sample(wi, conductor_fresnel(m, wo.z), 1.0, true);
     }
 // #if HAS_GGX
     let alpha = m.c.x;
@@ -76,7 +76,7 @@ fn conductor_sample(m: Material, wo: vec3f, u: vec2f) -> BsdfSample {
     }
     let pdf = ggx_g1(alpha, wo) * ggx_d(alpha, hv.xyz) / (4.0 * wo.z);
     let weight = conductor_fresnel(m, hv.w) * ggx_g1(alpha, wi);
-    return BsdfSample(wi, weight, pdf, false, true);
+    return reflection_sample(wi, weight, pdf, false);
 // #else
     return no_bsdf_sample();
 // #endif

@@ -22,5 +22,5 @@ fn diffuse_sample(m: Material, wo: vec3f, u: vec2f) -> BsdfSample {
     if wi.z <= 0.0 {
         return no_bsdf_sample();
     }
-    return BsdfSample(wi, m.a.xyz, INV_PI * wi.z, false, true);
+    return reflection_sample(wi, m.a.xyz, INV_PI * wi.z, false);
 }

@@ -1,5 +1,7 @@
 // Fresnel reflectance, the twin of `materials/fresnel.rs`: exact conductor Fresnel for a complex
-// IOR (pbrt-v4 `FrComplex`, complex numbers as vec2 (re, im)) and Schlick's approximation.
+// IOR (pbrt-v4 `FrComplex`, complex numbers as vec2 (re, im)), exact dielectric Fresnel (pbrt-v4
+// `FrDielectric`, and its form for a refraction whose two cosines are known) and Schlick's
+// approximation.
 
 fn c_mul(a: vec2f, b: vec2f) -> vec2f {
     return vec2f(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x);
@@ -50,6 +52,40 @@ fn fresnel_conductor(cos_theta_i: f32, eta: vec3f, k: vec3f) -> vec3f {
         fresnel_complex(cos_theta_i, eta.z, k.z),
     );
 }
+
+// #if HAS_DIELECTRIC
+// `cos_theta_i` against the normal of the side of index 1, `eta` = η_inside/η_outside; a negative
+// cosine is seen from inside, with 1/η. Total internal reflection gives 1.
+fn fresnel_dielectric(cos_theta_i: f32, eta_in: f32) -> f32 {
+    var cos_i = clamp(cos_theta_i, -1.0, 1.0);
+    var eta = eta_in;
+    if cos_i < 0.0 {
+        eta = 1.0 / eta;
+        cos_i = -cos_i;
+    }
+    let sin2_i = 1.0 - cos_i * cos_i;
+    let sin2_t = sin2_i / (eta * eta);
+    if sin2_t >= 1.0 {
+        return 1.0;
+    }
+    let cos_t = safe_sqrt(1.0 - sin2_t);
+    let r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    let r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    return clamp(0.5 * (r_parl * r_parl + r_perp * r_perp), 0.0, 1.0);
+}
+
+// `fresnel_dielectric` of a refraction from both of its cosines (outside, inside; both ≥ 0):
+// symmetric in the pair, where recomputing one from the other would cancel near the critical angle.
+fn fresnel_dielectric_pair(cos_out: f32, cos_in: f32, eta: f32) -> f32 {
+    let r_parl = (eta * cos_out - cos_in) / (eta * cos_out + cos_in);
+    let r_perp = (cos_out - eta * cos_in) / (cos_out + eta * cos_in);
+    let f = 0.5 * (r_parl * r_parl + r_perp * r_perp);
+    if is_finite_f(f) {
+        return clamp(f, 0.0, 1.0);
+    }
+    return 1.0;
+}
+// #endif
 
 fn fresnel_schlick(f0: f32, cos_theta: f32) -> f32 {
     let m = 1.0 - clamp(cos_theta, 0.0, 1.0);

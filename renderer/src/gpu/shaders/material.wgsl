@@ -1,12 +1,13 @@
 // The closed set of materials, the twin of `materials/mod.rs`: one record per material, a `switch`
-// on the same variant order as `Material` (Diffuse, Conductor, Plastic).
+// on the same variant order as `Material` (Diffuse, Conductor, Plastic, Dielectric).
 //
 // Record layout (see `gpu/scene/materials.rs`):
 //   h = (kind, two_sided, aux, has_smooth_part); kind = MATERIAL_*; aux = Fresnel kind for
 //       conductors (FRESNEL_COMPLEX or FRESNEL_TINT) and the coat table's offset in `tables` for plastic.
-//   Diffuse:   a.xyz albedo.
-//   Conductor: a.xyz η (or the tint), b.xyz k, c.x α.
-//   Plastic:   a.xyz albedo, b.xyz coat tint, c = (α, F0, 1/(1 − E_avg) or 0, _).
+//   Diffuse:    a.xyz albedo.
+//   Conductor:  a.xyz η (or the tint), b.xyz k, c.x α.
+//   Plastic:    a.xyz albedo, b.xyz coat tint, c = (α, F0, 1/(1 − E_avg) or 0, _).
+//   Dielectric: a = (ior, α, _, _); never two-sided (its two sides are its two media).
 
 struct Material {
     h: vec4<u32>,
@@ -15,18 +16,40 @@ struct Material {
     c: vec4f,
 }
 
-// `BsdfSample`; `ok` = false stands for `None`.
+// `BsdfSample`; `ok` = false stands for `None`. `eta` (η' of a refraction, 1 for a reflection)
+// exists only in programs with a dielectric, so the others are the reflection-only program.
 struct BsdfSample {
     wi: vec3f,
     weight: vec3f,
     pdf: f32,
     delta: bool,
+// #if HAS_DIELECTRIC
+    eta: f32,
+// #endif
     ok: bool,
 }
 
-fn no_bsdf_sample() -> BsdfSample {
-    return BsdfSample(vec3f(0.0), vec3f(0.0), 0.0, false, false);
+// A valid sample of a reflection (η' = 1).
+fn reflection_sample(wi: vec3f, weight: vec3f, pdf: f32, delta: bool) -> BsdfSample {
+// #if HAS_DIELECTRIC
+    return BsdfSample(wi, weight, pdf, delta, 1.0, true);
+// #else
+    return BsdfSample(wi, weight, pdf, delta, true);
+// #endif
 }
+
+fn no_bsdf_sample() -> BsdfSample {
+    var s = reflection_sample(vec3f(0.0), vec3f(0.0), 0.0, false);
+    s.ok = false;
+    return s;
+}
+
+// #if HAS_DIELECTRIC
+// `Material::transmits`: wo and wi may lie on either side, the frame is never flipped.
+fn material_transmits(m: Material) -> bool {
+    return m.h.x == MATERIAL_DIELECTRIC;
+}
+// #endif
 
 fn material_eval(m: Material, wo: vec3f, wi: vec3f) -> vec3f {
     switch m.h.x {
@@ -41,6 +64,11 @@ fn material_eval(m: Material, wo: vec3f, wi: vec3f) -> vec3f {
 // #if HAS_PLASTIC
         case MATERIAL_PLASTIC: {
             return plastic_eval_pdf(m, wo, wi).xyz;
+        }
+// #endif
+// #if HAS_DIELECTRIC
+        case MATERIAL_DIELECTRIC: {
+            return vec3f(dielectric_eval_pdf(m, wo, wi).x);
         }
 // #endif
         default: {
@@ -71,6 +99,11 @@ fn material_pdf_unmutated(m: Material, wo: vec3f, wi: vec3f) -> f32 {
             return plastic_eval_pdf(m, wo, wi).w;
         }
 // #endif
+// #if HAS_DIELECTRIC
+        case MATERIAL_DIELECTRIC: {
+            return dielectric_eval_pdf(m, wo, wi).y;
+        }
+// #endif
         default: {
             return unknown_tag();
         }
@@ -94,6 +127,11 @@ fn material_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample 
             s = plastic_sample(m, wo, u_lobe, u);
         }
 // #endif
+// #if HAS_DIELECTRIC
+        case MATERIAL_DIELECTRIC: {
+            s = dielectric_sample(m, wo, u_lobe, u);
+        }
+// #endif
         default: {
             s.pdf = unknown_tag();
         }
@@ -104,7 +142,13 @@ fn material_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample 
         s.weight /= MUTANT_FACTOR;
     }
 // #endif
+// #if HAS_DIELECTRIC
+    // A transmitting material may send wi below the surface (never into the tangent plane).
+    let side_ok = select(s.wi.z > 0.0, s.wi.z != 0.0, material_transmits(m));
+    let ok = s.ok && s.pdf > 0.0 && is_finite_f(s.pdf) && is_finite3(s.weight) && is_finite_f(s.eta) && side_ok;
+// #else
     let ok = s.ok && s.pdf > 0.0 && is_finite_f(s.pdf) && is_finite3(s.weight) && s.wi.z > 0.0;
+// #endif
     if !ok {
         return no_bsdf_sample();
     }

@@ -52,6 +52,29 @@ fn reflect_about(w: vec3f, n: vec3f) -> vec3f {
     return 2.0 * dot(w, n) * n - w;
 }
 
+// #if HAS_DIELECTRIC
+// Refraction of `w` through the interface with normal `n` and relative IOR `eta` (`math::refract`;
+// from the other side of `n` it is seen with 1/η): the transmitted direction (xyz) and the
+// relative IOR η_t/η_i used (w), or w = 0 under total internal reflection.
+fn refract_through(w: vec3f, n_in: vec3f, eta_in: f32) -> vec4f {
+    var cos_i = dot(n_in, w);
+    var eta = eta_in;
+    var n = n_in;
+    if cos_i < 0.0 {
+        eta = 1.0 / eta;
+        cos_i = -cos_i;
+        n = -n;
+    }
+    let sin2_i = max(1.0 - cos_i * cos_i, 0.0);
+    let sin2_t = sin2_i / (eta * eta);
+    if sin2_t >= 1.0 {
+        return vec4f(0.0);
+    }
+    let cos_t = safe_sqrt(1.0 - sin2_t);
+    return vec4f(-w / eta + (cos_i / eta - cos_t) * n, eta);
+}
+// #endif
+
 // `geometry::ray::gamma`: n·ε/(1 − n·ε), ε = 2⁻²⁴.
 fn gamma(n: f32) -> f32 {
     let e = 5.9604645e-8;

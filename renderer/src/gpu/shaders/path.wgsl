@@ -1,5 +1,7 @@
 // The unidirectional path tracer, the twin of `integrator/path.rs` (one loop, four direct-light
-// strategies, Mitsuba's max_depth, Russian roulette from rr_depth), and the render kernel: one
+// strategies, Mitsuba's max_depth, Russian roulette from rr_depth, transmission through
+// dielectrics under HAS_DIELECTRIC only, so a scene without glass runs the reflection-only
+// program), and the render kernel: one
 // invocation per pixel draws one sample per dispatch and folds it into the accumulation with
 // Welford's update (stable variance in f32; the film reads back Σx and Σx² from it).
 
@@ -46,7 +48,12 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
         return vec3f(0.0);
     }
     let wi = to_local(frame, ls.wi);
+// #if HAS_DIELECTRIC
+    // A dielectric's lights may lie on either side.
+    if select(wi.z <= 0.0, wi.z == 0.0, material_transmits(m)) {
+// #else
     if wi.z <= 0.0 {
+// #endif
         return vec3f(0.0);
     }
     let f = material_eval(m, wo, wi);
@@ -80,6 +87,10 @@ fn radiance(camera_ray: Ray) -> vec3f {
     let max_depth = params.max_depth;
     var l = vec3f(0.0);
     var beta = vec3f(1.0);
+// #if HAS_DIELECTRIC
+    // Product of η'² over the refractions so far: Russian roulette sees beta·eta_scale.
+    var eta_scale = 1.0;
+// #endif
     var rule = EW_ONE;
     var p_bsdf = 0.0;
     var prev_p = ray.o;
@@ -119,7 +130,13 @@ fn radiance(camera_ray: Ray) -> vec3f {
         let m = materials[mi];
         let wo_world = -normalize_glam(ray.d);
         var n = hit.n;
+// #if HAS_DIELECTRIC
+        // A dielectric's frame is never flipped: wo below it means the viewer is inside.
+        let transmits = material_transmits(m);
+        if dot(n, wo_world) < 0.0 && !transmits {
+// #else
         if dot(n, wo_world) < 0.0 {
+// #endif
             if m.h.y == 0u {
                 break;
             }
@@ -127,7 +144,12 @@ fn radiance(camera_ray: Ray) -> vec3f {
         }
         let frame = frame_from_normal(n);
         let wo = to_local(frame, wo_world);
+// #if HAS_DIELECTRIC
+        // A reflecting surface is seen from its front only; a dielectric from either side.
+        if select(wo.z <= 0.0, wo.z == 0.0, transmits) {
+// #else
         if wo.z <= 0.0 {
+// #endif
             break;
         }
 
@@ -183,6 +205,9 @@ fn radiance(camera_ray: Ray) -> vec3f {
             p_bsdf = bs.pdf;
         }
         beta *= bs.weight;
+// #if HAS_DIELECTRIC
+        eta_scale *= bs.eta * bs.eta;
+// #endif
         if all(beta == vec3f(0.0)) {
             break;
         }
@@ -191,7 +216,11 @@ fn radiance(camera_ray: Ray) -> vec3f {
         ray = spawn_ray(hit.p, hit.p_error, n, wi);
 
         if u32(depth) >= params.rr_depth {
+// #if HAS_DIELECTRIC
+            let q = min(max_component(beta * eta_scale), 0.95);
+// #else
             let q = min(max_component(beta), 0.95);
+// #endif
             if rng_next_f32() >= q {
                 break;
             }

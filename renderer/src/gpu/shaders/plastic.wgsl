@@ -84,7 +84,7 @@ fn plastic_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample {
         if m.c.x < SMOOTH_ALPHA {
             let wm = vec3f(-wo.x, -wo.y, wo.z);
             let weight = m.b.xyz * (fresnel_schlick(m.c.y, wo.z) / p_coat);
-            return BsdfSample(wm, weight, p_coat, true, true);
+            return reflection_sample(wm, weight, p_coat, true);
         }
 // #if HAS_GGX
         wi = normalize_glam(reflect_about(wo, ggx_sample_visible_normal(m.c.x, wo, u)));
@@ -98,5 +98,5 @@ fn plastic_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample {
     if !(fp.w > 0.0) {
         return no_bsdf_sample();
     }
-    return BsdfSample(wi, fp.xyz / fp.w, fp.w, false, true);
+    return reflection_sample(wi, fp.xyz / fp.w, fp.w, false);
 }
