@@ -35,7 +35,7 @@
 
 mod common;
 
-use common::{METHODS, STRATEGIES, build, closed_form_z, json_vec, render};
+use common::{METHODS, STRATEGIES, Tally, build, json_vec, render};
 use glam::Vec3;
 use lumis::integrator::{Settings, Strategy};
 use lumis::lights::LightSampling;
@@ -134,55 +134,9 @@ fn box_radiance(albedo: Vec3, le: Vec3, max_depth: i32) -> Vec3 {
     sum
 }
 
-/// One comparison of a mean over `pixels` with `expected`: pixel means and variances of the mean.
-#[derive(Default)]
-struct Tally {
-    comparisons: usize,
-    worst_z: f64,
-    worst: String,
-    failures: Vec<String>,
-}
-
-impl Tally {
-    fn compare(&mut self, what: &str, means: &[f64], vars: &[f64], expected: f64) {
-        assert!(!means.is_empty(), "{what}: no pixels");
-        let n = means.len() as f64;
-        let mean = means.iter().sum::<f64>() / n;
-        let sd = (vars.iter().sum::<f64>() / (n * n)).sqrt();
-        let (z, ok) = closed_form_z(mean, sd, expected, critical());
-        self.comparisons += 1;
-        let line = format!("{what}: mean {mean:.6} vs {expected:.6} (sd {sd:.2e}, z = {z:.2})");
-        if z.abs() > self.worst_z || self.worst.is_empty() {
-            self.worst_z = z.abs();
-            self.worst = line.clone();
-        }
-        if !ok {
-            self.failures.push(line);
-        }
-    }
-
-    fn finish(self, test: &str, expected_comparisons: usize) {
-        eprintln!(
-            "{test}: {} comparisons, critical |z| {:.2}, worst: {}",
-            self.comparisons,
-            critical(),
-            self.worst
-        );
-        assert!(
-            self.failures.is_empty(),
-            "{test}: {} of {} comparisons fail (|z| > {:.2}):\n{}",
-            self.failures.len(),
-            self.comparisons,
-            critical(),
-            self.failures.join("\n")
-        );
-        assert_eq!(self.comparisons, expected_comparisons);
-    }
-}
-
 fn check_box(test: &str, albedo: Vec3, le: Vec3, depths: &[i32], spp: u32, seed: u32) {
     let scene = closed_box(albedo, le);
-    let mut tally = Tally::default();
+    let mut tally = Tally::new(critical());
     let mut nonfinite = Vec::new();
     for (d, &max_depth) in depths.iter().enumerate() {
         let expected = box_radiance(albedo, le, max_depth);
@@ -361,7 +315,7 @@ fn background_furnace() {
         (Vec3::new(0.8, 0.5, 0.2), Vec3::new(1.0, 0.5, 2.0)),
     ];
     let depths = [1, 2, -1];
-    let mut tally = Tally::default();
+    let mut tally = Tally::new(critical());
     let mut nonfinite = Vec::new();
     for (k, (albedo, le)) in cases.into_iter().enumerate() {
         let scene = background_scene(albedo, le);

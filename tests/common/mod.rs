@@ -125,6 +125,68 @@ pub fn closed_form_z(mean: f64, sd: f64, expected: f64, critical: f64) -> (f64, 
     (z, ok)
 }
 
+/// Comparisons of means over pixels with closed-form values at one critical |z| (a file's
+/// Šidák-corrected family): counts them, keeps the worst, and collects every failure so that a
+/// failing run lists them all.
+pub struct Tally {
+    critical: f64,
+    comparisons: usize,
+    worst_z: f64,
+    worst: String,
+    failures: Vec<String>,
+}
+
+impl Tally {
+    /// An empty tally whose comparisons pass within `critical` standard deviations.
+    pub fn new(critical: f64) -> Tally {
+        Tally {
+            critical,
+            comparisons: 0,
+            worst_z: 0.0,
+            worst: String::new(),
+            failures: Vec::new(),
+        }
+    }
+
+    /// The mean of `means` (pixel means, with `vars` their variances of the mean) against
+    /// `expected`, by [`closed_form_z`].
+    pub fn compare(&mut self, what: &str, means: &[f64], vars: &[f64], expected: f64) {
+        assert!(!means.is_empty(), "{what}: no pixels");
+        let n = means.len() as f64;
+        let mean = means.iter().sum::<f64>() / n;
+        let sd = (vars.iter().sum::<f64>() / (n * n)).sqrt();
+        let (z, ok) = closed_form_z(mean, sd, expected, self.critical);
+        self.comparisons += 1;
+        let line = format!("{what}: mean {mean:.6} vs {expected:.6} (sd {sd:.2e}, z = {z:.2})");
+        if z.abs() > self.worst_z || self.worst.is_empty() {
+            self.worst_z = z.abs();
+            self.worst = line.clone();
+        }
+        if !ok {
+            self.failures.push(line);
+        }
+    }
+
+    /// Prints the worst comparison and panics with every failure, or if the number of
+    /// comparisons is not `expected_comparisons` (the size of the family the critical value was
+    /// corrected for).
+    pub fn finish(self, test: &str, expected_comparisons: usize) {
+        eprintln!(
+            "{test}: {} comparisons, critical |z| {:.2}, worst: {}",
+            self.comparisons, self.critical, self.worst
+        );
+        assert!(
+            self.failures.is_empty(),
+            "{test}: {} of {} comparisons fail (|z| > {:.2}):\n{}",
+            self.failures.len(),
+            self.comparisons,
+            self.critical,
+            self.failures.join("\n")
+        );
+        assert_eq!(self.comparisons, expected_comparisons);
+    }
+}
+
 /// One material per shared scene whose albedo × 1.03 the in-suite power checks
 /// (`local_bias_is_detected`, CPU and GPU) inject: a wall, or the floor under the light.
 pub const LOCAL_BIAS_MATERIALS: [(&str, &str); 4] = [
