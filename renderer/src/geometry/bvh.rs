@@ -6,7 +6,7 @@
 //! quantized boxes at every visit.
 //! WGSL twin: `bvh.wgsl`.
 
-use super::primitive::Primitive;
+use super::primitive::{Primitive, ShapeHit};
 use super::ray::{Ray, SurfaceHit};
 use super::triangle::TriangleRay;
 use super::wide_bvh::WideBvh;
@@ -63,44 +63,67 @@ impl Accel {
 
     /// Closest hit along `ray` within `(0, ray.t_max)`.
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
-        let mut best = u32::MAX;
-        let mut best_hit = None;
         let tri = TriangleRay::new(ray);
-        let mut test = |slots: Range<usize>, t_max: f32| {
-            let local = Ray { t_max, ..*ray };
-            let mut closer = None;
-            for id in slots {
-                if let Some(h) = self.prims[id].shape.intersect_t(&local, &tri)
-                    && h.t < closer.unwrap_or(t_max)
-                {
-                    closer = Some(h.t);
-                    best = id as u32;
-                    best_hit = Some(h);
-                }
-            }
-            closer
-        };
+        let mut best = None;
+        // The leaf tests are forced inline into every traversal instantiation: left to the
+        // optimiser, whether they are depends on how the crate is split into codegen units, which
+        // moved unrelated changes' instruction counts by 5% (docs/performance.md).
         match &self.bvh {
-            Some((_, wide)) => wide.closest(ray, test),
+            Some((_, wide)) => wide.closest(
+                ray,
+                #[inline(always)]
+                |slots, t_max| self.closest_in(slots, ray, &tri, t_max, &mut best),
+            ),
             None => {
-                test(0..self.prims.len(), ray.t_max);
+                self.closest_in(0..self.prims.len(), ray, &tri, ray.t_max, &mut best);
             }
         }
-        best_hit.map(|h| self.prims[best as usize].shape.surface_hit(ray, h, best))
+        best.map(|(id, h)| self.prims[id].shape.surface_hit(ray, h, id as u32))
+    }
+
+    /// Tests the primitives `slots` within `(0, t_max)`; records a closer hit in `best` and returns
+    /// its parameter.
+    #[inline(always)]
+    fn closest_in(
+        &self,
+        slots: Range<usize>,
+        ray: &Ray,
+        tri: &TriangleRay,
+        t_max: f32,
+        best: &mut Option<(usize, ShapeHit)>,
+    ) -> Option<f32> {
+        let local = Ray { t_max, ..*ray };
+        let mut closer = None;
+        for id in slots {
+            if let Some(h) = self.prims[id].shape.intersect_t(&local, tri)
+                && h.t < closer.unwrap_or(t_max)
+            {
+                closer = Some(h.t);
+                *best = Some((id, h));
+            }
+        }
+        closer
     }
 
     /// Whether anything blocks `ray` within `(0, ray.t_max)`; stops at the first blocker.
     pub fn occluded(&self, ray: &Ray) -> bool {
         let tri = TriangleRay::new(ray);
-        let test = |slots: Range<usize>| {
-            self.prims[slots]
-                .iter()
-                .any(|p| p.shape.intersect_t(ray, &tri).is_some())
-        };
         match &self.bvh {
-            Some((_, wide)) => wide.any(ray, test),
-            None => test(0..self.prims.len()),
+            Some((_, wide)) => wide.any(
+                ray,
+                #[inline(always)]
+                |slots| self.any_in(slots, ray, &tri),
+            ),
+            None => self.any_in(0..self.prims.len(), ray, &tri),
         }
+    }
+
+    /// Whether a primitive of `slots` blocks `ray`.
+    #[inline(always)]
+    fn any_in(&self, slots: Range<usize>, ray: &Ray, tri: &TriangleRay) -> bool {
+        self.prims[slots]
+            .iter()
+            .any(|p| p.shape.intersect_t(ray, tri).is_some())
     }
 
     /// Bounds of all primitives.

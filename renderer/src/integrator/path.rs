@@ -155,7 +155,7 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
             let u_light = rng.next_f32();
             let u = rng.next_2d();
             l += beta
-                * direct_light(
+                * direct_light::<TRANSMISSION>(
                     scene,
                     settings,
                     &hit,
@@ -171,7 +171,9 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
         }
 
         // Continue the path by BSDF sampling.
-        let Some(bs) = material.sample(wo, rng.next_f32(), rng.next_2d()) else {
+        let Some(bs) =
+            material.sample_specialised::<TRANSMISSION>(wo, rng.next_f32(), rng.next_2d())
+        else {
             break;
         };
         if bs.delta {
@@ -243,7 +245,7 @@ fn emission_weight(
 /// when this is the light branch of the one-sample mixture; `transmits` lets the light lie below
 /// the surface.
 #[allow(clippy::too_many_arguments)]
-fn direct_light(
+fn direct_light<const TRANSMISSION: bool>(
     scene: &Scene,
     settings: &Settings,
     hit: &crate::geometry::SurfaceHit,
@@ -265,11 +267,12 @@ fn direct_light(
         return Vec3::ZERO;
     };
     let wi = frame.to_local(ls.wi);
+    let transmits = TRANSMISSION && transmits;
     let wi_invalid = if transmits { wi.z == 0.0 } else { wi.z <= 0.0 };
     if wi_invalid {
         return Vec3::ZERO;
     }
-    let f = material.eval(wo, wi);
+    let f = material.eval_specialised::<TRANSMISSION>(wo, wi);
     if f == Vec3::ZERO {
         return Vec3::ZERO;
     }
@@ -285,10 +288,12 @@ fn direct_light(
     let weight = match (settings.strategy, mixture) {
         (_, Some(w)) => {
             // One-sample estimator: divide by the mixture pdf (selection probability included).
-            let p_mix = w * p_light + (1.0 - w) * material.pdf(wo, wi);
+            let p_mix = w * p_light + (1.0 - w) * material.pdf_specialised::<TRANSMISSION>(wo, wi);
             return f * ls.le / p_mix;
         }
-        (Strategy::Mis { heuristic }, None) => heuristic.weight(p_light, material.pdf(wo, wi)),
+        (Strategy::Mis { heuristic }, None) => {
+            heuristic.weight(p_light, material.pdf_specialised::<TRANSMISSION>(wo, wi))
+        }
         _ => 1.0,
     };
     f * ls.le * (weight / p_light)

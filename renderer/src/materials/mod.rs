@@ -30,6 +30,14 @@ pub use plastic::Plastic;
 
 use glam::{Vec2, Vec3};
 
+/// A dielectric reached by code specialised for scenes without one: `Scene::has_transmission` was
+/// wrong, which must never happen.
+#[cold]
+#[inline(never)]
+fn no_transmission() -> ! {
+    panic!("a dielectric in code specialised for scenes without transmission")
+}
+
 /// One sampled direction of a BSDF.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BsdfSample {
@@ -83,21 +91,37 @@ pub enum Material {
 impl Material {
     /// f(wo, wi)·cosθi of the non-delta part.
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        self.eval_specialised::<true>(wo, wi)
+    }
+
+    /// [`Material::eval`] compiled for scenes with (`TRANSMISSION = true`) or without a
+    /// dielectric (the integrator's specialisation, see `integrator::path`): without, the
+    /// dielectric's code is left out of the dispatch, and reaching it is a logic error that panics.
+    #[inline(always)]
+    pub fn eval_specialised<const TRANSMISSION: bool>(&self, wo: Vec3, wi: Vec3) -> Vec3 {
         match self {
             Material::Diffuse(m) => m.eval(wo, wi),
             Material::Conductor(m) => m.eval(wo, wi),
             Material::Plastic(m) => m.eval(wo, wi),
-            Material::Dielectric(m) => Vec3::splat(m.eval_pdf(wo, wi).0),
+            Material::Dielectric(m) if TRANSMISSION => Vec3::splat(m.eval_pdf(wo, wi).0),
+            Material::Dielectric(_) => no_transmission(),
         }
     }
 
     /// Solid-angle pdf of `sample` producing `wi` through its non-delta lobes.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        self.pdf_specialised::<true>(wo, wi)
+    }
+
+    /// [`Material::pdf`], specialised like [`Material::eval_specialised`].
+    #[inline(always)]
+    pub fn pdf_specialised<const TRANSMISSION: bool>(&self, wo: Vec3, wi: Vec3) -> f32 {
         let pdf = match self {
             Material::Diffuse(m) => m.pdf(wo, wi),
             Material::Conductor(m) => m.pdf(wo, wi),
             Material::Plastic(m) => m.pdf(wo, wi),
-            Material::Dielectric(m) => m.eval_pdf(wo, wi).1,
+            Material::Dielectric(m) if TRANSMISSION => m.eval_pdf(wo, wi).1,
+            Material::Dielectric(_) => no_transmission(),
         };
         pdf * crate::mutants::bsdf_pdf(self.kind_tag())
     }
@@ -110,18 +134,30 @@ impl Material {
 
     /// Samples `wi`; `u_lobe` picks a lobe, `u` warps within it. `None` if no valid direction.
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        self.sample_specialised::<true>(wo, u_lobe, u)
+    }
+
+    /// [`Material::sample`], specialised like [`Material::eval_specialised`].
+    #[inline(always)]
+    pub fn sample_specialised<const TRANSMISSION: bool>(
+        &self,
+        wo: Vec3,
+        u_lobe: f32,
+        u: Vec2,
+    ) -> Option<BsdfSample> {
         let mut s = match self {
             Material::Diffuse(m) => m.sample(wo, u),
             Material::Conductor(m) => m.sample(wo, u),
             Material::Plastic(m) => m.sample(wo, u_lobe, u),
-            Material::Dielectric(m) => m.sample(wo, u_lobe, u),
+            Material::Dielectric(m) if TRANSMISSION => m.sample(wo, u_lobe, u),
+            Material::Dielectric(_) => no_transmission(),
         }?;
         if cfg!(feature = "mutants") && !s.delta {
             let k = crate::mutants::bsdf_pdf(self.kind_tag());
             s.pdf *= k;
             s.weight /= k;
         }
-        s.checked(self.transmits())
+        s.checked(TRANSMISSION && self.transmits())
     }
 
     /// True if `eval` can be non-zero, i.e. light sampling is worth doing.
