@@ -2,7 +2,9 @@
 //! every material's `sample` at θo ∈ {0°, 30°, 60°, 85°, 89°} (the rough dielectric, issue 15, at
 //! α ∈ {0.01, 0.05, 0.1, 0.3, 0.6, 1} × η ∈ {1.1, 1.5, 2.4} from outside and from inside, over
 //! the whole sphere), light sampling (area and solid angle) of every light shape from near, far,
-//! grazing and below-horizon points, and the one-sample strategy mixture at
+//! grazing and below-horizon points, environment maps (issue 16: constant, a 1e5 sun-like peak,
+//! black rows and columns, 1×1 and 2×1; importance-sampled and uniform), and the one-sample
+//! strategy mixture at
 //! w ∈ {0, 0.25, 0.5, 1}. The samplers and their names are in
 //! `lumis::stats::suite`; a failing case can be looked at with
 //! `cargo run --release -p lumis-renderer --example warptest -- NAME`.
@@ -34,7 +36,7 @@ use rayon::prelude::*;
 /// Family-wise significance level.
 const ALPHA: f64 = 0.01;
 /// Number of χ² tests in the family (every case of the suite).
-const N_TESTS: usize = 350;
+const N_TESTS: usize = 360;
 
 /// Runs every case with `samples` samples and asserts that all pass; prints one line per case
 /// and the smallest p-value.
@@ -90,6 +92,11 @@ fn chi2_dielectrics() {
 #[test]
 fn chi2_lights() {
     run_cases("lights", suite::light_cases(), 1_000_000, 3000);
+}
+
+#[test]
+fn chi2_envmaps() {
+    run_cases("envmaps", suite::envmap_cases(), 1_000_000, 6000);
 }
 
 #[test]

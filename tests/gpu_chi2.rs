@@ -24,6 +24,9 @@
 //!   `light_sample`, `material_sample`, `material_pdf` and a traced `light_pdf` as
 //!   `stats::Mixture` composes their Rust twins.
 //!
+//! The environment map's sampler (issue 16) has its own test and family of 10 cases,
+//! `envmap_samples_pass_chi_square` (run alone with the `envmap` filter; 6 s on lavapipe).
+//!
 //! **Budget:** 500,000 samples per case (half the CPU suite's 1M), which keeps the file near a
 //! minute on lavapipe on two cores (measured: 40 s, of which the dielectric cases 14 s).
 //! **Significance:** family-wise α = 0.01, Šidák-corrected over the 84 cases (per test ≈ 1.2e-4).
@@ -449,5 +452,124 @@ fn gpu_samples_pass_chi_square() {
     assert!(
         r.chi2_rejects(),
         "the χ² test accepted GGX samples at α 0.33 against the α 0.3 density: {r}"
+    );
+}
+
+/// Samples per environment-map case.
+const ENVMAP_SAMPLES: usize = SAMPLES;
+/// Seed of the first environment-map case.
+const ENVMAP_SEED: u32 = 7000;
+
+/// `light_sample` of light `light` from the origin.
+fn indexed_light_body(light: usize, method: LightSampling) -> String {
+    format!(
+        "let s = light_sample(lights[{light}u], vec3f(0.0), inp(0u).yz, {});
+         outp(0u, vec4f(s.wi, select(-1.0, s.pdf, s.ok)));
+         outp(1u, vec4f(0.0));",
+        wgsl_method(method)
+    )
+}
+
+/// The environment map's sampler on the GPU (issue 16), the cases of `stats::suite::envmap_cases`
+/// (`tests/chi2_samplers.rs`'s `chi2_envmaps` on the CPU): every test map of the suite (constant,
+/// a sun 1e5 times its sky, black rows and columns, 1×1, 2×1), rotated by 30°, importance-sampled
+/// (`SolidAngle`) and uniform (`Area`), 500,000 samples each, family-wise α = 0.01 Šidák-corrected
+/// over these 10 cases (its own family: the test runs alone under the `envmap` filter).
+///
+/// **Control:** the GPU samples the sun map rotated by half a texel more (360°/64) than the
+/// density it is tested against, as if the half-texel shift between texel centres and cell edges
+/// were lost; the χ² statistic must reject it at the same per-test level.
+#[test]
+fn envmap_samples_pass_chi_square() {
+    let Some(ctx) = context() else { return };
+    let start = Instant::now();
+    let maps = suite::envmap_maps();
+    // (name, uploaded scene, snippet, density), in the order of `suite::envmap_cases`.
+    let mut gpus = Vec::new();
+    let mut cases = Vec::new();
+    for map in &maps {
+        let scene = suite::envmap_scene(map, 30.0);
+        gpus.push(GpuScene::new(ctx.clone(), Arc::clone(&scene)).expect("upload"));
+        let light = scene.background_light.expect("the map emits") as usize;
+        for method in METHODS {
+            let name = format!("envmap/{}/{method:?}", map.0).to_lowercase();
+            let density = LightDirections {
+                scene: Arc::clone(&scene),
+                light,
+                p: Vec3::ZERO,
+                method,
+            };
+            let body = indexed_light_body(light, method);
+            cases.push((name, gpus.len() - 1, body, density));
+        }
+    }
+    let names: Vec<String> = suite::envmap_cases().into_iter().map(|c| c.name).collect();
+    assert_eq!(
+        cases.iter().map(|c| c.0.clone()).collect::<Vec<_>>(),
+        names,
+        "the cases of stats::suite::envmap_cases"
+    );
+    let tests = cases.len();
+    let mut failures = Vec::new();
+    let mut smallest = (1.0f64, String::new());
+    for (i, (name, gpu, body, density)) in cases.into_iter().enumerate() {
+        let t = Instant::now();
+        let seed = ENVMAP_SEED + i as u32;
+        let sampler = Precomputed::new(density, seed, ENVMAP_SAMPLES, |us| {
+            gpu_samples(&gpus[gpu], &body, us)
+        });
+        let r = ChiSquareTest::new(&sampler)
+            .samples(ENVMAP_SAMPLES)
+            .seed(seed)
+            .significance(ALPHA, tests)
+            .run();
+        eprintln!("{name:44} {r} [{:.1} s]", t.elapsed().as_secs_f64());
+        if r.p_value < smallest.0 {
+            smallest = (r.p_value, name.clone());
+        }
+        if !r.passed() {
+            failures.push(format!("{name}: {r}"));
+        }
+    }
+    eprintln!(
+        "{tests} GPU χ² envmap cases, {ENVMAP_SAMPLES} samples each; smallest p = {:.3e} ({})",
+        smallest.0, smallest.1
+    );
+
+    // The control: samples of the sun map turned by half a texel more than the density's.
+    let sun = maps
+        .iter()
+        .find(|m| m.0 == "sun")
+        .expect("the suite's sun map");
+    let shifted = suite::envmap_scene(sun, 30.0 + 360.0 / (2.0 * sun.1 as f64));
+    let gpu = GpuScene::new(ctx.clone(), Arc::clone(&shifted)).expect("upload");
+    let scene = suite::envmap_scene(sun, 30.0);
+    let method = LightSampling::SolidAngle;
+    let density = LightDirections {
+        light: scene.background_light.unwrap() as usize,
+        scene,
+        p: Vec3::ZERO,
+        method,
+    };
+    let body = indexed_light_body(shifted.background_light.unwrap() as usize, method);
+    let seed = ENVMAP_SEED + tests as u32;
+    let sampler = Precomputed::new(density, seed, ENVMAP_SAMPLES, |us| {
+        gpu_samples(&gpu, &body, us)
+    });
+    let r = ChiSquareTest::new(&sampler)
+        .samples(ENVMAP_SAMPLES)
+        .seed(seed)
+        .significance(ALPHA, tests)
+        .run();
+    eprintln!("{:44} {r}", "control/envmap_sun_half_texel_off");
+    eprintln!("total {:.1} s", start.elapsed().as_secs_f64());
+    assert!(
+        failures.is_empty(),
+        "rejected at family-wise α = {ALPHA}:\n{}",
+        failures.join("\n")
+    );
+    assert!(
+        r.chi2_rejects(),
+        "the χ² test accepted sun-map samples half a texel off the density: {r}"
     );
 }

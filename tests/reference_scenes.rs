@@ -1,4 +1,4 @@
-//! Every shared scene, and lumis' own glass scene, rendered with every strategy, agrees with the
+//! Every shared scene, and lumis' own glass and environment-map scenes, rendered with every strategy, agrees with the
 //! independent reference renderer's converged image (and the analytic scenes with their
 //! closed-form images).
 //!
@@ -41,6 +41,7 @@ fn spp(scene: &str, strategy: Strategy) -> u32 {
         ("veach_mis", Strategy::Bsdf | Strategy::Light) => 128,
         ("veach_mis", _) => 128,
         ("glass_room", _) => 128,
+        ("envmap_objects", _) => 128,
         _ => 64,
     }
 }
@@ -64,10 +65,19 @@ fn spp(scene: &str, strategy: Strategy) -> u32 {
 /// spread *between* them as sd agree with the reference in every 32×32 block (z sd 0.98, max
 /// |z| 3.16 over 108 for their mean; 3.08 for any one of them; critical 3.91). 64×64 blocks hold
 /// four times as many of those events, which makes a render's own variance a fair estimate.
-fn block_size(scene: &str, strategy: Strategy) -> u32 {
-    match (scene, strategy) {
-        ("veach_mis", Strategy::Light | Strategy::Bsdf) => u32::MAX,
-        ("glass_room", _) => 64,
+///
+/// On `envmap_objects`, light-only sampling with the map sampled uniformly (area) finds the sun
+/// (5° radius, 10³ × the sky) from the rough gold sphere rarely and with large weight (f·L/pdf
+/// grows towards the sphere's silhouette): heavy-tailed by design, like `veach_mis` above. Seed
+/// 1007 at 128 spp fails one 32×32 block (z −4.9; a 3% deficit), and in eight more renders
+/// (seeds 5000–5007) one fails a 64×64 block, while an 8192-spp render agrees with the reference
+/// within 0.9% in every 32×32 block (its own noise). It is compared on the whole image per
+/// channel; the same strategy with importance sampling, and every other one, in 32×32 blocks.
+fn block_size(scene: &str, strategy: Strategy, light_sampling: LightSampling) -> u32 {
+    match (scene, strategy, light_sampling) {
+        ("veach_mis", Strategy::Light | Strategy::Bsdf, _) => u32::MAX,
+        ("envmap_objects", Strategy::Light, LightSampling::Area) => u32::MAX,
+        ("glass_room", _, _) => 64,
         _ => 32,
     }
 }
@@ -95,7 +105,7 @@ fn check_scene(name: &str, light_sampling: LightSampling) -> Vec<String> {
             &r,
             &reference,
             Some(&reference_var),
-            block_size(name, strategy),
+            block_size(name, strategy, light_sampling),
         );
         if let Err(msg) = check_unbiased(&format!("{name} {strategy:?} {light_sampling:?}"), &t) {
             failures.push(msg);
@@ -143,6 +153,17 @@ fn veach_mis_matches_reference() {
 #[test]
 fn glass_room_matches_reference() {
     assert_none(check_scene("glass_room", LightSampling::SolidAngle));
+}
+
+/// lumis' own environment-map scene (diffuse, rough gold and a box on a ground, lit only by a
+/// rotated, scaled sky map with a soft sun) against Mitsuba 3's `envmap`
+/// (`tests/data/refs/README.md`), with the map importance-sampled (solid angle) and sampled
+/// uniformly (area), every strategy.
+#[test]
+fn envmap_objects_matches_reference() {
+    let mut failures = check_scene("envmap_objects", LightSampling::SolidAngle);
+    failures.extend(check_scene("envmap_objects", LightSampling::Area));
+    assert_none(failures);
 }
 
 /// MIS with area sampling on a full scene (the strategy loop above uses solid angle there).
@@ -220,7 +241,7 @@ fn local_bias_is_detected() {
             &r,
             &reference(&format!("{name}.exr")),
             Some(&reference_var_image(name)),
-            block_size(name, mis),
+            block_size(name, mis, LightSampling::SolidAngle),
         );
         assert!(
             check_unbiased(&format!("{name} MIS, {material} albedo x 1.03"), &t).is_err(),

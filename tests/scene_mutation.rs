@@ -23,7 +23,7 @@ use glam::DVec3;
 use lumis::engine::Progressive;
 use lumis::integrator::{Heuristic, Settings, Strategy as Estimator};
 use lumis::lights::LightSampling;
-use lumis::scene::{Scene, SceneError, parse_scene, parse_scene_value};
+use lumis::scene::{Scene, SceneError, parse_scene_in, parse_scene_value_in};
 use proptest::prelude::*;
 use proptest::sample::Index;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
@@ -685,8 +685,9 @@ fn mutate_text(text: String, m: &TextMutation) -> String {
     }
 }
 
-/// The valid scenes the cases start from, with their file names.
-fn seeds() -> Vec<(String, Value)> {
+/// The valid scenes the cases start from, with their file names and folders (which the files they
+/// name, such as environment maps, are relative to).
+fn seeds() -> Vec<(String, Value, PathBuf)> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
     let mut files = Vec::new();
     for dir in ["tests/data/scenes", "assets"] {
@@ -704,13 +705,18 @@ fn seeds() -> Vec<(String, Value)> {
             let text = std::fs::read_to_string(&path).expect("read scene");
             let value: Value = serde_json::from_str(&text).expect("valid JSON");
             // The seeds must be valid, or the test would only exercise error paths.
-            parse_scene_value(&value).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            let folder = path
+                .parent()
+                .expect("a scene file has a folder")
+                .to_path_buf();
+            parse_scene_value_in(&value, &folder)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
             let name = path
                 .strip_prefix(&root)
                 .unwrap_or(&path)
                 .display()
                 .to_string();
-            (name, value)
+            (name, value, folder)
         })
         .collect()
 }
@@ -741,13 +747,14 @@ fn check_error(e: &SceneError) -> Result<(), String> {
 fn run(
     text: &str,
     value: Option<&Value>,
+    folder: &std::path::Path,
     estimator: u8,
     solid_angle: bool,
 ) -> Result<Outcome, String> {
-    let parsed = parse_scene(text);
+    let parsed = parse_scene_in(text, folder);
     // Without text mutations the value and its text must be judged alike.
     if let Some(value) = value {
-        let direct = parse_scene_value(value);
+        let direct = parse_scene_value_in(value, folder);
         match (&parsed, &direct) {
             (Ok(a), Ok(b)) if a != b => return Err("text and value parse differently".into()),
             // Only the text parser limits nesting (to 128, against stack overflows).
@@ -884,7 +891,7 @@ fn mutated_scenes_are_rejected_or_render_finite_images() {
     let start = Instant::now();
     let result = runner.run(&case(), |case| {
         tried.fetch_add(1, Ordering::Relaxed);
-        let (name, seed) = &seeds[case.scene.index(seeds.len())];
+        let (name, seed, folder) = &seeds[case.scene.index(seeds.len())];
         let mut value = seed.clone();
         for m in &case.mutations {
             apply(&mut value, m);
@@ -892,7 +899,7 @@ fn mutated_scenes_are_rejected_or_render_finite_images() {
         let text = mutate_text(value.to_string(), &case.text);
         let direct = matches!(case.text, TextMutation::None).then_some(&value);
         let outcome = panic::catch_unwind(AssertUnwindSafe(|| {
-            run(&text, direct, case.estimator, case.solid_angle)
+            run(&text, direct, folder, case.estimator, case.solid_angle)
         }));
         let failure = match outcome {
             Ok(Ok(Outcome::Rejected)) => {

@@ -59,6 +59,7 @@ fn plastic_scene_strategies_agree() {
             lumis::lights::Light::Disk(_) => "disk",
             lumis::lights::Light::Sphere(_) => "sphere",
             lumis::lights::Light::Background(_) => "background",
+            lumis::lights::Light::Envmap(_) => "envmap",
         })
         .collect();
     assert_eq!(

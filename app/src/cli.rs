@@ -54,9 +54,9 @@ pub enum HeuristicArg {
 /// Light sampling methods.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LightSamplingArg {
-    /// Uniform by area.
+    /// Uniform by area; an environment map uniformly over the sphere.
     Area,
-    /// Uniform by solid angle where the shape allows it.
+    /// Uniform by solid angle where the shape allows it; an environment map by importance.
     SolidAngle,
 }
 

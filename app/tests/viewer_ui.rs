@@ -112,7 +112,7 @@ fn estimator_sliders_and_menus_change_their_setting_and_restart() {
     assert_eq!(lane.strategy, Strategy::Mixture { light_weight: 0.25 });
 
     assert_restarts(&mut h, "light sampling", |h| {
-        pick_combo(h, "Light sampling", "area")
+        pick_combo(h, "Light sampling", "area (env. map: uniform)")
     });
     let lane = h.state().output().lanes[0].settings;
     assert_eq!(lane.light_sampling, lumis::lights::LightSampling::Area);

@@ -62,7 +62,7 @@ fn lights(scene: &Scene) -> Vec<(&'static str, &Light)> {
         Light::Quad(_) => Some("quad"),
         Light::Disk(_) => Some("disk"),
         Light::Sphere(_) => Some("sphere"),
-        Light::Background(_) => None,
+        Light::Background(_) | Light::Envmap(_) => None,
     };
     let mut out: Vec<(&'static str, &Light)> = Vec::new();
     for l in &scene.lights {

@@ -82,6 +82,39 @@ impl Image {
         })
     }
 
+    /// Reads a linear RGB EXR and nothing else: another extension, an unreadable file or one
+    /// without colour channels (a grey-scale EXR) is an error. Alpha is ignored.
+    pub fn read_rgb_exr(path: &Path) -> Result<Image, ImageError> {
+        let ext = extension(path);
+        if ext != "exr" {
+            return Err(err(
+                path,
+                format!("an environment map must be an RGB EXR file, not '.{ext}'"),
+            ));
+        }
+        let img = image::open(path).map_err(|e| err(path, e))?;
+        if !img.color().has_color() {
+            return Err(err(
+                path,
+                format!(
+                    "has no RGB channels ({:?}); an environment map must be an RGB EXR",
+                    img.color()
+                ),
+            ));
+        }
+        let img = img.into_rgb32f();
+        let (width, height) = img.dimensions();
+        let data = img
+            .pixels()
+            .map(|p| Vec3::new(p.0[0], p.0[1], p.0[2]))
+            .collect();
+        Ok(Image {
+            width,
+            height,
+            data,
+        })
+    }
+
     /// Writes by extension: `.exr`, `.pfm` (linear float) or `.png` (sRGB 8-bit after multiplying by
     /// `2^exposure` and clamping).
     pub fn write(&self, path: &Path, exposure: f32) -> Result<(), ImageError> {

@@ -3,6 +3,8 @@
 
 #![allow(dead_code)]
 
+pub mod ground;
+
 use glam::Vec3;
 use lumis::engine::Progressive;
 use lumis::image_io::Image;

@@ -27,8 +27,8 @@ fn backend_name(b: Backend) -> &'static str {
 
 fn sampling_name(s: LightSampling) -> &'static str {
     match s {
-        LightSampling::Area => "area",
-        LightSampling::SolidAngle => "solid angle",
+        LightSampling::Area => "area (env. map: uniform)",
+        LightSampling::SolidAngle => "solid angle (env. map: importance)",
     }
 }
 

@@ -59,6 +59,7 @@ const MODULES: &[Module] = &[
     module!("disk_light.wgsl"),
     module!("sphere_light.wgsl"),
     module!("background_light.wgsl"),
+    module!("envmap_light.wgsl"),
     module!("ray.wgsl"),
     module!("triangle.wgsl"),
     module!("disk.wgsl"),
@@ -77,8 +78,10 @@ const PATH_MODULE: Module = module!("path.wgsl");
 pub struct Features {
     /// Something can be sampled by next-event estimation (the scene has a light sampler).
     pub has_lights: bool,
-    /// A non-black background.
+    /// A background light that rays which miss see: a non-black constant or an environment map.
     pub has_background: bool,
+    /// An environment map (its lookup, sampling and texture binding, `envmap_light.wgsl`).
+    pub has_envmap: bool,
     /// Emitting triangles (`triangles` meshes).
     pub has_triangle_light: bool,
     /// Emitting polygons.
@@ -117,6 +120,7 @@ impl Features {
         Features {
             has_lights: true,
             has_background: true,
+            has_envmap: true,
             has_triangle_light: true,
             has_polygon_light: true,
             has_quad_light: true,
@@ -140,6 +144,8 @@ impl Features {
         use crate::materials::ggx::is_smooth;
         let mut f = Features {
             has_lights: scene.light_sampler.is_some(),
+            // Needed by rays that miss whether or not the map can be sampled.
+            has_envmap: scene.lights.iter().any(|l| matches!(l, Light::Envmap(_))),
             use_bvh: scene.accel.cwbvh().is_some(),
             ..Features::default()
         };
@@ -152,7 +158,7 @@ impl Features {
                     Light::Quad(_) => f.has_quad_light = true,
                     Light::Disk(_) => f.has_disk_light = true,
                     Light::Sphere(_) => f.has_sphere_light = true,
-                    Light::Background(_) => f.has_background = true,
+                    Light::Background(_) | Light::Envmap(_) => f.has_background = true,
                 }
             }
         }
@@ -188,10 +194,11 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 18] {
+    fn defines(&self) -> [(&'static str, bool); 19] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
+            ("HAS_ENVMAP", self.has_envmap),
             (
                 "HAS_TRIANGLE_LIGHT",
                 self.has_lights && self.has_triangle_light,
@@ -236,6 +243,7 @@ impl Features {
             "disk_light.wgsl" => lights && self.has_disk_light,
             "sphere_light.wgsl" => lights && self.has_sphere_light,
             "background_light.wgsl" => lights && self.has_background,
+            "envmap_light.wgsl" => self.has_envmap,
             "fresnel.wgsl" => self.has_conductor || self.has_plastic || self.has_dielectric,
             "ggx.wgsl" => self.has_ggx,
             "conductor.wgsl" => self.has_conductor,
@@ -427,6 +435,22 @@ mod tests {
                 has_dielectric: false,
                 ..Features::all()
             },
+            // Environment maps: sampled, seen by rays that miss only, and everything but a map.
+            Features {
+                has_envmap: true,
+                has_background: true,
+                has_lights: true,
+                ..Features::default()
+            },
+            Features {
+                has_envmap: true,
+                has_background: true,
+                ..Features::default()
+            },
+            Features {
+                has_envmap: false,
+                ..Features::all()
+            },
         ] {
             let src = path_tracer_source(&f).unwrap();
             if let Err(e) = validate(&src) {
@@ -504,6 +528,66 @@ mod tests {
             smooth.contains("fn fresnel_dielectric(") && smooth.contains("fn refract_through(")
         );
         assert!(!smooth.contains("fn ggx_d("));
+    }
+}
+
+/// Scenes without an environment map compile none of its code (no lookup, no sampling, no
+/// texture binding), so their programs are the ones they were before maps existed; a scene with
+/// one gets it all, sampling included.
+#[cfg(test)]
+mod envmap_specialisation {
+    use super::*;
+    use crate::stats::suite;
+
+    fn body(f: &Features) -> String {
+        let src = path_tracer_source(f).unwrap();
+        let body = src.find("// ---- tags.wgsl").unwrap();
+        src[body..]
+            .lines()
+            .map(|l| l.split("//").next().unwrap())
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+
+    #[test]
+    fn only_scenes_with_a_map_carry_envmap_code() {
+        let map = &suite::envmap_maps()[1];
+        let f = Features::of(&suite::envmap_scene(map, 30.0));
+        assert!(f.has_envmap && f.has_background && f.has_lights, "{f:?}");
+        let with = body(&f);
+        for name in [
+            "envmap_texels",
+            "fn envmap_eval(",
+            "case LIGHT_ENVMAP",
+            "envmap_light_pdf(",
+        ] {
+            assert!(with.contains(name), "a scene with a map lacks {name:?}");
+        }
+        let constant = crate::scene::Scene::from_desc(
+            &crate::scene::parse_scene(
+                r#"{"camera": {"from": [0, 0, -3], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 40,
+                    "width": 2, "height": 2}, "background": [0.5, 0.5, 0.5],
+                    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1}]}"#,
+            )
+            .unwrap(),
+        )
+        .unwrap();
+        let f = Features::of(&constant);
+        assert!(!f.has_envmap && f.has_background, "{f:?}");
+        for f in [
+            f,
+            Features::default(),
+            Features {
+                has_envmap: false,
+                ..Features::all()
+            },
+        ] {
+            let without = body(&f);
+            assert!(
+                !without.to_lowercase().contains("envmap"),
+                "{f:?}: environment-map code in a program without a map"
+            );
+        }
     }
 }
 

@@ -1,10 +1,11 @@
-//! Lights: every emitting shape is a one-sided area light; a constant background is an environment
-//! light. Each light samples a point (by area, or by solid angle where that is better) and reports
+//! Lights: every emitting shape is a one-sided area light; a constant background and an
+//! environment map are lights at infinity. Each light samples a point (by area, or by solid angle where that is better) and reports
 //! the solid-angle pdf of any direction, so every strategy and MIS can weigh the same events.
 //! WGSL twin: `light.wgsl`.
 
 pub mod background;
 pub mod disk;
+pub mod envmap;
 pub mod light_sampler;
 pub mod polygon;
 pub mod quad;
@@ -13,6 +14,7 @@ pub mod triangle;
 
 pub use background::BackgroundLight;
 pub use disk::DiskLight;
+pub use envmap::EnvmapLight;
 pub use light_sampler::LightSampler;
 pub use polygon::PolygonLight;
 pub use quad::QuadLight;
@@ -25,11 +27,12 @@ use glam::{Vec2, Vec3};
 /// How lights pick the point to sample.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum LightSampling {
-    /// Uniform by area, pdf converted to solid angle (`d² / (|cos| · A)`).
+    /// Uniform by area, pdf converted to solid angle (`d² / (|cos| · A)`); the infinite lights
+    /// uniformly over the sphere of directions.
     Area,
     /// Uniform by solid angle where a shape supports it (spherical triangles and rectangles, cones
     /// for spheres), by area elsewhere and where the solid angle is too small or too large for the
-    /// spherical warps to be accurate.
+    /// spherical warps to be accurate. An environment map is importance-sampled.
     #[default]
     SolidAngle,
 }
@@ -68,6 +71,8 @@ pub enum Light {
     Sphere(SphereLight),
     /// The constant background.
     Background(BackgroundLight),
+    /// An environment map.
+    Envmap(EnvmapLight),
 }
 
 impl Light {
@@ -81,6 +86,7 @@ impl Light {
             Light::Disk(l) => l.sample(p, u),
             Light::Sphere(l) => l.sample(p, u, method),
             Light::Background(l) => l.sample(u),
+            Light::Envmap(l) => l.sample(u, method),
         }?;
         let s = LightSample {
             pdf: s.pdf * crate::mutants::light_pdf(self.kind_tag()),
@@ -90,9 +96,15 @@ impl Light {
     }
 
     /// Solid-angle pdf with which [`Light::sample`] from `p` yields direction `wi` hitting the light
-    /// at `y` with normal `ny` (`y`, `ny` unused for the background).
+    /// at `y` with normal `ny` (`y`, `ny` unused for the infinite lights).
     pub fn pdf(&self, p: Vec3, wi: Vec3, y: Vec3, ny: Vec3, method: LightSampling) -> f32 {
         self.pdf_unmutated(p, wi, y, ny, method) * crate::mutants::light_pdf(self.kind_tag())
+    }
+
+    /// Whether the light is at infinity (a background or environment map): its samples are
+    /// directions, not points.
+    pub fn is_infinite(&self) -> bool {
+        matches!(self, Light::Background(_) | Light::Envmap(_))
     }
 
     /// This light's kind tag, for [`crate::mutants`].
@@ -110,6 +122,7 @@ impl Light {
             Light::Disk(l) => area_to_solid_angle(1.0 / l.disk.area(), p, y, ny),
             Light::Sphere(l) => l.pdf(p, y, ny, method),
             Light::Background(_) => crate::sampling::uniform_sphere_pdf(),
+            Light::Envmap(l) => l.pdf(wi, method),
         }
     }
 
@@ -124,10 +137,12 @@ impl Light {
             Light::Disk(l) => area_power(l.disk.area(), l.le),
             Light::Sphere(l) => area_power(l.sphere.area(), l.le),
             Light::Background(l) => l.power(),
+            Light::Envmap(l) => l.power(),
         }
     }
 
-    /// Radiance the light emits along `-w_in` at a point with normal `n` (one-sided).
+    /// Radiance the light emits along `-w_in` at a point with normal `n` (one-sided; `n` unused
+    /// for the infinite lights, which emit along `-w_in` from direction `w_in`).
     pub fn radiance(&self, n: Vec3, w_in: Vec3) -> Vec3 {
         let le = match self {
             Light::Triangle(l) => l.le,
@@ -136,6 +151,7 @@ impl Light {
             Light::Disk(l) => l.le,
             Light::Sphere(l) => l.le,
             Light::Background(l) => return l.le,
+            Light::Envmap(l) => return l.eval(w_in),
         };
         if n.dot(w_in) < 0.0 { le } else { Vec3::ZERO }
     }

@@ -49,6 +49,11 @@ impl DiscreteDistribution {
         self.pmf.get(i).copied().unwrap_or(0.0)
     }
 
+    /// The CDF (`len() + 1` entries, the first 0, the last 1), for the GPU's f32 copy.
+    pub(crate) fn cdf(&self) -> &[f64] {
+        &self.cdf
+    }
+
     /// Picks an entry for `u ∈ [0, 1)`: `(index, pmf, u remapped to [0, 1))`, the remapped value
     /// being uniform and independent of the choice, so it can drive a further sample.
     pub fn sample(&self, u: f32) -> (usize, f32, f32) {
@@ -59,6 +64,13 @@ impl DiscreteDistribution {
         let (lo, hi) = (self.cdf[i], self.cdf[i + 1]);
         let remapped = ((u - lo) / (hi - lo)) as f32;
         (i, self.pmf[i], remapped.min(super::ONE_MINUS_EPSILON))
+    }
+
+    /// Inverse of [`DiscreteDistribution::sample`]: the `u` that picks entry `i` with remapped
+    /// value `remapped`.
+    pub fn invert(&self, i: usize, remapped: f32) -> f32 {
+        let (lo, hi) = (self.cdf[i], self.cdf[i + 1]);
+        ((lo + remapped as f64 * (hi - lo)) as f32).min(super::ONE_MINUS_EPSILON)
     }
 }
 

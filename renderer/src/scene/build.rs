@@ -1,7 +1,7 @@
 //! Turns a validated [`SceneDesc`] into the render-ready [`Scene`]: f32 primitives in a BVH,
 //! materials, and one light per emitting shape (per triangle for `triangles` meshes).
 
-use super::desc::{FresnelDesc, GeometryDesc, MaterialDesc, SceneDesc};
+use super::desc::{BackgroundDesc, FresnelDesc, GeometryDesc, MaterialDesc, SceneDesc};
 use super::error::SceneError;
 use super::parse_shapes::unit;
 use crate::camera::Camera;
@@ -10,8 +10,8 @@ use crate::geometry::primitive::{NONE, Primitive, Shape};
 use crate::geometry::sphere::Sphere;
 use crate::geometry::{Accel, polygon};
 use crate::lights::{
-    BackgroundLight, DiskLight, Light, LightSampler, PolygonLight, QuadLight, SphereLight,
-    TriangleLight,
+    BackgroundLight, DiskLight, EnvmapLight, Light, LightSampler, PolygonLight, QuadLight,
+    SphereLight, TriangleLight,
 };
 use crate::materials::{Conductor, ConductorFresnel, Dielectric, Diffuse, Material, Plastic};
 use glam::{DVec3, Vec3};
@@ -282,22 +282,33 @@ impl Scene {
             }
         }
         let accel = Accel::new(prims);
-        let background = v(desc.background);
-        let background_light = if background.cmpgt(Vec3::ZERO).any() {
-            let (lo, hi) = accel.bounds();
-            let scene_radius = if lo.is_finite() && hi.is_finite() {
-                0.5 * (hi - lo).length().max(1e-6)
-            } else {
-                1.0
-            };
-            lights.push(Light::Background(BackgroundLight {
-                le: background,
-                scene_radius,
-            }));
-            Some(lights.len() as u32 - 1)
+        let (lo, hi) = accel.bounds();
+        let scene_radius = if lo.is_finite() && hi.is_finite() {
+            0.5 * (hi - lo).length().max(1e-6)
         } else {
-            None
+            1.0
         };
+        let background = match &desc.background {
+            BackgroundDesc::Constant(c) => {
+                let le = v(*c);
+                le.cmpgt(Vec3::ZERO)
+                    .any()
+                    .then_some(Light::Background(BackgroundLight { le, scene_radius }))
+            }
+            BackgroundDesc::Envmap(e) => EnvmapLight::new(
+                e.image.width as usize,
+                e.image.height as usize,
+                &e.image.data,
+                e.scale as f32,
+                e.rotate_y_deg as f32,
+                scene_radius,
+            )
+            .map(Light::Envmap),
+        };
+        let background_light = background.map(|light| {
+            lights.push(light);
+            lights.len() as u32 - 1
+        });
         let light_sampler = LightSampler::new(&lights);
         Ok(Scene {
             camera,
@@ -320,8 +331,7 @@ impl Scene {
 
     /// Loads and builds a scene file; errors name the file.
     pub fn load(path: &std::path::Path) -> Result<Scene, SceneError> {
-        let text = super::parse::read_scene_file(path)?;
-        Scene::from_json_str(&text).map_err(|e| e.in_file(path))
+        Scene::from_desc(&super::parse::load_scene(path)?).map_err(|e| e.in_file(path))
     }
 }
 

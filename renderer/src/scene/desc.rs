@@ -4,8 +4,11 @@
 //! Everything in a [`SceneDesc`] has passed every rule of the format, so builders may rely on
 //! it: finite numbers, positive radii, unit disk normals, valid polygons, in-range indices.
 
+use crate::image_io::Image;
 use glam::DVec3;
 use serde_json::{Map, Value, json};
+use std::path::PathBuf;
+use std::sync::Arc;
 
 /// A whole scene.
 #[derive(Clone, Debug, PartialEq)]
@@ -14,14 +17,36 @@ pub struct SceneDesc {
     pub camera: CameraDesc,
     /// Longest path in vertices, Mitsuba's convention: `-1` = unlimited, otherwise ≥ 1.
     pub max_depth: i32,
-    /// Constant radiance from every direction that hits nothing.
-    pub background: DVec3,
+    /// Radiance from every direction that hits nothing.
+    pub background: BackgroundDesc,
     /// All materials, sorted by name; shapes refer to them by index.
     pub materials: Vec<NamedMaterial>,
     /// All shapes, in file order.
     pub shapes: Vec<ShapeDesc>,
     /// Things that were accepted but look wrong (e.g. dropped degenerate triangles).
     pub warnings: Vec<String>,
+}
+
+/// What a ray that hits nothing sees.
+#[derive(Clone, Debug, PartialEq)]
+pub enum BackgroundDesc {
+    /// The same radiance from every direction (black: no background light).
+    Constant(DVec3),
+    /// A latitude-longitude environment map.
+    Envmap(EnvmapDesc),
+}
+
+/// An environment map, loaded and checked: finite, non-negative texels.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EnvmapDesc {
+    /// The EXR file, resolved against the scene file's folder.
+    pub file: PathBuf,
+    /// Its pixels, row 0 at the top (the zenith).
+    pub image: Arc<Image>,
+    /// Radiance multiplier, ≥ 0.
+    pub scale: f64,
+    /// Rotation of the map about +y, in degrees (the box's convention).
+    pub rotate_y_deg: f64,
 }
 
 /// A pinhole camera looking from `from` towards `to`.
@@ -187,7 +212,14 @@ impl SceneDesc {
                 "vfov_deg": c.vfov_deg, "width": c.width, "height": c.height,
             },
             "max_depth": self.max_depth,
-            "background": vec3(self.background),
+            "background": match &self.background {
+                BackgroundDesc::Constant(c) => vec3(*c),
+                BackgroundDesc::Envmap(e) => json!({
+                    "envmap": e.file.to_string_lossy(),
+                    "scale": e.scale,
+                    "rotate_y_deg": e.rotate_y_deg,
+                }),
+            },
             "materials": materials,
             "shapes": shapes,
         })

@@ -11,6 +11,7 @@ pub mod build;
 pub mod desc;
 pub mod error;
 pub mod parse;
+mod parse_background;
 mod parse_materials;
 mod parse_mesh;
 mod parse_shapes;
@@ -21,7 +22,8 @@ mod tests;
 
 pub use build::Scene;
 pub use desc::{
-    CameraDesc, FresnelDesc, GeometryDesc, MaterialDesc, NamedMaterial, SceneDesc, ShapeDesc,
+    BackgroundDesc, CameraDesc, EnvmapDesc, FresnelDesc, GeometryDesc, MaterialDesc, NamedMaterial,
+    SceneDesc, ShapeDesc,
 };
 pub use error::SceneError;
-pub use parse::{load_scene, parse_scene, parse_scene_value};
+pub use parse::{load_scene, parse_scene, parse_scene_in, parse_scene_value, parse_scene_value_in};

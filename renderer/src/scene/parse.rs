@@ -4,8 +4,9 @@
 //! The JSON is first read into a `serde_json::Value` and then walked by hand rather than derived
 //! with serde, so that every error can name the JSON path of the problem.
 
-use super::desc::{CameraDesc, SceneDesc};
+use super::desc::{BackgroundDesc, CameraDesc, SceneDesc};
 use super::error::SceneError;
+use super::parse_background::parse_background;
 use super::parse_materials::parse_materials;
 use super::parse_shapes::{parse_shapes, unit};
 use super::walk::{Obj, array, check_components, integer, parse_json};
@@ -23,14 +24,21 @@ pub const MAX_IMAGE_SIZE: u32 = 16384;
 /// overflow to infinity and be discarded.
 pub const MAX_RADIANCE: f64 = 1e30;
 
-/// Parses and validates scene JSON text.
+/// Parses and validates scene JSON text; files it names are relative to the current folder.
 pub fn parse_scene(text: &str) -> Result<SceneDesc, SceneError> {
-    parse_scene_value(&parse_json(text)?)
+    parse_scene_in(text, Path::new(""))
 }
 
-/// Reads, parses and validates a scene file; errors name the file.
+/// Parses and validates scene JSON text whose file references are relative to `folder`.
+pub fn parse_scene_in(text: &str, folder: &Path) -> Result<SceneDesc, SceneError> {
+    parse_scene_value_in(&parse_json(text)?, folder)
+}
+
+/// Reads, parses and validates a scene file; errors name the file, and the files it refers to
+/// are relative to its folder.
 pub fn load_scene(path: &Path) -> Result<SceneDesc, SceneError> {
-    parse_scene(&read_scene_file(path)?).map_err(|e| e.in_file(path))
+    let folder = path.parent().unwrap_or(Path::new(""));
+    parse_scene_in(&read_scene_file(path)?, folder).map_err(|e| e.in_file(path))
 }
 
 /// The text of a scene file; the error (missing, a directory, not UTF-8, …) names the file.
@@ -39,8 +47,14 @@ pub(crate) fn read_scene_file(path: &Path) -> Result<String, SceneError> {
         .map_err(|e| SceneError::new("", format!("cannot read the scene file: {e}")).in_file(path))
 }
 
-/// Validates an already parsed JSON value (e.g. one from [`SceneDesc::to_json`]).
+/// Validates an already parsed JSON value (e.g. one from [`SceneDesc::to_json`]); files it names
+/// are relative to the current folder.
 pub fn parse_scene_value(value: &Value) -> Result<SceneDesc, SceneError> {
+    parse_scene_value_in(value, Path::new(""))
+}
+
+/// Validates an already parsed JSON value whose file references are relative to `folder`.
+pub fn parse_scene_value_in(value: &Value, folder: &Path) -> Result<SceneDesc, SceneError> {
     if !value.is_object() {
         // No JSON path to name, so say where in words.
         return Err(SceneError::new(
@@ -66,8 +80,10 @@ pub fn parse_scene_value(value: &Value) -> Result<SceneDesc, SceneError> {
         ));
     }
 
-    let background = root.opt_vec3("background")?.unwrap_or(DVec3::ZERO);
-    check_radiance(background, "background")?;
+    let background = match root.get("background") {
+        None => BackgroundDesc::Constant(DVec3::ZERO),
+        Some(v) => parse_background(v, folder)?,
+    };
 
     let materials = match root.get("materials") {
         Some(v) => parse_materials(&Obj::new(v, "materials")?)?,
@@ -196,7 +212,10 @@ mod tests {
         }
         s["shapes"] = json!([{"type": "sphere", "center": [0, 0, 0], "radius": 1}]);
         let d = parse_scene_value(&s).unwrap();
-        assert_eq!((d.max_depth, d.background), (-1, DVec3::ZERO));
+        assert_eq!(
+            (d.max_depth, d.background),
+            (-1, BackgroundDesc::Constant(DVec3::ZERO))
+        );
         assert!(d.materials.is_empty() && d.warnings.is_empty());
         assert_eq!(
             (d.shapes[0].material, d.shapes[0].emission),

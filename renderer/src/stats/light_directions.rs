@@ -51,7 +51,7 @@ impl LightDirections {
                     .collect())
             }
             Light::Sphere(l) => Err((l.sphere.center, l.sphere.radius)),
-            Light::Background(_) => Ok(Vec::new()),
+            Light::Background(_) | Light::Envmap(_) => Ok(Vec::new()),
         }
     }
 }
@@ -68,7 +68,7 @@ impl DirectionalSampler for LightDirections {
 
     fn pdf(&self, w: Vec3) -> f32 {
         let light = &self.scene.lights[self.light];
-        if let Light::Background(_) = light {
+        if light.is_infinite() {
             return light.pdf(self.p, w, Vec3::ZERO, Vec3::ZERO, self.method);
         }
         let Some(hit) = self.scene.accel.intersect(&Ray::new(self.p, w)) else {

@@ -1,6 +1,7 @@
 //! The samplers of the statistical suite, by name: every warp, every material at several
 //! incidence angles (the rough dielectric from outside and from inside), every light shape from
-//! several points with both sampling methods, and the strategy mixture. Each list entry is one
+//! several points with both sampling methods, environment maps with both methods, and the
+//! strategy mixture. Each list entry is one
 //! line; the tests and `examples/warptest.rs` share them.
 //!
 //! Light geometry: the receiver sits at the origin with normal +z (so BSDF and world frames
@@ -276,6 +277,80 @@ pub fn light_cases() -> Vec<Case> {
     out
 }
 
+/// A test environment map: name, width, height, texels (row 0 at the zenith).
+pub type TestMap = (&'static str, usize, usize, Vec<Vec3>);
+
+/// The environment maps of the suite: a constant one, a sun-like texel 1e5 times brighter than
+/// the rest, black rows and columns, and one and two texels.
+pub fn envmap_maps() -> Vec<TestMap> {
+    let sun: Vec<Vec3> = (0..32 * 16)
+        .map(|k| Vec3::splat(if k == 5 * 32 + 20 { 1e5 } else { 1.0 }))
+        .collect();
+    let stripes: Vec<Vec3> = (0..12 * 7)
+        .map(|k| {
+            let (i, j) = (k % 12, k / 12);
+            if i % 3 == 0 || j == 2 || j == 3 {
+                Vec3::ZERO
+            } else {
+                Vec3::new(0.2, 1.0, 3.0)
+            }
+        })
+        .collect();
+    vec![
+        ("constant", 6, 4, vec![Vec3::splat(0.7); 24]),
+        ("sun", 32, 16, sun),
+        ("stripes", 12, 7, stripes),
+        ("1x1", 1, 1, vec![Vec3::new(0.5, 1.0, 2.0)]),
+        ("2x1", 2, 1, vec![Vec3::ONE, Vec3::new(0.0, 0.0, 4.0)]),
+    ]
+}
+
+/// A scene lit only by `map`, rotated by `rotate_y_deg`, with nothing in it but a tiny sphere far
+/// below (a scene needs a shape; it hides almost nothing).
+pub fn envmap_scene(map: &TestMap, rotate_y_deg: f64) -> Arc<Scene> {
+    use crate::image_io::Image;
+    use crate::scene::{BackgroundDesc, EnvmapDesc};
+    let (name, w, h, texels) = map;
+    let scene = json!({
+        "camera": {"from": [0, -5, 0], "to": [0, 0, 0], "up": [0, 0, 1], "vfov_deg": 40,
+            "width": 2, "height": 2},
+        "shapes": [{"type": "sphere", "center": [0, -1000, 0], "radius": 1e-3}],
+    });
+    let mut desc = parse_scene(&scene.to_string()).expect("the envmap test scene parses");
+    desc.background = BackgroundDesc::Envmap(EnvmapDesc {
+        file: format!("<test map {name}>").into(),
+        image: Arc::new(Image {
+            width: *w as u32,
+            height: *h as u32,
+            data: texels.clone(),
+        }),
+        scale: 1.0,
+        rotate_y_deg,
+    });
+    Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{name}: {e}")))
+}
+
+/// Every test map × method, rotated by 30° about +y (the maps' features are then off the grid of
+/// the χ² histogram).
+pub fn envmap_cases() -> Vec<Case> {
+    let mut out = Vec::new();
+    for map in envmap_maps() {
+        let scene = envmap_scene(&map, 30.0);
+        let light = scene.background_light.expect("the map emits") as usize;
+        for method in [LightSampling::Area, LightSampling::SolidAngle] {
+            let name = format!("envmap/{}/{method:?}", map.0).to_lowercase();
+            let sampler = LightDirections {
+                scene: scene.clone(),
+                light,
+                p: Vec3::ZERO,
+                method,
+            };
+            out.push(case(name, sampler));
+        }
+    }
+    out
+}
+
 /// The mixture at every weight, for a rough plastic under a near quad (solid-angle sampling) and
 /// for a diffuse receiver with a star half below its horizon (area sampling).
 pub fn mixture_cases() -> Vec<Case> {
@@ -303,6 +378,7 @@ pub fn all_cases() -> Vec<Case> {
     v.extend(material_cases());
     v.extend(dielectric_cases());
     v.extend(light_cases());
+    v.extend(envmap_cases());
     v.extend(mixture_cases());
     v
 }

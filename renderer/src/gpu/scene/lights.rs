@@ -1,5 +1,6 @@
 //! Light records (`Light` in `light.wgsl`), one per [`Light`], the triangles of polygon lights,
-//! the power-proportional selection tables, and the lights' kind tags.
+//! the power-proportional selection tables, and the lights' kind tags. An environment map's
+//! texture and tables are in [`super::envmap`].
 //! WGSL twin: `light.wgsl` (the record layout and the `switch` on [`LightTag`]).
 
 use super::v4;
@@ -9,8 +10,9 @@ use crate::lights::Light;
 use crate::scene::Scene;
 use bytemuck::{Pod, Zeroable};
 
-/// A light record (`Light` in `light.wgsl`): `h` = (kind, first triangle, triangle count, _),
-/// four vec4 of geometry per kind and `le` = (radiance, area) (see the top of `light.wgsl`).
+/// A light record (`Light` in `light.wgsl`): `h` = (kind, first triangle, triangle count, _)
+/// (an environment map: kind, width, height, offset of its tables), four vec4 of geometry per
+/// kind and `le` = (radiance, area) (see the top of `light.wgsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuLight {
@@ -37,6 +39,8 @@ gpu_tags! {
         Sphere => "LIGHT_SPHERE",
         /// [`Light::Background`].
         Background => "LIGHT_BACKGROUND",
+        /// [`Light::Envmap`].
+        Envmap => "LIGHT_ENVMAP",
     }
 }
 
@@ -50,6 +54,7 @@ impl LightTag {
             Light::Disk(_) => LightTag::Disk,
             Light::Sphere(_) => LightTag::Sphere,
             Light::Background(_) => LightTag::Background,
+            Light::Envmap(_) => LightTag::Envmap,
         }
     }
 }
@@ -68,8 +73,13 @@ fn cdf(weights: &[f32]) -> Vec<f32> {
 }
 
 /// The records of `scene`'s lights; polygon lights append their triangles to `light_tris` (three
-/// vec4 each, the first two w's holding the triangle's interval of the by-area CDF).
-pub(super) fn encode(scene: &Scene, light_tris: &mut Vec<[f32; 4]>) -> Vec<GpuLight> {
+/// vec4 each, the first two w's holding the triangle's interval of the by-area CDF), an
+/// environment map its sampling tables to `tables`.
+pub(super) fn encode(
+    scene: &Scene,
+    light_tris: &mut Vec<[f32; 4]>,
+    tables: &mut Vec<f32>,
+) -> Vec<GpuLight> {
     scene
         .lights
         .iter()
@@ -127,6 +137,14 @@ pub(super) fn encode(scene: &Scene, light_tris: &mut Vec<[f32; 4]>) -> Vec<GpuLi
                 }
                 Light::Background(b) => {
                     g.le = v4(b.le, 0.0);
+                }
+                Light::Envmap(e) => {
+                    let (w, h) = e.size();
+                    g.h[1] = w as u32;
+                    g.h[2] = h as u32;
+                    g.h[3] = super::envmap::append_tables(e, tables);
+                    let (sin, cos) = e.rotation();
+                    g.a = [sin, cos, 0.0, 0.0];
                 }
             }
             g

@@ -1,7 +1,8 @@
 //! [`GpuScene`]: the scene flattened into GPU storage buffers, one record encoder per kind
-//! ([`materials`], [`lights`], [`shapes`], [`bvh`]) whose layouts the WGSL records mirror, and
-//! the per-dispatch uniform ([`params`]). Each kind's tags are a `#[repr(u32)]` enum next to its
-//! encoder, which the generated WGSL prelude (`gpu/prelude.rs`) names for the shaders.
+//! ([`materials`], [`lights`], [`shapes`], [`bvh`]) whose layouts the WGSL records mirror, the
+//! environment map as a texture ([`envmap`]), and the per-dispatch uniform ([`params`]). Each
+//! kind's tags are a `#[repr(u32)]` enum next to its encoder, which the generated WGSL prelude
+//! (`gpu/prelude.rs`) names for the shaders.
 //! WGSL twin: `bindings.wgsl` (the bind group this module creates).
 //!
 //! Primitives are uploaded in the BVH's leaf order, which is the order of
@@ -11,6 +12,7 @@
 //! same primitives.
 
 pub mod bvh;
+pub mod envmap;
 pub mod lights;
 pub mod materials;
 pub mod params;
@@ -24,7 +26,9 @@ pub use shapes::{GpuPrim, ShapeTag};
 
 use super::shader::Features;
 use super::{GpuContext, GpuError};
+use crate::lights::Light;
 use crate::scene::Scene;
+use envmap::EnvmapTexels;
 use std::sync::Arc;
 use wgpu::util::DeviceExt;
 
@@ -39,6 +43,9 @@ pub struct GpuScene {
     lights: wgpu::Buffer,
     light_tris: wgpu::Buffer,
     tables: wgpu::Buffer,
+    /// The environment map's texels (a 1×1 placeholder without one), kept with its view.
+    _envmap: wgpu::Texture,
+    envmap_view: wgpu::TextureView,
     light_cdf: u32,
     light_pmf: u32,
     layout: wgpu::BindGroupLayout,
@@ -50,10 +57,13 @@ pub(crate) struct Records {
     pub(crate) materials: Vec<GpuMaterial>,
     pub(crate) lights: Vec<GpuLight>,
     pub(crate) light_tris: Vec<[f32; 4]>,
-    /// Coat albedo tables, then the light-selection CDF and pmf.
+    /// Coat albedo tables, an environment map's sampling tables, then the light-selection CDF
+    /// and pmf.
     pub(crate) tables: Vec<f32>,
     pub(crate) light_cdf: u32,
     pub(crate) light_pmf: u32,
+    /// The environment map's texels, if the scene has one (at most one: its background).
+    pub(crate) envmap: Option<EnvmapTexels>,
 }
 
 impl Records {
@@ -63,8 +73,15 @@ impl Records {
         let mut light_tris = Vec::new();
         let prims = shapes::encode(scene);
         let materials = materials::encode(scene, &mut tables);
-        let lights = lights::encode(scene, &mut light_tris);
+        let lights = lights::encode(scene, &mut light_tris, &mut tables);
         let (light_cdf, light_pmf) = lights::selection(scene, &mut tables);
+        let mut maps = scene.lights.iter().filter_map(|l| match l {
+            Light::Envmap(e) => Some(EnvmapTexels::of(e)),
+            _ => None,
+        });
+        let envmap = maps.next();
+        // One texture binding: the scene builder makes at most one map, the background.
+        assert!(maps.next().is_none(), "a scene with two environment maps");
         Records {
             prims,
             materials,
@@ -73,6 +90,7 @@ impl Records {
             tables,
             light_cdf,
             light_pmf,
+            envmap,
         }
     }
 }
@@ -146,6 +164,14 @@ impl GpuScene {
         for (what, size) in [
             ("BVH nodes", nodes.len()),
             ("primitives", records.prims.len() * size_of::<GpuPrim>()),
+            (
+                if records.envmap.is_some() {
+                    "tables (with the environment map's sampling tables)"
+                } else {
+                    "tables"
+                },
+                records.tables.len() * size_of::<f32>(),
+            ),
         ] {
             if size > limit {
                 return Err(GpuError::TooLarge(format!(
@@ -153,6 +179,17 @@ impl GpuScene {
                 )));
             }
         }
+        let placeholder = EnvmapTexels::placeholder();
+        let texels = records.envmap.as_ref().unwrap_or(&placeholder);
+        let max = device.limits().max_texture_dimension_2d;
+        if texels.width > max || texels.height > max {
+            return Err(GpuError::TooLarge(format!(
+                "the {}x{} environment map exceeds the device's {max}x{max} textures",
+                texels.width, texels.height
+            )));
+        }
+        let envmap = texels.upload(device, &ctx.queue);
+        let envmap_view = envmap.create_view(&wgpu::TextureViewDescriptor::default());
         // Bindings may not be empty: pad every buffer to at least one 16-byte element.
         let storage = |label: &str, data: &[u8]| {
             let mut bytes = data.to_vec();
@@ -174,6 +211,8 @@ impl GpuScene {
             lights: storage("lumis lights", bytemuck::cast_slice(&r.lights)),
             light_tris: storage("lumis light triangles", bytemuck::cast_slice(&r.light_tris)),
             tables: storage("lumis tables", bytemuck::cast_slice(&r.tables)),
+            _envmap: envmap,
+            envmap_view,
             light_cdf: r.light_cdf,
             light_pmf: r.light_pmf,
             layout,
@@ -198,6 +237,17 @@ impl GpuScene {
         entries.extend((1..=6).map(|b| storage(b, true)));
         entries.push(storage(7, false));
         entries.push(storage(8, false));
+        // The environment map (`envmap_texels`): rgba32float, read with textureLoad only.
+        entries.push(wgpu::BindGroupLayoutEntry {
+            binding: 9,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        });
         device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("lumis scene"),
             entries: &entries,
@@ -259,6 +309,10 @@ impl GpuScene {
                     whole(6, &self.tables),
                     whole(7, accum),
                     whole(8, counters),
+                    wgpu::BindGroupEntry {
+                        binding: 9,
+                        resource: wgpu::BindingResource::TextureView(&self.envmap_view),
+                    },
                 ],
             })
     }

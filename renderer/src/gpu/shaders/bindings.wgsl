@@ -71,3 +71,8 @@ fn check_param_tags(p: Params) {
 @group(0) @binding(7) var<storage, read_write> accum: array<vec4f>;
 // [0] = samples that were not finite (counted as zero, like the CPU).
 @group(0) @binding(8) var<storage, read_write> counters: array<atomic<u32>>;
+// The environment map's texels (`envmap_light.wgsl`), rgba32float read with textureLoad; the
+// binding holds a 1×1 placeholder in scenes without a map, whose programs do not declare it.
+// #if HAS_ENVMAP
+@group(0) @binding(9) var envmap_texels: texture_2d<f32>;
+// #endif

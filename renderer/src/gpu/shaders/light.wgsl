@@ -1,6 +1,6 @@
 // Lights, the twin of `lights/mod.rs` and `lights/light_sampler.rs`: one record per light, a
-// `switch` in the variant order of `Light` (Triangle, Polygon, Quad, Disk, Sphere, Background),
-// power-proportional selection from a CDF in `tables`.
+// `switch` in the variant order of `Light` (Triangle, Polygon, Quad, Disk, Sphere, Background,
+// Envmap), power-proportional selection from a CDF in `tables`.
 //
 // Record layout (see `gpu/scene/lights.rs`): h = (kind, first triangle, triangle count, _),
 // le = (radiance, area).
@@ -11,6 +11,8 @@
 //   Disk:       a.xyz = centre, a.w = radius, d.xyz = normal.
 //   Sphere:     a.xyz = centre, a.w = radius.
 //   Background: le.xyz only.
+//   Envmap:     h.yzw = (width, height, offset of its tables), a.xy = (sin, cos) of its
+//               rotation; texels in `envmap_texels` (`envmap_light.wgsl`).
 
 struct Light {
     h: vec4<u32>,
@@ -101,6 +103,11 @@ fn light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSample {
             s = background_light_sample(l, u);
         }
 // #endif
+// #if HAS_ENVMAP
+        case LIGHT_ENVMAP: {
+            s = envmap_light_sample(l, u, method);
+        }
+// #endif
         default: {
             s.pdf = unknown_tag();
         }
@@ -154,6 +161,11 @@ fn light_pdf_unmutated(l: Light, p: vec3f, wi: vec3f, y: vec3f, ny: vec3f, metho
         case LIGHT_BACKGROUND: {
             return uniform_sphere_pdf();
         }
+// #if HAS_ENVMAP
+        case LIGHT_ENVMAP: {
+            return envmap_light_pdf(l, wi, method);
+        }
+// #endif
         default: {
             return unknown_tag();
         }
@@ -162,8 +174,14 @@ fn light_pdf_unmutated(l: Light, p: vec3f, wi: vec3f, y: vec3f, ny: vec3f, metho
 
 // #endif
 
-// `Light::radiance`: one-sided emission towards −w_in at a point with normal n.
+// `Light::radiance`: one-sided emission towards −w_in at a point with normal n (n unused for
+// the lights at infinity, which emit along −w_in from direction w_in).
 fn light_radiance(l: Light, n: vec3f, w_in: vec3f) -> vec3f {
+// #if HAS_ENVMAP
+    if l.h.x == LIGHT_ENVMAP {
+        return envmap_eval(l, w_in);
+    }
+// #endif
     if l.h.x == LIGHT_BACKGROUND || dot(n, w_in) < 0.0 {
         return l.le.xyz;
     }

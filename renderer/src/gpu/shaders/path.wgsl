@@ -102,7 +102,15 @@ fn radiance(camera_ray: Ray) -> vec3f {
 // #if HAS_BACKGROUND
             if params.background != NONE {
                 let bg = lights[params.background];
-                let w = emission_weight(rule, p_bsdf, params.background, uniform_sphere_pdf());
+                // The pdf light sampling would have had for this direction, with the method in
+                // use (a constant background's is 1/4π either way).
+                var lpdf = 0.0;
+// #if HAS_LIGHTS
+                if rule == EW_MIS || rule == EW_MIXTURE {
+                    lpdf = light_pdf(bg, prev_p, ray.d, vec3f(0.0), vec3f(0.0), params.light_sampling);
+                }
+// #endif
+                let w = emission_weight(rule, p_bsdf, params.background, lpdf);
                 l += beta * light_radiance(bg, vec3f(0.0), ray.d) * w;
             }
 // #endif
