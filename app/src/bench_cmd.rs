@@ -294,7 +294,7 @@ fn load_scene(path: &Path, width: Option<u32>, height: Option<u32>) -> anyhow::R
             bail!("{name} must be at least 1");
         }
     }
-    let mut desc = lumis::scene::load_scene(path)?;
+    let mut desc = lumis_app::scene_file::load_scene_warning(path)?;
     if let Some(w) = width {
         desc.camera.width = w;
     }

@@ -4,4 +4,5 @@
 #![warn(missing_docs)]
 
 pub mod part_file;
+pub mod scene_file;
 pub mod viewer;

@@ -27,7 +27,8 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
         check_part_options(args)?;
     }
     check_output_dir(&args.output)?;
-    let scene = Arc::new(Scene::load(&args.scene)?);
+    let desc = lumis_app::scene_file::load_scene_warning(&args.scene)?;
+    let scene = Arc::new(Scene::from_desc(&desc).map_err(|e| e.in_file(&args.scene))?);
     let pool = thread_pool(args.threads)?;
     let mut render = match args.sample_range {
         Some(_) => AnyProgressive::Cpu(Progressive::with_first_sample(

@@ -2,9 +2,10 @@
 //! the first command of the README works on a server or in CI.
 
 use super::ViewerOptions;
+use crate::scene_file::load_scene_warning as load_scene;
 use lumis::engine::AnyProgressive;
 use lumis::image_io::Image;
-use lumis::scene::{Scene, load_scene};
+use lumis::scene::Scene;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;

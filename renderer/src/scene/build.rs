@@ -223,6 +223,26 @@ impl Scene {
                         push_tris(&[t], light);
                     }
                 }
+                GeometryDesc::Mesh { to_world, mesh, .. } => {
+                    let world: Vec<Vec3> = mesh
+                        .positions
+                        .iter()
+                        .map(|p| to_world.transform_point3(p.as_dvec3()).as_vec3())
+                        .collect();
+                    for idx in &mesh.indices {
+                        let t = idx.map(|i| world[i as usize]);
+                        let light =
+                            push_light(crate::geometry::triangle::triangle_normal(&t).map(|n| {
+                                Light::Triangle(TriangleLight {
+                                    v: t,
+                                    n,
+                                    area: crate::geometry::triangle::triangle_area(&t),
+                                    le,
+                                })
+                            }))?;
+                        push_tris(&[t], light);
+                    }
+                }
                 GeometryDesc::Disk {
                     center,
                     normal,

@@ -166,6 +166,17 @@ pub enum GeometryDesc {
         /// Triangles as indices into `positions`, right-hand-rule normals.
         indices: Vec<[u32; 3]>,
     },
+    /// Triangles from a mesh file (`mesh`), zero-area triangles (after `to_world`) removed.
+    Mesh {
+        /// The file, resolved against the scene file's folder.
+        file: PathBuf,
+        /// Object to world, affine and invertible.
+        to_world: glam::DMat4,
+        /// Whether to ignore the file's vertex normals (flat shading).
+        face_normals: bool,
+        /// What the file holds, in its own coordinates.
+        mesh: Arc<crate::scene::mesh::MeshData>,
+    },
     /// Disk facing along `normal`.
     Disk {
         /// Centre.
@@ -244,6 +255,20 @@ impl SceneDesc {
                 "positions": positions.iter().map(|&v| vec3(v)).collect::<Vec<_>>(),
                 "indices": indices,
             }),
+            GeometryDesc::Mesh {
+                file,
+                to_world,
+                face_normals,
+                ..
+            } => {
+                let rows = to_world.transpose().to_cols_array_2d();
+                json!({
+                    "type": "mesh",
+                    "file": file.to_string_lossy(),
+                    "to_world": rows,
+                    "face_normals": face_normals,
+                })
+            }
             GeometryDesc::Disk {
                 center,
                 normal,

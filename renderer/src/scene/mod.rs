@@ -10,10 +10,13 @@
 pub mod build;
 pub mod desc;
 pub mod error;
+pub mod mesh;
+pub mod model;
 pub mod parse;
 mod parse_background;
 mod parse_materials;
 mod parse_mesh;
+mod parse_mesh_file;
 mod parse_shapes;
 mod walk;
 

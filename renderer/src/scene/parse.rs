@@ -35,8 +35,12 @@ pub fn parse_scene_in(text: &str, folder: &Path) -> Result<SceneDesc, SceneError
 }
 
 /// Reads, parses and validates a scene file; errors name the file, and the files it refers to
-/// are relative to its folder.
+/// are relative to its folder. A mesh file (`.obj`, `.ply`, `.gltf`, `.glb`) is opened as a
+/// scene of its own ([`super::model::model_scene`]).
 pub fn load_scene(path: &Path) -> Result<SceneDesc, SceneError> {
+    if super::model::is_model_file(path) {
+        return super::model::model_scene(path);
+    }
     let folder = path.parent().unwrap_or(Path::new(""));
     parse_scene_in(&read_scene_file(path)?, folder).map_err(|e| e.in_file(path))
 }
@@ -93,6 +97,7 @@ pub fn parse_scene_value_in(value: &Value, folder: &Path) -> Result<SceneDesc, S
     let shapes = parse_shapes(
         array(root.req("shapes")?, "shapes")?,
         &materials,
+        folder,
         &mut warnings,
     )?;
     Ok(SceneDesc {

@@ -4,26 +4,38 @@ use super::desc::{GeometryDesc, NamedMaterial, ShapeDesc};
 use super::error::SceneError;
 use super::parse::check_radiance;
 use super::parse_mesh::{DEGENERATE_TRIANGLE, polygon, triangles};
+use super::parse_mesh_file::mesh;
 use super::walk::Obj;
 use glam::DVec3;
 use serde_json::Value;
+use std::path::Path;
 
 /// Every shape, in file order; degenerate non-emitting triangles are dropped into `warnings`.
+/// `mesh` files are relative to `folder`.
 pub(crate) fn parse_shapes(
     items: &[Value],
     materials: &[NamedMaterial],
+    folder: &Path,
     warnings: &mut Vec<String>,
 ) -> Result<Vec<ShapeDesc>, SceneError> {
     items
         .iter()
         .enumerate()
-        .map(|(i, v)| parse_shape(&Obj::new(v, format!("shapes[{i}]"))?, materials, warnings))
+        .map(|(i, v)| {
+            parse_shape(
+                &Obj::new(v, format!("shapes[{i}]"))?,
+                materials,
+                folder,
+                warnings,
+            )
+        })
         .collect()
 }
 
 fn parse_shape(
     obj: &Obj,
     materials: &[NamedMaterial],
+    folder: &Path,
     warnings: &mut Vec<String>,
 ) -> Result<ShapeDesc, SceneError> {
     let kind = obj.string("type")?;
@@ -34,12 +46,13 @@ fn parse_shape(
         "disk" => &["center", "normal", "radius"],
         "sphere" => &["center", "radius"],
         "box" => &["min", "max", "rotate_y_deg", "translate"],
+        "mesh" => &["file", "to_world", "face_normals"],
         other => {
             return Err(SceneError::new(
                 obj.at("type"),
                 format!(
                     "unknown shape type `{other}` \
-                     (expected quad, polygon, triangles, disk, sphere or box)"
+                     (expected quad, polygon, triangles, mesh, disk, sphere or box)"
                 ),
             ));
         }
@@ -59,6 +72,7 @@ fn parse_shape(
         "quad" => quad(obj)?,
         "polygon" => polygon(obj)?,
         "triangles" => triangles(obj, emission != DVec3::ZERO, warnings)?,
+        "mesh" => mesh(obj, folder, emission != DVec3::ZERO, warnings)?,
         "disk" => {
             let normal = obj.vec3("normal")?;
             if normal == DVec3::ZERO {

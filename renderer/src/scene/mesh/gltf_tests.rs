@@ -1,0 +1,973 @@
+//! Tests of the glTF reader on small files built here: JSON text plus buffer bytes, written to
+//! `temp_dir()/lumis-gltf-test-<pid>/<test>` (removed when the test ends).
+
+use super::load;
+use crate::scene::mesh::MeshData;
+use glam::{Vec2, Vec3};
+use serde_json::{Value, json};
+use std::path::{Path, PathBuf};
+
+const FLOAT: u32 = 5126;
+const U8: u32 = 5121;
+const U16: u32 = 5123;
+const U32: u32 = 5125;
+
+/// A per-test folder, removed on drop.
+struct Dir(PathBuf);
+
+impl Dir {
+    fn new(test: &str) -> Dir {
+        let dir = std::env::temp_dir()
+            .join(format!("lumis-gltf-test-{}", std::process::id()))
+            .join(test);
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Dir(dir)
+    }
+
+    fn file(&self, name: &str) -> PathBuf {
+        self.0.join(name)
+    }
+}
+
+impl Drop for Dir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+        // The per-process folder goes with the last test (fails harmlessly while others run).
+        if let Some(parent) = self.0.parent() {
+            let _ = std::fs::remove_dir(parent);
+        }
+    }
+}
+
+/// A glTF asset under construction: one buffer (`bin`), its views and accessors, meshes, nodes.
+/// Without explicit scenes, `json` makes one scene of all nodes that are no one's child.
+#[derive(Default)]
+struct Asset {
+    bin: Vec<u8>,
+    views: Vec<Value>,
+    accessors: Vec<Value>,
+    meshes: Vec<Value>,
+    nodes: Vec<Value>,
+    scenes: Option<Value>,
+    scene: Option<usize>,
+    /// Extra top-level members (`extensionsRequired`, more buffers, ...).
+    root: serde_json::Map<String, Value>,
+}
+
+impl Asset {
+    fn view(&mut self, bytes: &[u8]) -> usize {
+        while !self.bin.len().is_multiple_of(4) {
+            self.bin.push(0);
+        }
+        self.views
+            .push(json!({"buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len()}));
+        self.bin.extend_from_slice(bytes);
+        self.views.len() - 1
+    }
+
+    fn accessor(&mut self, mut a: Value) -> usize {
+        if a.get("byteOffset").is_none() && a.get("bufferView").is_some() {
+            a["byteOffset"] = json!(0);
+        }
+        self.accessors.push(a);
+        self.accessors.len() - 1
+    }
+
+    fn vec3(&mut self, data: &[[f32; 3]]) -> usize {
+        let bytes: Vec<u8> = data
+            .iter()
+            .flatten()
+            .flat_map(|f| f.to_le_bytes())
+            .collect();
+        let view = self.view(&bytes);
+        let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
+        for p in data {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let (lo, hi) = (lo.map(finite_or_zero), hi.map(finite_or_zero));
+        self.accessor(
+            json!({"bufferView": view, "componentType": FLOAT, "type": "VEC3",
+            "count": data.len(), "min": lo, "max": hi}),
+        )
+    }
+
+    fn vec2(&mut self, data: &[[f32; 2]]) -> usize {
+        let bytes: Vec<u8> = data
+            .iter()
+            .flatten()
+            .flat_map(|f| f.to_le_bytes())
+            .collect();
+        let view = self.view(&bytes);
+        self.accessor(
+            json!({"bufferView": view, "componentType": FLOAT, "type": "VEC2",
+            "count": data.len()}),
+        )
+    }
+
+    fn indices(&mut self, indices: &[u32], component: u32) -> usize {
+        let bytes: Vec<u8> = match component {
+            U8 => indices.iter().map(|&i| i as u8).collect(),
+            U16 => indices
+                .iter()
+                .flat_map(|&i| (i as u16).to_le_bytes())
+                .collect(),
+            _ => indices.iter().flat_map(|&i| i.to_le_bytes()).collect(),
+        };
+        let view = self.view(&bytes);
+        self.accessor(
+            json!({"bufferView": view, "componentType": component, "type": "SCALAR",
+            "count": indices.len()}),
+        )
+    }
+
+    fn mesh(&mut self, primitives: Vec<Value>) -> usize {
+        self.meshes.push(json!({ "primitives": primitives }));
+        self.meshes.len() - 1
+    }
+
+    fn node(&mut self, node: Value) -> usize {
+        self.nodes.push(node);
+        self.nodes.len() - 1
+    }
+
+    fn json(&self, uri: Option<String>) -> Value {
+        let mut buffer = json!({"byteLength": self.bin.len()});
+        if let Some(uri) = uri {
+            buffer["uri"] = json!(uri);
+        }
+        let mut root = json!({
+            "asset": {"version": "2.0"},
+            "buffers": [buffer],
+            "bufferViews": self.views,
+            "accessors": self.accessors,
+            "meshes": self.meshes,
+            "nodes": self.nodes,
+        });
+        let scenes = self.scenes.clone().unwrap_or_else(|| {
+            let children: Vec<u64> = self
+                .nodes
+                .iter()
+                .flat_map(|n| n["children"].as_array().cloned().unwrap_or_default())
+                .filter_map(|c| c.as_u64())
+                .collect();
+            let roots: Vec<usize> = (0..self.nodes.len())
+                .filter(|i| !children.contains(&(*i as u64)))
+                .collect();
+            json!([{ "nodes": roots }])
+        });
+        root["scenes"] = scenes;
+        if let Some(scene) = self.scene {
+            root["scene"] = json!(scene);
+        }
+        for (k, v) in &self.root {
+            root[k] = v.clone();
+        }
+        root
+    }
+
+    /// `name.gltf` with its buffer in `bin_name` beside it (`uri` as written in the JSON).
+    fn write_external(&self, dir: &Dir, name: &str, bin_name: &str, uri: &str) -> PathBuf {
+        std::fs::write(dir.file(bin_name), &self.bin).unwrap();
+        let path = dir.file(name);
+        std::fs::write(&path, self.json(Some(uri.to_string())).to_string()).unwrap();
+        path
+    }
+
+    fn write_embedded(&self, dir: &Dir, name: &str, media: &str) -> PathBuf {
+        let uri = format!("data:{media};base64,{}", base64(&self.bin));
+        let path = dir.file(name);
+        std::fs::write(&path, self.json(Some(uri)).to_string()).unwrap();
+        path
+    }
+
+    fn write_glb(&self, dir: &Dir, name: &str) -> PathBuf {
+        let path = dir.file(name);
+        std::fs::write(&path, glb(&self.json(None).to_string(), Some(&self.bin))).unwrap();
+        path
+    }
+}
+
+fn finite_or_zero(f: f32) -> f32 {
+    if f.is_finite() { f } else { 0.0 }
+}
+
+/// A `.glb` container: header, JSON chunk (space-padded), BIN chunk (zero-padded).
+fn glb(json: &str, bin: Option<&[u8]>) -> Vec<u8> {
+    let mut j = json.as_bytes().to_vec();
+    while !j.len().is_multiple_of(4) {
+        j.push(b' ');
+    }
+    let mut chunks = Vec::new();
+    chunks.extend((j.len() as u32).to_le_bytes());
+    chunks.extend(b"JSON");
+    chunks.extend(&j);
+    if let Some(bin) = bin {
+        let mut b = bin.to_vec();
+        while !b.len().is_multiple_of(4) {
+            b.push(0);
+        }
+        chunks.extend((b.len() as u32).to_le_bytes());
+        chunks.extend(b"BIN\0");
+        chunks.extend(&b);
+    }
+    let mut out = b"glTF".to_vec();
+    out.extend(2u32.to_le_bytes());
+    out.extend((12 + chunks.len() as u32).to_le_bytes());
+    out.extend(chunks);
+    out
+}
+
+fn base64(bytes: &[u8]) -> String {
+    const A: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::new();
+    for c in bytes.chunks(3) {
+        let n = (c[0] as u32) << 16
+            | (*c.get(1).unwrap_or(&0) as u32) << 8
+            | *c.get(2).unwrap_or(&0) as u32;
+        for k in 0..4 {
+            if k <= c.len() {
+                out.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+/// The error of loading `path`, without the leading file name (which every message must have).
+fn error(path: &Path) -> String {
+    let message = load(path).expect_err("the file must be rejected").0;
+    let name = path.display().to_string();
+    message
+        .strip_prefix(&name)
+        .unwrap_or_else(|| panic!("'{message}' does not start with the file name '{name}'"))
+        .to_string()
+}
+
+fn primitive(
+    pos: usize,
+    normal: Option<usize>,
+    uv: Option<usize>,
+    indices: Option<usize>,
+) -> Value {
+    let mut attributes = json!({ "POSITION": pos });
+    if let Some(n) = normal {
+        attributes["NORMAL"] = json!(n);
+    }
+    if let Some(t) = uv {
+        attributes["TEXCOORD_0"] = json!(t);
+    }
+    let mut p = json!({ "attributes": attributes });
+    if let Some(i) = indices {
+        p["indices"] = json!(i);
+    }
+    p
+}
+
+const QUAD: [[f32; 3]; 4] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [1.0, 1.0, 0.0],
+    [0.0, 1.0, 0.0],
+];
+const QUAD_UV: [[f32; 2]; 4] = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
+const QUAD_TRIS: [u32; 6] = [0, 1, 2, 0, 2, 3];
+
+/// A unit quad in z = 0 facing +z, with normals, UVs and `component` indices, on one node.
+fn quad(component: u32) -> Asset {
+    let mut a = Asset::default();
+    let pos = a.vec3(&QUAD);
+    let nrm = a.vec3(&[[0.0, 0.0, 1.0]; 4]);
+    let uv = a.vec2(&QUAD_UV);
+    let idx = a.indices(&QUAD_TRIS, component);
+    let mesh = a.mesh(vec![primitive(pos, Some(nrm), Some(uv), Some(idx))]);
+    a.node(json!({ "mesh": mesh }));
+    a
+}
+
+fn quad_mesh() -> MeshData {
+    MeshData {
+        positions: QUAD.iter().map(|&p| Vec3::from(p)).collect(),
+        indices: vec![[0, 1, 2], [0, 2, 3]],
+        normals: Some(vec![Vec3::Z; 4]),
+        uvs: Some(QUAD_UV.iter().map(|&t| Vec2::from(t)).collect()),
+    }
+}
+
+fn close(a: Vec3, b: Vec3) -> bool {
+    (a - b).abs().max_element() < 1e-5
+}
+
+/// The right-hand-rule normal of triangle `t`.
+fn face_normal(m: &MeshData, t: usize) -> Vec3 {
+    let [a, b, c] = m.indices[t].map(|i| m.positions[i as usize]);
+    (b - a).cross(c - a).normalize()
+}
+
+#[test]
+fn quad_reads_positions_normals_uvs_and_indices() {
+    let dir = Dir::new("quad");
+    let path = quad(U16).write_glb(&dir, "quad.glb");
+    assert_eq!(load(&path).unwrap(), quad_mesh());
+}
+
+#[test]
+fn external_embedded_and_glb_give_the_same_mesh() {
+    let dir = Dir::new("containers");
+    let a = quad(U16);
+    let external = a.write_external(&dir, "ext.gltf", "my quad.bin", "my%20quad.bin");
+    let octet = a.write_embedded(&dir, "octet.gltf", "application/octet-stream");
+    let buffer = a.write_embedded(&dir, "buffer.gltf", "application/gltf-buffer");
+    let binary = a.write_glb(&dir, "bin.glb");
+    for path in [external, octet, buffer, binary] {
+        assert_eq!(load(&path).unwrap(), quad_mesh(), "{}", path.display());
+    }
+}
+
+#[test]
+fn u8_u16_u32_indices_and_no_indices_agree() {
+    let dir = Dir::new("index_types");
+    for (k, component) in [U8, U16, U32].into_iter().enumerate() {
+        let path = quad(component).write_glb(&dir, &format!("q{k}.glb"));
+        assert_eq!(
+            load(&path).unwrap(),
+            quad_mesh(),
+            "component type {component}"
+        );
+    }
+    // Non-indexed: the vertices in order, three per triangle.
+    let mut a = Asset::default();
+    let corners: Vec<[f32; 3]> = QUAD_TRIS.iter().map(|&i| QUAD[i as usize]).collect();
+    let pos = a.vec3(&corners);
+    let mesh = a.mesh(vec![primitive(pos, None, None, None)]);
+    a.node(json!({ "mesh": mesh }));
+    let m = load(&a.write_glb(&dir, "flat.glb")).unwrap();
+    assert_eq!(m.indices, vec![[0, 1, 2], [3, 4, 5]]);
+    assert_eq!(m.positions.len(), 6);
+    assert_eq!((m.normals, m.uvs), (None, None));
+}
+
+#[test]
+fn node_hierarchy_composes_trs_and_matrix() {
+    // Parent: T(1,2,3)·R(90° about z)·S(2); child: matrix T(0,0,5)·S(1,1,3) (column-major).
+    let dir = Dir::new("hierarchy");
+    let mut a = Asset::default();
+    let pos = a.vec3(&[[1.0, 0.0, 0.0], [0.0, 1.0, 1.0], [0.0, 0.0, 0.0]]);
+    // Not unit in the file: the reader renormalises.
+    let nrm = a.vec3(&[[0.0, 1.0, 1.0]; 3]);
+    let mesh = a.mesh(vec![primitive(pos, Some(nrm), None, None)]);
+    let h = std::f32::consts::FRAC_1_SQRT_2;
+    a.node(
+        json!({"translation": [1, 2, 3], "rotation": [0, 0, h, h], "scale": [2, 2, 2],
+        "children": [1]}),
+    );
+    a.node(json!({"mesh": mesh,
+        "matrix": [1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 3, 0,  0, 0, 5, 1]}));
+    let m = load(&a.write_glb(&dir, "h.glb")).unwrap();
+    // By hand: child (x, y, 3z + 5), then ×2, then (x, y) → (−y, x), then + (1, 2, 3).
+    let expected = [
+        Vec3::new(1.0, 4.0, 13.0),
+        Vec3::new(-1.0, 2.0, 19.0),
+        Vec3::new(1.0, 2.0, 13.0),
+    ];
+    for (got, want) in m.positions.iter().zip(expected) {
+        assert!(close(*got, want), "{got} != {want}");
+    }
+    // Normal (0,1,1): inverse transpose of S(1,1,3) gives (0,1,1/3) ∥ (0,3,1); rotated: (−3,0,1).
+    let want = Vec3::new(-3.0, 0.0, 1.0) / 10f32.sqrt();
+    for n in m.normals.unwrap() {
+        assert!(close(n, want), "{n} != {want}");
+    }
+    assert_eq!(m.indices, vec![[0, 1, 2]]);
+}
+
+#[test]
+fn a_mesh_on_two_nodes_is_placed_twice() {
+    let dir = Dir::new("instances");
+    let mut a = quad(U16);
+    a.node(json!({"mesh": 0, "translation": [0, 0, 2]}));
+    let m = load(&a.write_glb(&dir, "i.glb")).unwrap();
+    assert_eq!(m.positions.len(), 8);
+    assert_eq!(m.indices[2..], [[4, 5, 6], [4, 6, 7]]);
+    assert!(close(m.positions[6], Vec3::new(1.0, 1.0, 2.0)));
+}
+
+/// A tetrahedron around the origin, every face wound so its right-hand normal points out, with
+/// per-corner normals equal to the face normals.
+fn tetrahedron() -> Asset {
+    let v = [
+        [1.0, 1.0, 1.0],
+        [1.0, -1.0, -1.0],
+        [-1.0, 1.0, -1.0],
+        [-1.0, -1.0, 1.0],
+    ];
+    let faces = [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]];
+    let mut positions = Vec::new();
+    let mut normals = Vec::new();
+    for f in faces {
+        let [a, b, c] = f.map(|i| Vec3::from_array(v[i]));
+        let n = (b - a).cross(c - a).normalize();
+        assert!(
+            n.dot(a + b + c) > 0.0,
+            "the test tetrahedron must be wound outward"
+        );
+        positions.extend([a, b, c].map(|p| p.to_array()));
+        normals.extend([n.to_array(); 3]);
+    }
+    let mut a = Asset::default();
+    let pos = a.vec3(&positions);
+    let nrm = a.vec3(&normals);
+    a.mesh(vec![primitive(pos, Some(nrm), None, None)]);
+    a
+}
+
+#[test]
+fn a_mirrored_node_keeps_normals_outward() {
+    let dir = Dir::new("mirror");
+    for (k, node) in [
+        json!({"mesh": 0, "scale": [-1, 1, 1]}),
+        json!({"mesh": 0, "scale": [2, -1, 3], "translation": [5, 0, 0]}),
+        json!({"mesh": 0, "matrix": [1, 0, 0, 0,  0, 1, 0, 0,  0, 0, -1, 0,  0, 0, 0, 1]}),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let mut a = tetrahedron();
+        a.node(node.clone());
+        let m = load(&a.write_glb(&dir, &format!("m{k}.glb"))).unwrap();
+        let centre = m.positions.iter().sum::<Vec3>() / m.positions.len() as f32;
+        let normals = m.normals.as_ref().unwrap();
+        for t in 0..m.indices.len() {
+            let g = face_normal(&m, t);
+            let [a, b, c] = m.indices[t].map(|i| m.positions[i as usize]);
+            assert!(
+                g.dot((a + b + c) / 3.0 - centre) > 0.0,
+                "{node}: face {t} points in"
+            );
+            for i in m.indices[t] {
+                let n = normals[i as usize];
+                assert!(close(n, g), "{node}: vertex normal {n} != face normal {g}");
+            }
+        }
+    }
+}
+
+#[test]
+fn strips_and_fans_become_triangles() {
+    let dir = Dir::new("strip");
+    let mut a = Asset::default();
+    let pos = a.vec3(&[
+        [0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [2.0, 0.0, 0.0],
+    ]);
+    // A strip of 4 triangles and one with a repeated vertex (a zero-area join, dropped).
+    let strip = a.indices(&[0, 1, 2, 3, 4], U16);
+    let joined = a.indices(&[0, 1, 2, 2, 3, 4], U16);
+    let fan = a.indices(&[2, 0, 1, 3], U16);
+    let mut prims = Vec::new();
+    for (idx, mode) in [(strip, 5), (joined, 5), (fan, 6)] {
+        let mut p = primitive(pos, None, None, Some(idx));
+        p["mode"] = json!(mode);
+        prims.push(p);
+    }
+    let mesh = a.mesh(prims);
+    a.node(json!({ "mesh": mesh }));
+    let m = load(&a.write_glb(&dir, "s.glb")).unwrap();
+    // glTF: strip triangle i = {v_i, v_{i+1+i%2}, v_{i+2−i%2}}; fan i = {v_{i+1}, v_{i+2}, v_0}.
+    let strip_tris = [[0, 1, 2], [1, 3, 2], [2, 3, 4]];
+    // The join shifts the parity: its last triangle is wound the other way, as the file says.
+    let joined_tris = [[0, 1, 2], [2, 4, 3]];
+    let fan_tris = [[0, 1, 2], [1, 3, 2]];
+    let mut want: Vec<[u32; 3]> = strip_tris.to_vec();
+    want.extend(joined_tris.iter().map(|t| t.map(|i| i + 5)));
+    want.extend(fan_tris.iter().map(|t| t.map(|i| i + 10)));
+    assert_eq!(m.indices, want);
+    // Strip and fan triangles keep the winding of their first: all face the same way.
+    for t in [0, 1, 2, 3, 5, 6] {
+        assert!(close(face_normal(&m, t), -Vec3::Z), "triangle {t}");
+    }
+    assert!(close(face_normal(&m, 4), Vec3::Z));
+}
+
+#[test]
+fn normals_and_uvs_are_kept_only_when_every_primitive_has_them() {
+    let dir = Dir::new("attributes");
+    let mut a = Asset::default();
+    let pos = a.vec3(&QUAD);
+    let nrm = a.vec3(&[[0.0, 0.0, 1.0]; 4]);
+    let uv = a.vec2(&QUAD_UV);
+    let idx = a.indices(&QUAD_TRIS, U8);
+    let mesh = a.mesh(vec![
+        primitive(pos, Some(nrm), Some(uv), Some(idx)),
+        primitive(pos, None, Some(uv), Some(idx)),
+    ]);
+    a.node(json!({ "mesh": mesh }));
+    let m = load(&a.write_glb(&dir, "a.glb")).unwrap();
+    assert_eq!(m.normals, None, "the second primitive has no normals");
+    assert_eq!(m.uvs.as_ref().map(Vec::len), Some(8));
+    assert_eq!(m.indices, vec![[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]]);
+}
+
+#[test]
+fn normalized_integer_uvs_and_sparse_positions_are_read() {
+    let dir = Dir::new("sparse");
+    let mut a = quad(U16);
+    // TEXCOORD_0 as normalised u16 and u8.
+    let t16: Vec<u8> = QUAD_UV
+        .iter()
+        .flatten()
+        .flat_map(|&f| ((f * 65535.0) as u16).to_le_bytes())
+        .collect();
+    let v16 = a.view(&t16);
+    let uv16 = a.accessor(
+        json!({"bufferView": v16, "componentType": U16, "normalized": true,
+        "type": "VEC2", "count": 4}),
+    );
+    // POSITION: the quad's base with element 2 replaced by (1, 2, 0) through a sparse entry.
+    let iv = a.view(&2u8.to_le_bytes());
+    let vv = a.view(
+        &[1f32, 2.0, 0.0]
+            .iter()
+            .flat_map(|f| f.to_le_bytes())
+            .collect::<Vec<_>>(),
+    );
+    let sparse = a.accessor(
+        json!({"bufferView": 0, "componentType": FLOAT, "type": "VEC3",
+        "count": 4, "min": [0, 0, 0], "max": [1, 2, 0],
+        "sparse": {"count": 1, "indices": {"bufferView": iv, "componentType": U8},
+                   "values": {"bufferView": vv}}}),
+    );
+    a.meshes[0]["primitives"][0]["attributes"]["TEXCOORD_0"] = json!(uv16);
+    a.meshes[0]["primitives"][0]["attributes"]["POSITION"] = json!(sparse);
+    let m = load(&a.write_glb(&dir, "s.glb")).unwrap();
+    let mut want = quad_mesh();
+    want.positions[2] = Vec3::new(1.0, 2.0, 0.0);
+    assert_eq!(m, want);
+}
+
+#[test]
+fn the_default_scene_decides_what_is_read() {
+    let dir = Dir::new("scenes");
+    let mut a = quad(U16);
+    a.node(json!({"mesh": 0, "translation": [0, 0, 7]}));
+    a.scenes = Some(json!([{"nodes": [0]}, {"nodes": [1]}]));
+    let first = load(&a.write_glb(&dir, "none.glb")).unwrap();
+    assert_eq!(first.positions[0], Vec3::ZERO, "no `scene`: scene 0");
+    a.scene = Some(1);
+    let second = load(&a.write_glb(&dir, "one.glb")).unwrap();
+    assert_eq!(second.positions[0], Vec3::new(0.0, 0.0, 7.0), "`scene`: 1");
+    a.scenes = Some(json!([]));
+    a.scene = None;
+    let roots = load(&a.write_glb(&dir, "roots.glb")).unwrap();
+    assert_eq!(roots.positions.len(), 8, "no scenes: every root node");
+}
+
+#[test]
+fn points_and_lines_are_skipped_and_alone_they_are_an_error() {
+    let dir = Dir::new("lines");
+    let mut a = quad(U16);
+    let mut line = primitive(0, None, None, None);
+    line["mode"] = json!(1);
+    let mut points = primitive(0, None, None, None);
+    points["mode"] = json!(0);
+    a.meshes[0]["primitives"]
+        .as_array_mut()
+        .unwrap()
+        .extend([line.clone(), points]);
+    assert_eq!(load(&a.write_glb(&dir, "mixed.glb")).unwrap(), quad_mesh());
+    a.meshes[0]["primitives"] = json!([line]);
+    let e = error(&a.write_glb(&dir, "only.glb"));
+    assert!(
+        e.starts_with(
+            ": no triangles in the default scene (1 primitives placed, 1 of them POINTS or LINES"
+        ),
+        "{e}"
+    );
+}
+
+#[test]
+fn position_bounds_may_be_missing_and_unused_buffers_are_not_read() {
+    let dir = Dir::new("lenient");
+    let mut a = quad(U16);
+    let acc = a.accessors[0].as_object_mut().unwrap();
+    acc.remove("min");
+    acc.remove("max");
+    a.root.insert(
+        "buffers".into(),
+        json!([{"byteLength": a.bin.len()},
+        {"byteLength": 10, "uri": "animation.bin"}]),
+    );
+    assert_eq!(load(&a.write_glb(&dir, "l.glb")).unwrap(), quad_mesh());
+}
+
+// ---- errors -------------------------------------------------------------------------------
+
+#[test]
+fn missing_or_short_buffers_are_named() {
+    let dir = Dir::new("buffers");
+    let a = quad(U16);
+    let path = dir.file("missing.gltf");
+    std::fs::write(&path, a.json(Some("data.bin".into())).to_string()).unwrap();
+    let e = error(&path);
+    assert!(e.starts_with(" buffer 0: cannot read 'data.bin': "), "{e}");
+
+    std::fs::write(dir.file("short.bin"), &a.bin[..a.bin.len() - 4]).unwrap();
+    std::fs::write(&path, a.json(Some("short.bin".into())).to_string()).unwrap();
+    let n = a.bin.len();
+    assert_eq!(
+        error(&path),
+        format!(
+            " buffer 0: 'short.bin' has {} bytes, fewer than its byteLength {n}",
+            n - 4
+        )
+    );
+
+    let glb_path = dir.file("nobin.glb");
+    std::fs::write(&glb_path, glb(&a.json(None).to_string(), None)).unwrap();
+    assert_eq!(
+        error(&glb_path),
+        " buffer 0: has no uri and the .glb has no BIN chunk"
+    );
+
+    std::fs::write(&path, a.json(None).to_string()).unwrap();
+    assert!(error(&path).starts_with(" buffer 0: has no uri (only buffer 0 of a .glb"));
+
+    std::fs::write(
+        &path,
+        a.json(Some("http://example.com/a.bin".into())).to_string(),
+    )
+    .unwrap();
+    assert!(
+        error(&path).contains("unsupported scheme 'http'"),
+        "{}",
+        error(&path)
+    );
+
+    let uri = format!("data:application/octet-stream,{}", "abc");
+    std::fs::write(&path, a.json(Some(uri)).to_string()).unwrap();
+    assert!(error(&path).contains("is not base64"));
+    let uri = format!("data:application/octet-stream;base64,!{}", base64(&a.bin));
+    std::fs::write(&path, a.json(Some(uri)).to_string()).unwrap();
+    assert!(error(&path).starts_with(" buffer 0: data URI: invalid base64 character '!'"));
+}
+
+#[test]
+fn out_of_range_accessors_and_views_are_named() {
+    let dir = Dir::new("ranges");
+    // The position accessor reads one element past its view.
+    let mut a = quad(U16);
+    a.accessors[0]["count"] = json!(5);
+    a.accessors[1]["count"] = json!(5);
+    a.accessors[2]["count"] = json!(5);
+    assert_eq!(
+        error(&a.write_glb(&dir, "acc.glb")),
+        " accessor 0: 5 elements of 12 bytes (stride 12) from byte 0 run past the end of buffer \
+         view 0 (48 bytes)"
+    );
+    // The view runs past the buffer.
+    let mut a = quad(U16);
+    let n = a.bin.len();
+    a.views[3]["byteLength"] = json!(100);
+    assert_eq!(
+        error(&a.write_glb(&dir, "view.glb")),
+        format!(
+            " accessor 3: buffer view 3 (bytes 128..+100) runs past the end of buffer 0 ({n} bytes)"
+        )
+    );
+    // A stride smaller than the element, a zero count, an offset beyond any size.
+    let mut a = quad(U16);
+    a.views[0]["byteStride"] = json!(8);
+    assert!(
+        error(&a.write_glb(&dir, "stride.glb"))
+            .contains("byteStride 8 is smaller than the 12-byte element")
+    );
+    let mut a = quad(U16);
+    a.accessors[3]["count"] = json!(0);
+    assert_eq!(
+        error(&a.write_glb(&dir, "zero.glb")),
+        " accessor 3: count is 0"
+    );
+    let mut a = quad(U16);
+    a.accessors[0]["byteOffset"] = json!(u64::MAX - 4);
+    assert!(error(&a.write_glb(&dir, "huge.glb")).starts_with(" accessor 0: 4 elements"));
+}
+
+#[test]
+fn bad_indices_and_non_finite_values_are_named() {
+    let dir = Dir::new("values");
+    let mut a = Asset::default();
+    let pos = a.vec3(&QUAD);
+    let good = a.indices(&QUAD_TRIS, U8);
+    let idx = a.indices(&[0, 1, 2, 0, 2, 900], U16);
+    let mesh = a.mesh(vec![
+        primitive(pos, None, None, Some(good)),
+        primitive(pos, None, None, Some(idx)),
+    ]);
+    a.node(json!({ "mesh": mesh }));
+    assert_eq!(
+        error(&a.write_glb(&dir, "index.glb")),
+        " mesh 0 primitive 1: index 900 out of range (4 vertices)"
+    );
+
+    for (k, bad, what) in [(0, f32::NAN, "NaN"), (1, f32::INFINITY, "infinite")] {
+        let mut a = Asset::default();
+        let mut p = QUAD;
+        p[2][1] = bad;
+        let pos = a.vec3(&p);
+        let mesh = a.mesh(vec![primitive(pos, None, None, None)]);
+        a.node(json!({ "mesh": mesh }));
+        assert_eq!(
+            error(&a.write_glb(&dir, &format!("nan{k}.glb"))),
+            format!(" accessor 0 element 2: position is {what}")
+        );
+    }
+    let mut a = quad(U16);
+    let bad = a.vec3(&[
+        [0.0, 0.0, 1.0],
+        [0.0, f32::NAN, 1.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, 1.0],
+    ]);
+    a.meshes[0]["primitives"][0]["attributes"]["NORMAL"] = json!(bad);
+    assert_eq!(
+        error(&a.write_glb(&dir, "nrm.glb")),
+        format!(" accessor {bad} element 1: normal is NaN")
+    );
+
+    // Not a multiple of 3, mismatched attribute counts, a wrong component type.
+    let mut a = quad(U16);
+    a.accessors[3]["count"] = json!(5);
+    assert_eq!(
+        error(&a.write_glb(&dir, "three.glb")),
+        " mesh 0 primitive 0: 5 vertices in TRIANGLES mode is not a multiple of 3"
+    );
+    let mut a = quad(U16);
+    a.accessors[2]["count"] = json!(3);
+    assert_eq!(
+        error(&a.write_glb(&dir, "count.glb")),
+        " mesh 0 primitive 0: TEXCOORD_0 has 3 elements but POSITION has 4"
+    );
+    let mut a = quad(U16);
+    a.accessors[0]["componentType"] = json!(U16);
+    assert!(
+        error(&a.write_glb(&dir, "type.glb"))
+            .starts_with(" accessor 0: POSITION must be FLOAT VEC3, found Vec3 of U16")
+    );
+    let mut a = quad(U16);
+    a.accessors[3]["componentType"] = json!(FLOAT);
+    assert!(
+        error(&a.write_glb(&dir, "ftype.glb")).starts_with(" accessor 3: indices must be SCALAR")
+    );
+}
+
+#[test]
+fn bad_sparse_accessors_are_named() {
+    let dir = Dir::new("bad_sparse");
+    for (k, indices, want) in [
+        (
+            0,
+            [3u8, 1],
+            "sparse index 1 (entry 1) is not above the one before it",
+        ),
+        (
+            1,
+            [1u8, 9],
+            "sparse index 9 (entry 1) out of range (4 elements)",
+        ),
+    ] {
+        let mut a = quad(U16);
+        let iv = a.view(&indices);
+        let vv = a.view(&[0u8; 24]);
+        a.accessors[0]["sparse"] = json!({"count": 2,
+            "indices": {"bufferView": iv, "componentType": U8}, "values": {"bufferView": vv}});
+        assert_eq!(
+            error(&a.write_glb(&dir, &format!("s{k}.glb"))),
+            format!(" accessor 0: {want}")
+        );
+    }
+    let mut a = quad(U16);
+    let iv = a.view(&[0u8, 1]);
+    let vv = a.view(&[0u8; 12]);
+    a.accessors[0]["sparse"] = json!({"count": 2,
+        "indices": {"bufferView": iv, "componentType": U8}, "values": {"bufferView": vv}});
+    assert!(
+        error(&a.write_glb(&dir, "short.glb"))
+            .starts_with(" accessor 0: sparse values: 2 elements of 12 bytes")
+    );
+}
+
+#[test]
+fn required_extensions_are_named() {
+    let dir = Dir::new("extensions");
+    for (k, names) in [
+        vec!["KHR_draco_mesh_compression"],
+        vec!["EXT_meshopt_compression", "KHR_mesh_quantization"],
+        vec!["KHR_texture_transform"],
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let mut a = quad(U16);
+        a.root.insert("extensionsRequired".into(), json!(names));
+        a.root.insert("extensionsUsed".into(), json!(names));
+        let e = error(&a.write_glb(&dir, &format!("e{k}.glb")));
+        assert!(
+            e.starts_with(&format!(
+                ": requires glTF extension {}, which lumis does not support",
+                names.join(", ")
+            )),
+            "{e}"
+        );
+        assert_eq!(e.contains("compressed geometry"), k < 2, "{e}");
+    }
+}
+
+#[test]
+fn bad_glb_containers_are_named() {
+    let dir = Dir::new("glb");
+    let good = quad(U16);
+    let bytes = glb(&good.json(None).to_string(), Some(&good.bin));
+    let cases: Vec<(Vec<u8>, String)> = vec![
+        (
+            b"glTF\x02\0\0".to_vec(),
+            " glb header: the file has 7 bytes, fewer than the 12-byte header".into(),
+        ),
+        (
+            {
+                let mut b = bytes.clone();
+                b[4] = 1;
+                b
+            },
+            " glb header: version 1 (lumis reads glTF 2.0)".into(),
+        ),
+        (
+            bytes[..bytes.len() - 4].to_vec(),
+            format!(
+                " glb header: length {} but the file has {} bytes",
+                bytes.len(),
+                bytes.len() - 4
+            ),
+        ),
+        (
+            {
+                let mut b = bytes.clone();
+                b[12] = 0xff;
+                b[13] = 0xff;
+                b
+            },
+            " glb chunk 0: 65535 bytes from byte 20 run past the end of the file".into(),
+        ),
+        (
+            {
+                let mut b = bytes.clone();
+                b[16..20].copy_from_slice(b"BIN\0");
+                b
+            },
+            " glb chunk 0: type 0x004e4942, but the first must be JSON".into(),
+        ),
+        (
+            {
+                let mut b = bytes[..14].to_vec();
+                b[8..12].copy_from_slice(&14u32.to_le_bytes());
+                b
+            },
+            " glb chunk 0: truncated chunk header at byte 12 (14 bytes)".into(),
+        ),
+    ];
+    for (k, (bytes, want)) in cases.into_iter().enumerate() {
+        let path = dir.file(&format!("g{k}.glb"));
+        std::fs::write(&path, bytes).unwrap();
+        let e = error(&path);
+        assert!(e.starts_with(&want), "case {k}: {e}");
+    }
+}
+
+#[test]
+fn invalid_json_and_invalid_gltf_are_named_with_their_paths() {
+    let dir = Dir::new("json");
+    let path = dir.file("bad.gltf");
+    std::fs::write(&path, "{ \"asset\": ").unwrap();
+    assert!(
+        error(&path).starts_with(": invalid glTF JSON: EOF while parsing"),
+        "{}",
+        error(&path)
+    );
+
+    let a = quad(U16);
+    let mut j = a.json(Some(format!(
+        "data:application/octet-stream;base64,{}",
+        base64(&a.bin)
+    )));
+    j["meshes"][0]["primitives"][0]["indices"] = json!(42);
+    j["meshes"][0]["primitives"][0]["mode"] = json!(99);
+    std::fs::write(&path, j.to_string()).unwrap();
+    let e = error(&path);
+    assert!(e.contains("invalid glTF: "), "{e}");
+    assert!(
+        e.contains("meshes[0].primitives[0].indices: Index out of bounds"),
+        "{e}"
+    );
+    assert!(
+        e.contains("meshes[0].primitives[0].mode: Invalid value"),
+        "{e}"
+    );
+
+    // The `gltf` crate's own validation would index this accessor and panic.
+    j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = json!(77);
+    std::fs::write(&path, j.to_string()).unwrap();
+    assert_eq!(
+        error(&path),
+        " mesh 0 primitive 0: POSITION accessor 77 does not exist (4 accessors)"
+    );
+}
+
+#[test]
+fn bad_node_hierarchies_are_named() {
+    let dir = Dir::new("nodes");
+    let mut a = quad(U16);
+    a.node(json!({"children": [2]}));
+    a.node(json!({"children": [1], "mesh": 0}));
+    a.scenes = Some(json!([{"nodes": [0, 1]}]));
+    assert!(error(&a.write_glb(&dir, "cycle.glb")).starts_with(" node 1: reached twice"));
+    let mut a = quad(U16);
+    a.nodes[0]["scale"] = json!([1e30, 1, 1]);
+    a.node(json!({"children": [0], "scale": [1e30, 1, 1]}));
+    assert_eq!(
+        error(&a.write_glb(&dir, "inf.glb")),
+        " node 0: transform is not finite (composed with its parents)"
+    );
+    let mut a = quad(U16);
+    a.nodes[0]["rotation"] = json!([0, 0, 0, 0]);
+    assert!(
+        error(&a.write_glb(&dir, "rot.glb"))
+            .starts_with(" node 0: rotation is not a unit quaternion")
+    );
+}
+
+#[test]
+fn a_missing_file_is_named() {
+    let path = std::env::temp_dir().join("lumis-gltf-test-no-such-file.glb");
+    assert!(error(&path).starts_with(": "));
+}
+
+#[test]
+fn base64_decodes_with_and_without_padding() {
+    for n in 0..10 {
+        let bytes: Vec<u8> = (0..n).map(|i| (i * 37 + 5) as u8).collect();
+        let text = base64(&bytes);
+        assert_eq!(super::decode_base64(&text).unwrap(), bytes);
+        assert_eq!(
+            super::decode_base64(text.trim_end_matches('=')).unwrap(),
+            bytes
+        );
+    }
+    assert!(super::decode_base64("QUJDR").is_err());
+}
