@@ -24,8 +24,12 @@ pub fn light_to_shape(desc: &SceneDesc) -> Vec<usize> {
         }
         let count = match &s.geometry {
             GeometryDesc::Triangles { indices, .. } => indices.len(),
+            GeometryDesc::Mesh { mesh, .. } => mesh.indices.len(),
             GeometryDesc::Box { .. } => 6,
-            _ => 1,
+            GeometryDesc::Quad { .. }
+            | GeometryDesc::Polygon { .. }
+            | GeometryDesc::Disk { .. }
+            | GeometryDesc::Sphere { .. } => 1,
         };
         out.extend(std::iter::repeat_n(i, count));
     }
@@ -47,4 +51,51 @@ pub fn pick(scene: &Scene, desc: &SceneDesc, x: f32, y: f32) -> Option<Picked> {
         material: material.then_some(prim.material as usize),
         light_shape,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use lumis::scene::{Scene, load_scene};
+
+    /// `light_to_shape` has one entry per light `Scene::from_desc` makes (the background aside),
+    /// for every shipped scene and for an emitting mesh file (one light per triangle).
+    #[test]
+    fn one_shape_per_light() {
+        let dir = std::env::temp_dir().join(format!("lumis-pick-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(
+            dir.join("tet.obj"),
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+        )
+        .unwrap();
+        let mesh_scene = dir.join("mesh.json");
+        std::fs::write(
+            &mesh_scene,
+            r#"{"camera": {"from": [0, 0, -3], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 40,
+                "width": 4, "height": 4},
+               "shapes": [{"type": "mesh", "file": "tet.obj", "emission": [1, 1, 1]},
+                          {"type": "sphere", "center": [3, 0, 0], "radius": 1, "emission": [1, 1, 1]}]}"#,
+        )
+        .unwrap();
+        let assets = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets");
+        let mut paths: Vec<_> = std::fs::read_dir(&assets)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|e| e == "json"))
+            .collect();
+        paths.push(mesh_scene);
+        for path in paths {
+            let desc = load_scene(&path).unwrap();
+            let scene = Scene::from_desc(&desc).unwrap();
+            let shapes = light_to_shape(&desc);
+            let background = scene.background_light.is_some() as usize;
+            assert_eq!(
+                shapes.len() + background,
+                scene.lights.len(),
+                "{}",
+                path.display()
+            );
+        }
+    }
 }
