@@ -69,17 +69,8 @@ impl Image {
                 ));
             }
         }
-        let img = image::open(path).map_err(|e| err(path, e))?.into_rgb32f();
-        let (width, height) = img.dimensions();
-        let data = img
-            .pixels()
-            .map(|p| Vec3::new(p.0[0], p.0[1], p.0[2]))
-            .collect();
-        Ok(Image {
-            width,
-            height,
-            data,
-        })
+        let img = image::open(path).map_err(|e| err(path, e))?;
+        Ok(Image::from_dynamic(img))
     }
 
     /// Reads a linear RGB EXR and nothing else: another extension, an unreadable file or one
@@ -102,17 +93,22 @@ impl Image {
                 ),
             ));
         }
+        Ok(Image::from_dynamic(img))
+    }
+
+    /// The RGB channels of a decoded image as linear f32 (alpha and extra channels dropped).
+    fn from_dynamic(img: image::DynamicImage) -> Image {
         let img = img.into_rgb32f();
         let (width, height) = img.dimensions();
         let data = img
             .pixels()
             .map(|p| Vec3::new(p.0[0], p.0[1], p.0[2]))
             .collect();
-        Ok(Image {
+        Image {
             width,
             height,
             data,
-        })
+        }
     }
 
     /// Writes by extension: `.exr`, `.pfm` (linear float) or `.png` (sRGB 8-bit after multiplying by

@@ -204,32 +204,22 @@ impl Scene {
                         push_light(PolygonLight::new(verts, indices, n, le).map(Light::Polygon))?;
                     push_tris(&tris, light);
                 }
-                GeometryDesc::Triangles { positions, indices } => {
+                GeometryDesc::Triangles { .. } | GeometryDesc::Mesh { .. } => {
+                    // One primitive, and for an emitter one triangle light, per triangle.
+                    let (world, indices): (Vec<Vec3>, &[[u32; 3]]) = match &shape.geometry {
+                        GeometryDesc::Triangles { positions, indices } => {
+                            (positions.iter().map(|&p| v(p)).collect(), indices)
+                        }
+                        GeometryDesc::Mesh { to_world, mesh, .. } => (
+                            mesh.positions
+                                .iter()
+                                .map(|p| to_world.transform_point3(p.as_dvec3()).as_vec3())
+                                .collect(),
+                            &mesh.indices,
+                        ),
+                        _ => unreachable!("matched above"),
+                    };
                     for idx in indices {
-                        let t = [
-                            v(positions[idx[0] as usize]),
-                            v(positions[idx[1] as usize]),
-                            v(positions[idx[2] as usize]),
-                        ];
-                        let light =
-                            push_light(crate::geometry::triangle::triangle_normal(&t).map(|n| {
-                                Light::Triangle(TriangleLight {
-                                    v: t,
-                                    n,
-                                    area: crate::geometry::triangle::triangle_area(&t),
-                                    le,
-                                })
-                            }))?;
-                        push_tris(&[t], light);
-                    }
-                }
-                GeometryDesc::Mesh { to_world, mesh, .. } => {
-                    let world: Vec<Vec3> = mesh
-                        .positions
-                        .iter()
-                        .map(|p| to_world.transform_point3(p.as_dvec3()).as_vec3())
-                        .collect();
-                    for idx in &mesh.indices {
                         let t = idx.map(|i| world[i as usize]);
                         let light =
                             push_light(crate::geometry::triangle::triangle_normal(&t).map(|n| {

@@ -4,6 +4,7 @@ use super::desc::GeometryDesc;
 use super::error::SceneError;
 use super::walk::{Obj, array, integer, vec3};
 use crate::geometry::polygon::{PolygonError, validate_polygon};
+use glam::DVec3;
 
 /// A triangle whose |cross product| is below this fraction of its longest edge squared has zero
 /// area: far above f64 rounding, far below any real sliver.
@@ -27,6 +28,38 @@ pub(crate) fn polygon(obj: &Obj) -> Result<GeometryDesc, SceneError> {
         }
         Err(e) => Err(SceneError::new(path, e.to_string())),
     }
+}
+
+/// Whether a triangle has zero area by the format's rule: |cross product| at most
+/// [`DEGENERATE_TRIANGLE`] times its longest edge squared (`triangles` and `mesh` alike).
+pub(crate) fn has_zero_area([a, b, c]: [DVec3; 3]) -> bool {
+    let longest2 = (b - a)
+        .length_squared()
+        .max((c - b).length_squared())
+        .max((a - c).length_squared());
+    let area2 = (b - a).cross(c - a).length();
+    // Written so that a NaN area also counts as zero.
+    area2.partial_cmp(&(DEGENERATE_TRIANGLE * longest2)) != Some(std::cmp::Ordering::Greater)
+}
+
+/// `dropped N zero-area triangle(s): …`, listing at most [`LISTED_DROPS`] of them, each as
+/// `label` writes it.
+pub(crate) fn dropped_list(dropped: &[usize], label: impl Fn(usize) -> String) -> String {
+    let list: Vec<String> = dropped
+        .iter()
+        .take(LISTED_DROPS)
+        .map(|&t| label(t))
+        .collect();
+    let more = if dropped.len() > LISTED_DROPS {
+        ", …"
+    } else {
+        ""
+    };
+    format!(
+        "dropped {} zero-area triangle(s): {}{more}",
+        dropped.len(),
+        list.join(", ")
+    )
 }
 
 /// A `triangles` mesh: indices in range; zero-area triangles are an error when the shape emits
@@ -63,12 +96,7 @@ pub(crate) fn triangles(
             }
             idx[c] = i;
         }
-        let [a, b, c] = idx.map(|i| positions[i as usize]);
-        let longest2 = (b - a)
-            .length_squared()
-            .max((c - b).length_squared())
-            .max((a - c).length_squared());
-        if (b - a).cross(c - a).length() > DEGENERATE_TRIANGLE * longest2 {
+        if !has_zero_area(idx.map(|i| positions[i as usize])) {
             indices.push(idx);
         } else if emits {
             // A zero-area light has an infinite area-sampling pdf: refuse rather than guess.
@@ -83,21 +111,8 @@ pub(crate) fn triangles(
         }
     }
     if !dropped.is_empty() {
-        let list: Vec<String> = dropped
-            .iter()
-            .take(LISTED_DROPS)
-            .map(|t| format!("[{t}]"))
-            .collect();
-        let more = if dropped.len() > LISTED_DROPS {
-            ", …"
-        } else {
-            ""
-        };
-        warnings.push(format!(
-            "{ipath}: dropped {} zero-area triangle(s): {}{more}",
-            dropped.len(),
-            list.join(", ")
-        ));
+        let list = dropped_list(&dropped, |t| format!("[{t}]"));
+        warnings.push(format!("{ipath}: {list}"));
     }
     if indices.is_empty() {
         warnings.push(format!("{}: the mesh has no triangles", obj.path));

@@ -4,7 +4,7 @@
 use super::desc::GeometryDesc;
 use super::error::SceneError;
 use super::mesh::{MeshData, load_mesh};
-use super::parse_mesh::DEGENERATE_TRIANGLE;
+use super::parse_mesh::{dropped_list, has_zero_area};
 use super::walk::{Obj, array, number};
 use glam::{DMat4, DVec3, DVec4};
 use std::path::Path;
@@ -13,9 +13,6 @@ use std::sync::Arc;
 /// A transform whose 3×3 part has |det| below this fraction of the product of its column lengths
 /// is singular for all practical purposes (normals could not be transformed).
 const SINGULAR: f64 = 1e-12;
-
-/// At most this many dropped triangles are listed by index in a warning.
-const LISTED_DROPS: usize = 5;
 
 /// A `mesh` shape: the file (relative to `folder`), `to_world`, `face_normals`. Zero-area
 /// triangles (after `to_world`) are an error when the shape emits (`emits`), otherwise dropped
@@ -56,12 +53,7 @@ pub(crate) fn mesh(
     let mut kept = Vec::with_capacity(data.indices.len());
     let mut dropped = Vec::new();
     for (t, idx) in data.indices.iter().enumerate() {
-        let [a, b, c] = idx.map(|i| world[i as usize]);
-        let longest2 = (b - a)
-            .length_squared()
-            .max((c - b).length_squared())
-            .max((a - c).length_squared());
-        if (b - a).cross(c - a).length() > DEGENERATE_TRIANGLE * longest2 {
+        if !has_zero_area(idx.map(|i| world[i as usize])) {
             kept.push(*idx);
         } else if emits {
             // A zero-area light has an infinite area-sampling pdf: refuse rather than guess.
@@ -77,22 +69,8 @@ pub(crate) fn mesh(
         }
     }
     if !dropped.is_empty() {
-        let list: Vec<String> = dropped
-            .iter()
-            .take(LISTED_DROPS)
-            .map(|t| t.to_string())
-            .collect();
-        let more = if dropped.len() > LISTED_DROPS {
-            ", …"
-        } else {
-            ""
-        };
-        warnings.push(format!(
-            "{file_path}: {}: dropped {} zero-area triangle(s): {}{more}",
-            file.display(),
-            dropped.len(),
-            list.join(", ")
-        ));
+        let list = dropped_list(&dropped, |t| t.to_string());
+        warnings.push(format!("{file_path}: {}: {list}", file.display()));
     }
     if data.normals.is_some() && !face_normals {
         // Not silently: the image differs from a renderer that interpolates them.
