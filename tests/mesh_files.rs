@@ -297,3 +297,86 @@ fn every_format_renders_the_inline_triangles_image() {
         }
     }
 }
+
+/// The scene keeps a mesh's vertex attributes per vertex, normals in world space (the inverse
+/// transpose of `to_world`, unit length) and UVs as read; `face_normals` drops the normals; every
+/// kept triangle's `attr` finds its own vertices, also after a dropped zero-area triangle.
+#[test]
+fn mesh_attributes_reach_the_scene_in_world_space() {
+    use glam::Vec2;
+    use lumis::geometry::mesh_attributes::HAS_NORMALS;
+    use lumis::geometry::primitive::NONE;
+    use lumis::scene::mesh::MeshData;
+    let dir = scratch();
+    let mesh = MeshData {
+        positions: vec![
+            Vec3::ZERO,
+            Vec3::X,
+            Vec3::Y,
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(3.0, 0.0, 0.0),
+        ],
+        // The second triangle has zero area and is dropped.
+        indices: vec![[0, 3, 4], [0, 1, 2], [1, 3, 2]],
+        normals: Some(vec![
+            Vec3::new(1.0, 0.0, 1.0),
+            Vec3::Z,
+            Vec3::new(0.0, 1.0, 1.0),
+            Vec3::Z,
+            Vec3::Z,
+        ]),
+        uvs: Some(
+            (0..5)
+                .map(|i| Vec2::new(i as f32 * 0.1, 1.0 - i as f32 * 0.2))
+                .collect(),
+        ),
+    };
+    lumis::scene::mesh::ply::write(
+        &dir.join("attr.ply"),
+        &mesh,
+        lumis::scene::mesh::ply::Encoding::Ascii,
+    )
+    .unwrap();
+    // Scale x by 2: a normal (nx, ny, nz) becomes (nx/2, ny, nz), normalised.
+    let to_world = r#""to_world": [[2, 0, 0, 1], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]"#;
+    for face_normals in [false, true] {
+        let shape = format!(
+            r#"{{"type": "mesh", "file": "attr.ply", "face_normals": {face_normals}, {to_world}}}"#
+        );
+        let scene = scene_with("attr.json", &shape);
+        let a = &scene.attributes;
+        assert_eq!(a.has_normals(), !face_normals);
+        let prims: Vec<_> = scene
+            .accel
+            .primitives()
+            .iter()
+            // The two quads come first: their corner UVs are meshes 0 and 1.
+            .filter(|p| p.attr != NONE && a.triangles[p.attr as usize].mesh == 2)
+            .collect();
+        assert_eq!(a.meshes.len(), 3);
+        assert_eq!(prims.len(), 2, "the zero-area triangle is dropped");
+        for p in prims {
+            let t = a.triangles[p.attr as usize];
+            let m = a.meshes[t.mesh as usize];
+            assert_eq!(m.flags & HAS_NORMALS != 0, !face_normals);
+            let lumis::geometry::Shape::Triangle { v, .. } = p.shape else {
+                unreachable!()
+            };
+            for (k, &i) in t.v.iter().enumerate() {
+                // The vertex in the file whose world position is this corner.
+                let file_p = mesh.positions[i as usize];
+                assert_eq!(v[k], Vec3::new(2.0 * file_p.x + 1.0, file_p.y, file_p.z));
+                assert_eq!(
+                    a.uvs[(m.uv_base + i) as usize],
+                    mesh.uvs.as_ref().unwrap()[i as usize]
+                );
+                if !face_normals {
+                    let n = mesh.normals.as_ref().unwrap()[i as usize];
+                    let expected = Vec3::new(n.x / 2.0, n.y, n.z).normalize();
+                    let got = a.normals[(m.normal_base + i) as usize];
+                    assert!((got - expected).length() < 1e-6, "{got} vs {expected}");
+                }
+            }
+        }
+    }
+}

@@ -3,42 +3,114 @@
 //! `ply-be`, `obj`. For the scale test (a 1M-triangle PLY made at test time, not committed) and
 //! the tessellated-sphere test.
 //!
-//! The sphere has `s` stacks and `2s` segments, `s` the smallest with `4s(s − 1) ≥ N` triangles
-//! (`(s + 1)(2s + 1)` vertices: the seam and the poles are repeated so that the texture
-//! coordinates are continuous): vertex `(i, j)` is at polar angle `θ = πi/s` from +y and azimuth
-//! `φ = 2πj/(2s)`, direction `d = (sin θ cos φ, cos θ, −sin θ sin φ)`, texture coordinates
-//! `(j/2s, 1 − i/s)`. Triangles wind counter-clockwise seen from outside (the right-hand rule
-//! gives the outward normal); the degenerate halves of the quads at the poles are left out.
+//! The sphere is [`lumis::scene::mesh::uv_sphere::UvSphere`] (its doc says how it is made):
+//! `--bumps A` (0 ≤ A < 1, default 0) displaces it, with exact normals, at frequency
+//! `--frequency` (default 8). `--no-normals` and `--no-uvs` leave those out. There is no
+//! randomness: the file is a function of the arguments.
 //!
-//! `--bumps A` (0 ≤ A < 1, default 0) displaces the radius to `r = 1 + A·sin(kx)·sin(ky)·sin(kz)`
-//! (`k` = `--frequency`, default 8) and gives the exact normals of that surface,
-//! `normalize(d − ∇ₛr / r)`; with `A = 0` it is the unit sphere with normals `d`. `--no-normals`
-//! and `--no-uvs` leave those out. There is no randomness: the file is a function of the
-//! arguments.
-//!
-//! `--load FILE` instead reads FILE with lumis's mesh reader and prints the time it took and the
-//! size of the result (for peak memory, run it under `/usr/bin/time -v`).
+//! `--load FILE` instead reads FILE with lumis's mesh reader and prints the time it took, the
+//! size of the result and the peak heap while reading. `--scene SCENE.json` loads a scene (e.g.
+//! one with a `mesh` shape of that file) and prints, each with its peak heap over what was live
+//! before: the parse (reading the mesh files) and the build ([`Scene::from_desc`]) times, the
+//! BVH build alone ([`Accel::new`] over the scene's primitives), a surface-area estimate of the
+//! BVH's cost per ray, and its ray throughput on one thread in Mrays/s (closest hit and
+//! unblocked any hit, for about 2^18 camera rays through a grid in each pixel and as many rays
+//! from uniform points in uniform directions). Heap is counted by this example's global
+//! allocator.
 //!
 //! `cargo run --release -p lumis-renderer --example make_mesh -- --triangles 1000000 /tmp/sphere_1m.ply`
 //! `cargo run --release -p lumis-renderer --example make_mesh -- --triangles 20000 --bumps 0.05 --format obj /tmp/bumpy.obj`
 //! `cargo run --release -p lumis-renderer --example make_mesh -- --load /tmp/sphere_1m.ply`
+//! `cargo run --release -p lumis-renderer --example make_mesh -- --scene /tmp/sphere_1m.json`
 
-use glam::{DVec3, Vec2, Vec3};
-use lumis::scene::mesh::{MeshData, load_mesh, obj, ply};
-use std::f64::consts::PI;
-use std::path::PathBuf;
+use glam::{Vec2, Vec3};
+use lumis::geometry::{Accel, Ray};
+use lumis::rng::Rng;
+use lumis::sampling::sample_uniform_sphere;
+use lumis::scene::mesh::uv_sphere::UvSphere;
+use lumis::scene::mesh::{load_mesh, obj, ply};
+use lumis::scene::{Scene, load_scene};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 const USAGE: &str = "usage: make_mesh [--triangles N] [--bumps A] [--frequency K] \
-[--format ply|ply-ascii|ply-be|obj] [--no-normals] [--no-uvs] OUT\n       make_mesh --load FILE";
+[--format ply|ply-ascii|ply-be|obj] [--no-normals] [--no-uvs] OUT
+       make_mesh --load FILE
+       make_mesh --scene SCENE.json";
 
-/// What to write.
-struct Sphere {
-    triangles: usize,
-    bumps: f64,
-    frequency: f64,
-    normals: bool,
-    uvs: bool,
+/// The system allocator, counting the bytes live on the heap and their peak.
+struct Counting;
+
+static LIVE: AtomicUsize = AtomicUsize::new(0);
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+
+fn grew(bytes: usize) {
+    let now = LIVE.fetch_add(bytes, Ordering::Relaxed) + bytes;
+    PEAK.fetch_max(now, Ordering::Relaxed);
+}
+
+// SAFETY: every call is forwarded to `System` unchanged; only the counters are added.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let p = unsafe { System.alloc(layout) };
+        if !p.is_null() {
+            grew(layout.size());
+        }
+        p
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        let p = unsafe { System.alloc_zeroed(layout) };
+        if !p.is_null() {
+            grew(layout.size());
+        }
+        p
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) };
+        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        let p = unsafe { System.realloc(ptr, layout, new_size) };
+        if !p.is_null() {
+            if new_size > layout.size() {
+                // As tests/mesh_scale.rs counts it: growing as if the block moved (an upper
+                // bound), shrinking in place.
+                grew(new_size);
+                LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
+            } else {
+                LIVE.fetch_sub(layout.size() - new_size, Ordering::Relaxed);
+            }
+        }
+        p
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Counting = Counting;
+
+/// Runs `f`, returning its result, its seconds and its peak heap over what was live before.
+fn measured<T>(f: impl FnOnce() -> T) -> (T, f64, usize) {
+    let before = LIVE.load(Ordering::Relaxed);
+    PEAK.store(before, Ordering::Relaxed);
+    let start = Instant::now();
+    let out = f();
+    let seconds = start.elapsed().as_secs_f64();
+    (out, seconds, PEAK.load(Ordering::Relaxed) - before)
+}
+
+/// What to do.
+enum Task {
+    /// Write a sphere.
+    Write(UvSphere, Format, PathBuf),
+    /// Read a mesh file.
+    Load(PathBuf),
+    /// Load and measure a scene.
+    Scene(PathBuf),
 }
 
 /// The file format to write.
@@ -47,93 +119,9 @@ enum Format {
     Obj,
 }
 
-impl Sphere {
-    /// The smallest stack count giving at least `self.triangles` triangles.
-    fn stacks(&self) -> usize {
-        let mut s = 2;
-        while 4 * s * (s - 1) < self.triangles {
-            s += 1;
-        }
-        s
-    }
-
-    /// The mesh (see the module doc).
-    fn mesh(&self) -> MeshData {
-        let s = self.stacks();
-        let segments = 2 * s;
-        let columns = segments + 1;
-        let vertices = (s + 1) * columns;
-        let mut positions = Vec::with_capacity(vertices);
-        let mut normals = Vec::with_capacity(if self.normals { vertices } else { 0 });
-        let mut uvs = Vec::with_capacity(if self.uvs { vertices } else { 0 });
-        let azimuth: Vec<(f64, f64)> = (0..columns)
-            .map(|j| (2.0 * PI * j as f64 / segments as f64).sin_cos())
-            .collect();
-        for i in 0..=s {
-            let (sin_t, cos_t) = (PI * i as f64 / s as f64).sin_cos();
-            for (j, &(sin_p, cos_p)) in azimuth.iter().enumerate() {
-                let d = DVec3::new(sin_t * cos_p, cos_t, -sin_t * sin_p);
-                let (p, n) = self.displaced(d);
-                positions.push(p.as_vec3());
-                if self.normals {
-                    normals.push(n.as_vec3());
-                }
-                if self.uvs {
-                    uvs.push(Vec2::new(
-                        j as f32 / segments as f32,
-                        1.0 - i as f32 / s as f32,
-                    ));
-                }
-            }
-        }
-        let mut indices = Vec::with_capacity(4 * s * (s - 1));
-        let at = |i: usize, j: usize| (i * columns + j) as u32;
-        for i in 0..s {
-            for j in 0..segments {
-                let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-                if i + 1 < s {
-                    indices.push([a, b, c]);
-                }
-                if i > 0 {
-                    indices.push([a, c, d]);
-                }
-            }
-        }
-        MeshData {
-            positions,
-            indices,
-            normals: self.normals.then_some(normals),
-            uvs: self.uvs.then_some(uvs),
-        }
-    }
-
-    /// The point of the surface in direction `d` (unit) and its unit normal.
-    fn displaced(&self, d: DVec3) -> (DVec3, DVec3) {
-        if self.bumps == 0.0 {
-            return (d, d);
-        }
-        let k = self.frequency;
-        let (s, c) = (
-            DVec3::new((k * d.x).sin(), (k * d.y).sin(), (k * d.z).sin()),
-            DVec3::new((k * d.x).cos(), (k * d.y).cos(), (k * d.z).cos()),
-        );
-        let r = 1.0 + self.bumps * s.x * s.y * s.z;
-        let grad = self.bumps * k * DVec3::new(c.x * s.y * s.z, s.x * c.y * s.z, s.x * s.y * c.z);
-        // Only the part of the gradient along the sphere tilts the surface.
-        let tangential = grad - grad.dot(d) * d;
-        (r * d, (d - tangential / r).normalize())
-    }
-}
-
 /// Parses the command line: a sphere to write and where, or a file to load.
-fn parse() -> Result<Result<(Sphere, Format, PathBuf), PathBuf>, String> {
-    let mut sphere = Sphere {
-        triangles: 1000,
-        bumps: 0.0,
-        frequency: 8.0,
-        normals: true,
-        uvs: true,
-    };
+fn parse() -> Result<Task, String> {
+    let mut sphere = UvSphere::new(1000);
     let mut format = Format::Ply(ply::Encoding::BinaryLittleEndian);
     let mut out = None;
     let mut args = std::env::args().skip(1);
@@ -169,13 +157,185 @@ fn parse() -> Result<Result<(Sphere, Format, PathBuf), PathBuf>, String> {
             }
             "--no-normals" => sphere.normals = false,
             "--no-uvs" => sphere.uvs = false,
-            "--load" => return Ok(Err(PathBuf::from(value("--load")?))),
+            "--load" => return Ok(Task::Load(PathBuf::from(value("--load")?))),
+            "--scene" => return Ok(Task::Scene(PathBuf::from(value("--scene")?))),
             _ if arg.starts_with("--") => return Err(format!("unknown option {arg}")),
             _ => out = Some(PathBuf::from(arg)),
         }
     }
     let out = out.ok_or("no output file given")?;
-    Ok(Ok((sphere, format, out)))
+    Ok(Task::Write(sphere, format, out))
+}
+
+/// Writes `sphere` to `out`.
+fn write(sphere: &UvSphere, format: Format, out: &Path) {
+    let start = Instant::now();
+    let mesh = sphere.mesh();
+    let made = start.elapsed();
+    let written = match format {
+        Format::Ply(encoding) => ply::write(out, &mesh, encoding),
+        Format::Obj => obj::write(out, &mesh),
+    };
+    written.unwrap_or_else(|e| fail(format!("{}: {e}", out.display())));
+    eprintln!(
+        "{}: {} triangles, {} vertices (made in {:.3} s, written in {:.3} s)",
+        out.display(),
+        mesh.indices.len(),
+        mesh.positions.len(),
+        made.as_secs_f64(),
+        (start.elapsed() - made).as_secs_f64()
+    );
+}
+
+/// Reads `file` and says how long it took and how large the result is.
+fn load(file: &Path) {
+    let (mesh, seconds, peak) = measured(|| load_mesh(file));
+    let mesh = mesh.unwrap_or_else(|e| fail(e));
+    let bytes = mesh.positions.capacity() * size_of::<Vec3>()
+        + mesh.indices.capacity() * size_of::<[u32; 3]>()
+        + mesh
+            .normals
+            .as_ref()
+            .map_or(0, |n| n.capacity() * size_of::<Vec3>())
+        + mesh
+            .uvs
+            .as_ref()
+            .map_or(0, |u| u.capacity() * size_of::<Vec2>());
+    let per_tri = |b: usize| b as f64 / mesh.indices.len().max(1) as f64;
+    println!(
+        "{}: {} triangles, {} vertices, normals {}, uvs {}; read in {seconds:.3} s; \
+         MeshData {:.1} MB ({:.1} B per triangle), peak heap {:.1} MB ({:.1} B per triangle)",
+        file.display(),
+        mesh.indices.len(),
+        mesh.positions.len(),
+        mesh.normals.is_some(),
+        mesh.uvs.is_some(),
+        bytes as f64 / 1e6,
+        per_tri(bytes),
+        peak as f64 / 1e6,
+        per_tri(peak)
+    );
+}
+
+/// Loads the scene `file` and prints its load and build figures and its BVH's ray throughput.
+fn scene(file: &Path) {
+    let (desc, parse_s, parse_peak) = measured(|| load_scene(file));
+    let desc = desc.unwrap_or_else(|e| fail(e));
+    let (scene, build_s, build_peak) = measured(|| Scene::from_desc(&desc));
+    let scene = scene.unwrap_or_else(|e| fail(e));
+    drop(desc);
+    let prims = scene.accel.primitives().len();
+    let per_prim = |b: usize| b as f64 / prims as f64;
+    println!(
+        "{}: {prims} primitives; parse {parse_s:.3} s (peak heap {:.1} B per primitive), \
+         build {build_s:.3} s (peak heap over the parsed scene {:.1} B per primitive)",
+        file.display(),
+        per_prim(parse_peak),
+        per_prim(build_peak)
+    );
+    let copy = scene.accel.primitives().to_vec();
+    let (_, bvh_s, bvh_peak) = measured(|| Accel::new(copy));
+    println!(
+        "BVH alone: {bvh_s:.3} s, peak heap {:.1} B per primitive over its input",
+        per_prim(bvh_peak)
+    );
+    if let Some(bvh) = scene.accel.cwbvh() {
+        let (nodes, prims) = surface_area_costs(bvh);
+        println!(
+            "BVH: {} nodes; a ray through its box meets on average {nodes:.2} nodes and \
+             {prims:.2} primitives' boxes (surface-area estimate)",
+            bvh.nodes.len()
+        );
+    }
+    let camera = &scene.camera;
+    // About 2^18 camera rays: a grid of rays in each pixel.
+    let grid = ((1u32 << 18) as f64 / (camera.width * camera.height) as f64)
+        .sqrt()
+        .max(1.0) as u32;
+    let coherent: Vec<Ray> = (0..camera.height * grid)
+        .flat_map(|y| (0..camera.width * grid).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let at = |i: u32| (i as f32 + 0.5) / grid as f32;
+            camera.ray(at(x), at(y))
+        })
+        .collect();
+    let (lo, hi) = scene.accel.bounds();
+    let incoherent: Vec<Ray> = (0..coherent.len() as u32)
+        .map(|i| {
+            let mut rng = Rng::new(7, i, 0);
+            let o = lo + (hi - lo) * Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32());
+            let d = sample_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+            Ray::new(o, d)
+        })
+        .collect();
+    for (name, rays) in [("camera", &coherent), ("random", &incoherent)] {
+        // Shadow rays that reach just short of the closest hit: nothing blocks them, so the whole
+        // traversal runs.
+        let shadow: Vec<Ray> = rays
+            .iter()
+            .map(|r| match scene.accel.intersect(r) {
+                Some(hit) => Ray {
+                    t_max: hit.t * 0.999,
+                    ..*r
+                },
+                None => *r,
+            })
+            .collect();
+        let closest = mrays_per_second(rays, |r| scene.accel.intersect(r).is_some());
+        let any = mrays_per_second(&shadow, |r| scene.accel.occluded(r));
+        println!(
+            "{name} rays ({}): closest hit {closest:.2} Mrays/s, unblocked any hit {any:.2} \
+             Mrays/s (one thread)",
+            rays.len()
+        );
+    }
+}
+
+/// The surface-area estimates of the nodes and leaf primitives a random line through the root's
+/// box meets (`Σ area(node) / area(root)` over internal nodes, `Σ count · area(leaf) /
+/// area(root)` over leaves): a measure of the tree's quality that does not depend on timing.
+fn surface_area_costs(bvh: &obvhs::cwbvh::CwBvh) -> (f64, f64) {
+    let root = bvh.total_aabb.half_area() as f64;
+    let (mut nodes, mut prims) = (0.0, 0.0);
+    let mut todo = vec![(0usize, root)];
+    while let Some((i, area)) = todo.pop() {
+        nodes += area / root;
+        let node = &bvh.nodes[i];
+        for s in 0..8 {
+            if node.is_child_empty(s) {
+                continue;
+            }
+            let child = node.child_aabb(s).half_area() as f64;
+            if node.is_leaf(s) {
+                prims += node.child_primitives(s).1 as f64 * child / root;
+            } else {
+                todo.push((node.child_node_index(s) as usize, child));
+            }
+        }
+    }
+    (nodes, prims)
+}
+
+/// Rays per second through `query`, in millions: the best of 5 rounds, the one least disturbed
+/// by other work on the machine.
+fn mrays_per_second(rays: &[Ray], query: impl Fn(&Ray) -> bool) -> f64 {
+    let best = (0..5)
+        .map(|_| {
+            let start = Instant::now();
+            let n = rays
+                .iter()
+                .filter(|r| query(std::hint::black_box(r)))
+                .count();
+            std::hint::black_box(n);
+            start.elapsed().as_secs_f64()
+        })
+        .fold(f64::INFINITY, f64::min);
+    rays.len() as f64 / best / 1e6
+}
+
+fn fail(e: impl std::fmt::Display) -> ! {
+    eprintln!("make_mesh: {e}");
+    std::process::exit(1);
 }
 
 fn main() {
@@ -184,55 +344,8 @@ fn main() {
         std::process::exit(2);
     });
     match task {
-        Ok((sphere, format, out)) => {
-            let start = Instant::now();
-            let mesh = sphere.mesh();
-            let made = start.elapsed();
-            let written = match format {
-                Format::Ply(encoding) => ply::write(&out, &mesh, encoding),
-                Format::Obj => obj::write(&out, &mesh),
-            };
-            written.unwrap_or_else(|e| {
-                eprintln!("make_mesh: {}: {e}", out.display());
-                std::process::exit(1);
-            });
-            eprintln!(
-                "{}: {} triangles, {} vertices (made in {:.3} s, written in {:.3} s)",
-                out.display(),
-                mesh.indices.len(),
-                mesh.positions.len(),
-                made.as_secs_f64(),
-                (start.elapsed() - made).as_secs_f64()
-            );
-        }
-        Err(file) => {
-            let start = Instant::now();
-            let mesh = load_mesh(&file).unwrap_or_else(|e| {
-                eprintln!("make_mesh: {e}");
-                std::process::exit(1);
-            });
-            let seconds = start.elapsed().as_secs_f64();
-            let bytes = mesh.positions.capacity() * size_of::<Vec3>()
-                + mesh.indices.capacity() * size_of::<[u32; 3]>()
-                + mesh
-                    .normals
-                    .as_ref()
-                    .map_or(0, |n| n.capacity() * size_of::<Vec3>())
-                + mesh
-                    .uvs
-                    .as_ref()
-                    .map_or(0, |u| u.capacity() * size_of::<Vec2>());
-            println!(
-                "{}: {} triangles, {} vertices, normals {}, uvs {}; read in {seconds:.3} s; \
-                 MeshData {:.1} MB ({:.1} bytes per triangle)",
-                file.display(),
-                mesh.indices.len(),
-                mesh.positions.len(),
-                mesh.normals.is_some(),
-                mesh.uvs.is_some(),
-                bytes as f64 / 1e6,
-                bytes as f64 / mesh.indices.len().max(1) as f64
-            );
-        }
+        Task::Write(sphere, format, out) => write(&sphere, format, &out),
+        Task::Load(file) => load(&file),
+        Task::Scene(file) => scene(&file),
     }
 }

@@ -29,6 +29,7 @@ pub mod mutants;
 pub mod rng;
 pub mod sampling;
 pub mod scene;
+pub mod textures;
 // The χ² harness of the sampler tests: test code, only with the `testing` feature.
 #[cfg(any(test, feature = "testing"))]
 pub mod stats;

@@ -3,6 +3,8 @@
 
 #![allow(dead_code)]
 
+pub mod images;
+
 use glam::Vec3;
 use lumis::gpu::{GpuContext, GpuError};
 use lumis::scene::{Scene, parse_scene};

@@ -73,14 +73,28 @@ impl ViewerApp {
 
     fn material_controls(&mut self, ui: &mut egui::Ui, i: usize) {
         let Some(desc) = &mut self.desc else { return };
-        let m = &mut desc.materials[i].material;
+        let named = &mut desc.materials[i];
+        let (m, textures) = (&mut named.material, &mut named.textures);
         let mut changed = false;
+        // A textured slot shows its texture's mean; editing it replaces the texture by that
+        // constant (so an edit is never silently ignored).
+        let textured_colour = textures.albedo.is_some() || textures.reflectance.is_some();
+        if !textures.is_empty() {
+            ui.label("Textured: editing a textured value replaces its texture by a constant.");
+        }
         if let Some(mut a) = edit::alpha(m)
             && ui
-                .add(egui::Slider::new(&mut a, 0.0..=1.0).text("Roughness α"))
+                .add(
+                    egui::Slider::new(&mut a, 0.0..=1.0).text(if textures.alpha.is_some() {
+                        "Roughness α (texture mean)"
+                    } else {
+                        "Roughness α"
+                    }),
+                )
                 .changed()
         {
             edit::set_alpha(m, a);
+            textures.alpha = None;
             changed = true;
         }
         if let Some(c) = edit::colour(m) {
@@ -88,12 +102,18 @@ impl ViewerApp {
             let r = ui
                 .horizontal(|ui| {
                     let r = egui::color_picker::color_edit_button_rgb(ui, &mut rgb);
-                    ui.label("Colour");
+                    ui.label(if textured_colour {
+                        "Colour (texture mean)"
+                    } else {
+                        "Colour"
+                    });
                     r
                 })
                 .inner;
             if r.changed() {
                 edit::set_colour(m, DVec3::from(rgb.map(f64::from)));
+                textures.albedo = None;
+                textures.reflectance = None;
                 changed = true;
             }
         }

@@ -3,7 +3,8 @@
 //! this CPU (see `../shared/notes/stack.md`), which is most of a path tracer's rays. The GPU
 //! traverses the compressed nodes; the CPU traverses the same tree decoded to `f32`
 //! ([`super::wide_bvh`]), which costs 224 instead of 80 bytes a node and saves decoding the
-//! quantized boxes at every visit.
+//! quantized boxes at every visit. How the tree is built, in parts for large scenes so that the
+//! builder's temporaries stay small: [`super::bvh_build`].
 //! WGSL twin: `bvh.wgsl`.
 
 use super::primitive::{Primitive, ShapeHit};
@@ -12,9 +13,7 @@ use super::triangle::TriangleRay;
 use super::wide_bvh::WideBvh;
 use glam::Vec3;
 use obvhs::cwbvh::CwBvh;
-use obvhs::{BvhBuildParams, cwbvh::builder::build_cwbvh};
 use std::ops::Range;
-use std::time::Duration;
 
 /// Primitives in BVH order plus the BVH. Scenes of at most [`Accel::LINEAR_LIMIT`] primitives
 /// skip the BVH: testing a handful of shapes directly is faster than traversing.
@@ -28,21 +27,14 @@ impl Accel {
     /// Below this many primitives a linear scan beats the BVH.
     pub const LINEAR_LIMIT: usize = 4;
 
-    /// Builds the BVH and reorders the primitives to its leaf order.
-    pub fn new(prims: Vec<Primitive>) -> Accel {
+    /// Builds the BVH and reorders the primitives (in place) to its leaf order.
+    pub fn new(mut prims: Vec<Primitive>) -> Accel {
         if prims.len() <= Self::LINEAR_LIMIT {
             return Accel { prims, bvh: None };
         }
-        let bvh = build_cwbvh(
-            &prims,
-            BvhBuildParams::medium_build(),
-            &mut Duration::default(),
-        );
-        let prims = bvh
-            .primitive_indices
-            .iter()
-            .map(|&i| prims[i as usize])
-            .collect();
+        // A vector grown by doubling holds up to twice what it needs, for the scene's lifetime.
+        prims.shrink_to_fit();
+        let bvh = super::bvh_build::build(&mut prims);
         let wide = WideBvh::from_cwbvh(&bvh);
         Accel {
             prims,
@@ -169,6 +161,7 @@ mod tests {
                             shape: Shape::triangle(t).unwrap(),
                             material: 0,
                             light: NONE,
+                            attr: NONE,
                         });
                     }
                 }
@@ -209,12 +202,10 @@ mod tests {
         }
     }
 
-    /// The BVH must return exactly what a brute-force scan returns.
-    #[test]
-    fn bvh_matches_brute_force() {
-        let mut rng = Rng::new(9, 0, 0);
+    /// `n` random spheres and triangles in a 10-unit cube, each with its index as its material.
+    fn random_prims(rng: &mut Rng, n: usize) -> Vec<Primitive> {
         let mut prims = Vec::new();
-        for i in 0..300 {
+        for i in 0..n {
             let c = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 10.0;
             let shape = if i % 3 == 0 {
                 Shape::Sphere(Sphere {
@@ -223,22 +214,24 @@ mod tests {
                 })
             } else {
                 let d = |r: &mut Rng| Vec3::new(r.next_f32(), r.next_f32(), r.next_f32()) - 0.5;
-                match Shape::triangle([c, c + d(&mut rng), c + d(&mut rng)]) {
+                match Shape::triangle([c, c + d(rng), c + d(rng)]) {
                     Some(s) => s,
                     None => continue,
                 }
             };
             prims.push(Primitive {
                 shape,
-                material: 0,
+                material: prims.len() as u32,
                 light: NONE,
+                attr: NONE,
             });
         }
-        let brute = Accel {
-            prims: prims.clone(),
-            bvh: None,
-        };
-        let accel = Accel::new(prims);
+        prims
+    }
+
+    /// Closest hits and occlusion through `accel` must be exactly a brute-force scan's.
+    fn check_against_brute_force(accel: &Accel, prims: Vec<Primitive>, rng: &mut Rng) {
+        let brute = Accel { prims, bvh: None };
         for _ in 0..5000 {
             let o = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 12.0 - 1.0;
             let d = (Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) - 0.5).normalize();
@@ -249,5 +242,43 @@ mod tests {
             let short = Ray { t_max: 2.0, ..ray };
             assert_eq!(accel.occluded(&short), brute.occluded(&short));
         }
+    }
+
+    /// The BVH must return exactly what a brute-force scan returns.
+    #[test]
+    fn bvh_matches_brute_force() {
+        let mut rng = Rng::new(9, 0, 0);
+        let prims = random_prims(&mut rng, 300);
+        let accel = Accel::new(prims.clone());
+        check_against_brute_force(&accel, prims, &mut rng);
+    }
+
+    /// The chunked build (large scenes, `bvh_build.rs`), forced on a small scene with one
+    /// triangle spanning it (so the parts' boxes overlap): a valid CWBVH (obvhs's own checks:
+    /// every node and primitive reached once, every primitive inside its node's boxes), its
+    /// `primitive_indices` naming each slot's original primitive, and the same hits as brute force.
+    #[test]
+    fn chunked_bvh_matches_brute_force() {
+        let mut rng = Rng::new(10, 0, 0);
+        let mut prims = random_prims(&mut rng, 3000);
+        prims.push(Primitive {
+            shape: Shape::triangle([Vec3::ZERO, Vec3::new(10.0, 0.0, 0.0), Vec3::splat(10.0)])
+                .unwrap(),
+            material: prims.len() as u32,
+            light: NONE,
+            attr: NONE,
+        });
+        let mut ordered = prims.clone();
+        let cw = crate::geometry::bvh_build::build_chunked(&mut ordered);
+        cw.validate(&ordered, true);
+        for (p, &i) in ordered.iter().zip(&cw.primitive_indices) {
+            assert_eq!(p.material, prims[i as usize].material);
+        }
+        let wide = WideBvh::from_cwbvh(&cw);
+        let accel = Accel {
+            prims: ordered,
+            bvh: Some((cw, wide)),
+        };
+        check_against_brute_force(&accel, prims, &mut rng);
     }
 }

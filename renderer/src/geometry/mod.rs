@@ -1,7 +1,9 @@
 //! Geometry: rays, the shapes that can be hit, robust ray offsets, and the BVH.
 
 pub mod bvh;
+pub mod bvh_build;
 pub mod disk;
+pub mod mesh_attributes;
 pub mod polygon;
 pub mod primitive;
 pub mod ray;

@@ -76,6 +76,7 @@ impl Shape {
                     p_error,
                     n: *n,
                     prim,
+                    b: glam::Vec2::new(hit.b[1], hit.b[2]),
                 }
             }
             Shape::Disk(d) => {
@@ -86,6 +87,7 @@ impl Shape {
                     p_error,
                     n: d.n,
                     prim,
+                    b: glam::Vec2::ZERO,
                 }
             }
             Shape::Sphere(s) => {
@@ -96,6 +98,7 @@ impl Shape {
                     p_error,
                     n,
                     prim,
+                    b: glam::Vec2::ZERO,
                 }
             }
         }
@@ -111,6 +114,9 @@ pub struct Primitive {
     pub material: u32,
     /// Index into the scene's lights, or [`NONE`].
     pub light: u32,
+    /// Index of the triangle's vertex attributes (shading normals, UVs) in the scene's
+    /// [`MeshAttributes`](super::mesh_attributes::MeshAttributes), or [`NONE`].
+    pub attr: u32,
 }
 
 impl obvhs::Boundable for Primitive {

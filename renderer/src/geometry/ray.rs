@@ -56,6 +56,9 @@ pub struct SurfaceHit {
     pub n: Vec3,
     /// Index of the primitive in the scene's primitive list.
     pub prim: u32,
+    /// Barycentrics `(b1, b2)` of a triangle hit (`p = (1−b1−b2)·v0 + b1·v1 + b2·v2`), for
+    /// interpolating vertex attributes; zero on disks and spheres.
+    pub b: glam::Vec2,
 }
 
 /// The next representable f32 above `v`.

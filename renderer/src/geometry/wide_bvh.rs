@@ -332,6 +332,7 @@ mod tests {
                     shape,
                     material: 0,
                     light: NONE,
+                    attr: NONE,
                 })
             })
             .collect()

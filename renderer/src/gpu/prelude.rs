@@ -14,7 +14,7 @@ use super::scene::{
     BVH2_STACK_SIZE, CWBVH_STACK_SIZE, FresnelTag, HeuristicTag, LightSamplingTag, LightTag,
     MaterialTag, ShapeTag, StrategyTag,
 };
-use crate::geometry::{primitive, ray, wide_bvh};
+use crate::geometry::{mesh_attributes, primitive, ray, wide_bvh};
 use crate::lights::{polygon, sphere};
 use crate::materials::{coat_albedo, ggx};
 use crate::sampling::{self, spherical_rectangle};
@@ -151,6 +151,9 @@ pub fn constants() -> Vec<Constant> {
         f32c("MAX_INV", wide_bvh::MAX_INV),
         u32c("BVH_STACK_SIZE", const { count(CWBVH_STACK_SIZE) }),
         u32c("BVH2_STACK_SIZE", const { count(BVH2_STACK_SIZE) }),
+        // Mesh vertex attributes.
+        u32c("ATTR_HAS_NORMALS", mesh_attributes::HAS_NORMALS),
+        u32c("ATTR_HAS_UVS", mesh_attributes::HAS_UVS),
     ];
     c.extend(tags(MaterialTag::ALL));
     c.extend(tags(FresnelTag::ALL));

@@ -65,6 +65,7 @@ const MODULES: &[Module] = &[
     module!("disk.wgsl"),
     module!("sphere.wgsl"),
     module!("shape.wgsl"),
+    module!("mesh_attributes.wgsl"),
     module!("bvh.wgsl"),
     module!("bvh2.wgsl"),
     module!("bindings.wgsl"),
@@ -112,6 +113,9 @@ pub struct Features {
     pub has_disk_shape: bool,
     /// Sphere shapes.
     pub has_sphere_shape: bool,
+    /// Triangles with vertex normals: the BSDF frame follows the interpolated shading normal and
+    /// the shading-normal rule applies (`mesh_attributes.wgsl`, `same_side` in `path.wgsl`).
+    pub has_shading_normals: bool,
 }
 
 impl Features {
@@ -135,6 +139,7 @@ impl Features {
             has_dielectric: true,
             has_disk_shape: true,
             has_sphere_shape: true,
+            has_shading_normals: true,
         }
     }
 
@@ -147,6 +152,8 @@ impl Features {
             // Needed by rays that miss whether or not the map can be sampled.
             has_envmap: scene.lights.iter().any(|l| matches!(l, Light::Envmap(_))),
             use_bvh: scene.accel.cwbvh().is_some(),
+            // The CPU's test too (`integrator/path.rs`).
+            has_shading_normals: scene.attributes.has_normals(),
             ..Features::default()
         };
         // Light kinds matter only for sampling; emission seen by rays needs no per-kind code.
@@ -194,7 +201,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 19] {
+    fn defines(&self) -> [(&'static str, bool); 20] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -220,6 +227,7 @@ impl Features {
             ("HAS_DIELECTRIC", self.has_dielectric),
             ("HAS_DISK_SHAPE", self.has_disk_shape),
             ("HAS_SPHERE_SHAPE", self.has_sphere_shape),
+            ("HAS_SHADING_NORMALS", self.has_shading_normals),
             // The mutation points of `crate::mutants` (only with the `mutants` feature).
             ("MUTANTS", cfg!(feature = "mutants")),
         ]
@@ -252,6 +260,8 @@ impl Features {
             "disk.wgsl" => self.has_disk_shape,
             "sphere.wgsl" => self.has_sphere_shape,
             "bvh2.wgsl" => self.use_bvh && self.bvh2,
+            // Textures (UV lookups) will need it too.
+            "mesh_attributes.wgsl" => self.has_shading_normals,
             _ => true,
         }
     }
@@ -449,6 +459,29 @@ mod tests {
             },
             Features {
                 has_envmap: false,
+                ..Features::all()
+            },
+            // Shading normals: alone (no lights: no NEE), lit, with glass, and everything but.
+            Features {
+                has_shading_normals: true,
+                use_bvh: true,
+                ..Features::default()
+            },
+            Features {
+                has_shading_normals: true,
+                has_lights: true,
+                has_quad_light: true,
+                ..Features::default()
+            },
+            Features {
+                has_shading_normals: true,
+                has_dielectric: true,
+                has_lights: true,
+                has_triangle_light: true,
+                ..Features::default()
+            },
+            Features {
+                has_shading_normals: false,
                 ..Features::all()
             },
         ] {
@@ -689,5 +722,92 @@ mod twins {
             }
         }
         assert!(problems.is_empty(), "\n{}", problems.join("\n"));
+    }
+}
+
+/// Scenes without vertex normals compile no shading-normal code (no attribute lookups, no
+/// shading-normal rule), so their programs are the ones they were before meshes had normals; a
+/// mesh with normals gets all of it. (A quad's UVs alone do not count: nothing reads them yet.)
+#[cfg(test)]
+mod shading_normal_specialisation {
+    use super::*;
+    use crate::scene::mesh::{MeshData, obj};
+    use glam::Vec3;
+
+    fn body(f: &Features) -> String {
+        let src = path_tracer_source(f).unwrap();
+        let body = src.find("// ---- tags.wgsl").unwrap();
+        src[body..]
+            .lines()
+            .map(|l| l.split("//").next().unwrap())
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+
+    /// A lit quad and a one-triangle mesh, with vertex normals or without.
+    fn scene(normals: bool) -> Scene {
+        let dir = std::env::temp_dir().join(format!("lumis-shader-sn-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join(format!("tri{}.obj", normals as u8));
+        let mesh = MeshData {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+            indices: vec![[0, 1, 2]],
+            normals: normals.then(|| vec![Vec3::Z, Vec3::new(0.1, 0.0, 1.0), Vec3::Z]),
+            uvs: None,
+        };
+        obj::write(&file, &mesh).unwrap();
+        let json = format!(
+            r#"{{"camera": {{"from": [0, 0, 3], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 40,
+                "width": 2, "height": 2}},
+                "shapes": [{{"type": "mesh", "file": "{}"}},
+                           {{"type": "quad", "corner": [-1, -1, 2], "edge_u": [0, 2, 0],
+                             "edge_v": [2, 0, 0], "emission": [1, 1, 1]}}]}}"#,
+            file.display()
+        );
+        let scene = Scene::from_desc(&crate::scene::parse_scene(&json).unwrap()).unwrap();
+        std::fs::remove_file(&file).unwrap();
+        scene
+    }
+
+    const SHADING_CODE: [&str; 6] = [
+        "fn shading_normal(",
+        "fn same_side(",
+        "!same_side(",
+        "params.attr",
+        "frame_from_normal(ns)",
+        "shading",
+    ];
+
+    #[test]
+    fn only_scenes_with_vertex_normals_carry_shading_normal_code() {
+        let f = Features::of(&scene(true));
+        assert!(f.has_shading_normals, "{f:?}");
+        let with = body(&f);
+        for name in SHADING_CODE {
+            assert!(with.contains(name), "a scene with normals lacks {name:?}");
+        }
+        assert_eq!(
+            with.matches("!same_side(").count(),
+            3,
+            "the rule's three uses"
+        );
+        let flat = Features::of(&scene(false));
+        assert!(!flat.has_shading_normals, "{flat:?}");
+        for f in [
+            flat,
+            Features::default(),
+            Features {
+                has_shading_normals: false,
+                ..Features::all()
+            },
+        ] {
+            let without = body(&f);
+            for name in SHADING_CODE {
+                assert!(
+                    !without.contains(name),
+                    "{f:?}: {name:?} in a program without shading normals"
+                );
+            }
+        }
     }
 }

@@ -11,6 +11,10 @@
 //! 1/η'² does not kill paths inside glass. The loop is compiled twice, with and without this code
 //! (`TRANSMISSION`); scenes without a dielectric run the version without it, bit for bit the
 //! renderer they ran before.
+//!
+//! Shading normals (meshes with vertex normals): the BSDF frame is the shading normal's, the
+//! geometric normal decides sides and ray offsets, and a direction that the two normals put on
+//! different sides does not count (`same_side`; docs/shading-normals.md says why).
 //! WGSL twin: `path.wgsl`.
 
 use super::{Heuristic, Settings, Strategy};
@@ -99,21 +103,31 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
         if max_depth >= 0 && depth >= max_depth {
             break;
         }
-        let material = &scene.materials[prim.material as usize];
+        let material = &*scene.material_at(&hit, prim.material);
         let wo_world = -ray.d.normalize();
+        // `n`: the geometric normal, which decides sides and ray offsets; the BSDF lives in the
+        // frame of the shading normal `ns` (the geometric one where the mesh has none).
         let mut n = hit.n;
+        let shading_normal = if scene.attributes.has_normals() {
+            scene.attributes.shading_normal(prim.attr, hit.b, n)
+        } else {
+            None
+        };
+        let shading = shading_normal.is_some();
+        let mut ns = shading_normal.unwrap_or(n);
         let transmits = TRANSMISSION && material.transmits();
         if n.dot(wo_world) < 0.0 && !transmits {
             if !scene.two_sided[prim.material as usize] {
                 break;
             }
             n = -n;
+            ns = -ns;
         }
-        let frame = Frame::from_normal(n);
+        let frame = Frame::from_normal(ns);
         let wo = frame.to_local(wo_world);
         // A reflecting surface is seen from its front only; a dielectric from either side.
         let wo_invalid = if transmits { wo.z == 0.0 } else { wo.z <= 0.0 };
-        if wo_invalid {
+        if wo_invalid || (shading && !same_side(wo_world, n, wo.z)) {
             break;
         }
 
@@ -167,6 +181,7 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
                     u,
                     nee_mixture_weight,
                     transmits,
+                    shading,
                 );
         }
 
@@ -194,6 +209,9 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
             break;
         }
         let wi = frame.to_world(bs.wi);
+        if shading && !same_side(wi, n, bs.wi.z) {
+            break;
+        }
         prev_p = hit.p;
         ray = spawn_ray(hit.p, hit.p_error, n, wi);
 
@@ -207,6 +225,16 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
         }
     }
     l
+}
+
+/// The shading-normal rule: a direction counts only if the geometric normal `n` puts it on the
+/// same side as the shading frame does (`local_z`, its cosine there), and not in the plane.
+/// Directions between the two hemispheres would leak light through the surface or, for the
+/// viewing direction, see a BSDF from a side the surface does not face (docs/shading-normals.md).
+#[inline]
+fn same_side(w: Vec3, n: Vec3, local_z: f32) -> bool {
+    let d = w.dot(n);
+    d != 0.0 && (d > 0.0) == (local_z > 0.0)
 }
 
 /// Weight of emission from light `light` found by a BSDF-sampled ray; `light_pdf` is the
@@ -257,6 +285,7 @@ fn direct_light<const TRANSMISSION: bool>(
     u: glam::Vec2,
     mixture: Option<f32>,
     transmits: bool,
+    shading: bool,
 ) -> Vec3 {
     let Some(sampler) = &scene.light_sampler else {
         return Vec3::ZERO;
@@ -269,7 +298,7 @@ fn direct_light<const TRANSMISSION: bool>(
     let wi = frame.to_local(ls.wi);
     let transmits = TRANSMISSION && transmits;
     let wi_invalid = if transmits { wi.z == 0.0 } else { wi.z <= 0.0 };
-    if wi_invalid {
+    if wi_invalid || (shading && !same_side(ls.wi, n, wi.z)) {
         return Vec3::ZERO;
     }
     let f = material.eval_specialised::<TRANSMISSION>(wo, wi);

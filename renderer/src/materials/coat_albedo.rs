@@ -62,9 +62,10 @@ pub fn coat_albedo_quadrature(alpha: f32, f0: f32, mu: f32, n_phi: usize, n_z: u
 pub struct CoatAlbedo {
     alpha: f32,
     f0: f32,
-    /// E at [`node_mu`]; Schlick values for a smooth coat (which evaluates them exactly). Boxed
-    /// so that `Material` stays small (the enum is as large as its largest variant).
-    table: Box<[f32; E_TABLE_SIZE]>,
+    /// E at [`node_mu`]; Schlick values for a smooth coat (which evaluates them exactly). Inline
+    /// (256 bytes) rather than boxed: a textured plastic copies its material at every hit, which
+    /// must not allocate.
+    table: [f32; E_TABLE_SIZE],
     average: f32,
 }
 
@@ -72,14 +73,14 @@ impl CoatAlbedo {
     /// Tabulates the coat of roughness `alpha` and normal reflectance `f0`.
     pub fn new(alpha: f32, f0: f32) -> CoatAlbedo {
         let smooth = ggx::is_smooth(alpha);
-        let table: Box<[f32; E_TABLE_SIZE]> = Box::new(std::array::from_fn(|i| {
+        let table: [f32; E_TABLE_SIZE] = std::array::from_fn(|i| {
             let mu = node_mu(i);
             if smooth {
                 fresnel::fresnel_schlick(f0, mu)
             } else {
                 coat_albedo_quadrature(alpha, f0, mu, QUAD_PHI, QUAD_Z)
             }
-        }));
+        });
         let average = if smooth {
             // 2∫(F0 + (1−F0)(1−μ)⁵)μ dμ = F0 + (1−F0)·2·B(2,6) = F0 + (1−F0)/21.
             f0 + (1.0 - f0) / 21.0

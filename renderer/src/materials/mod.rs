@@ -22,6 +22,7 @@ pub mod ggx;
 pub mod plastic;
 #[cfg(test)]
 mod testing;
+pub mod textured;
 
 pub use conductor::{Conductor, ConductorFresnel};
 pub use dielectric::Dielectric;
@@ -76,6 +77,9 @@ impl BsdfSample {
 }
 
 /// Every material, a closed set (the WGSL `switch` mirrors this variant order).
+// Plastic holds its coat table inline (~300 bytes): materials are borrowed, not moved, except
+// where a textured one is built at a hit, which must not allocate.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug, PartialEq)]
 pub enum Material {
     /// Lambertian.

@@ -62,6 +62,10 @@ impl Plastic {
     pub fn albedo(&self) -> Vec3 {
         self.albedo
     }
+    /// Sets the base albedo (a texture's value at a hit); nothing else depends on it.
+    pub fn set_albedo(&mut self, albedo: Vec3) {
+        self.albedo = albedo;
+    }
     /// Coat roughness (GGX α).
     pub fn alpha(&self) -> f32 {
         self.alpha

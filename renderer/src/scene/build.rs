@@ -6,6 +6,9 @@ use super::error::SceneError;
 use super::parse_shapes::unit;
 use crate::camera::Camera;
 use crate::geometry::disk::Disk;
+use crate::geometry::mesh_attributes::{
+    AttrMesh, AttrTriangle, HAS_NORMALS, HAS_UVS, MeshAttributes, normal_matrix,
+};
 use crate::geometry::primitive::{NONE, Primitive, Shape};
 use crate::geometry::sphere::Sphere;
 use crate::geometry::{Accel, polygon};
@@ -13,8 +16,9 @@ use crate::lights::{
     BackgroundLight, DiskLight, EnvmapLight, Light, LightSampler, PolygonLight, QuadLight,
     SphereLight, TriangleLight,
 };
+use crate::materials::textured::MaterialTextures;
 use crate::materials::{Conductor, ConductorFresnel, Dielectric, Diffuse, Material, Plastic};
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 
 /// Largest supported extent of a scene's bounding box (on its longest axis). The BVH builder
 /// computes surface-area costs in single precision: sizes past ~1e19 overflow them to infinity
@@ -42,6 +46,10 @@ pub struct Scene {
     pub light_sampler: Option<LightSampler>,
     /// Index of the background light, if the background is not black.
     pub background_light: Option<u32>,
+    /// Shading normals and texture coordinates of the triangles that have them.
+    pub attributes: MeshAttributes,
+    /// Per material, its textured parameters (`None`: untextured), parallel to `materials`.
+    pub material_textures: Vec<Option<MaterialTextures>>,
 }
 
 fn v(d: DVec3) -> Vec3 {
@@ -108,6 +116,36 @@ fn quad_triangles(corner: Vec3, eu: Vec3, ev: Vec3) -> [[Vec3; 3]; 2] {
     ]
 }
 
+/// Texture coordinates of a quad's corners `corner`, `+edge_u`, `+edge_u+edge_v`, `+edge_v`:
+/// `u` runs along `edge_u`, `v` along `edge_v`; `QUAD_UV_TRIANGLES` indexes them as
+/// [`quad_triangles`] orders its vertices.
+const QUAD_UVS: [Vec2; 4] = [
+    Vec2::new(0.0, 0.0),
+    Vec2::new(1.0, 0.0),
+    Vec2::new(1.0, 1.0),
+    Vec2::new(0.0, 1.0),
+];
+const QUAD_UV_TRIANGLES: [[u32; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
+
+/// Appends a mesh's vertex normals and texture coordinates; returns its index.
+fn add_mesh(
+    attributes: &mut MeshAttributes,
+    normals: Option<&[Vec3]>,
+    uvs: Option<&[Vec2]>,
+) -> u32 {
+    let mesh = AttrMesh {
+        normal_base: attributes.normals.len() as u32,
+        uv_base: attributes.uvs.len() as u32,
+        flags: normals.map_or(0, |_| HAS_NORMALS) | uvs.map_or(0, |_| HAS_UVS),
+    };
+    attributes
+        .normals
+        .extend_from_slice(normals.unwrap_or_default());
+    attributes.uvs.extend_from_slice(uvs.unwrap_or_default());
+    attributes.meshes.push(mesh);
+    attributes.meshes.len() as u32 - 1
+}
+
 impl Scene {
     /// True if a material transmits light (a dielectric): the path tracer then runs its
     /// transmission code ([`crate::integrator::path::radiance_specialised`]).
@@ -144,6 +182,20 @@ impl Scene {
         let mut two_sided: Vec<bool> = desc.materials.iter().map(|m| m.two_sided).collect();
         let mut material_names: Vec<String> =
             desc.materials.iter().map(|m| m.name.clone()).collect();
+        let mut material_textures = Vec::with_capacity(materials.len() + 1);
+        for (m, built) in desc.materials.iter().zip(&materials) {
+            let t = &m.textures;
+            let textures = MaterialTextures {
+                albedo: t.albedo.as_ref().map(|d| d.texture.clone()),
+                reflectance: t.reflectance.as_ref().map(|d| d.texture.clone()),
+                alpha: t.alpha.as_ref().map(|d| d.texture.clone()),
+            };
+            textures
+                .check(built)
+                .map_err(|e| SceneError::new(format!("materials.{}", m.name), e))?;
+            material_textures.push((!t.is_empty()).then_some(textures));
+        }
+        material_textures.push(None);
         let black = materials.len() as u32;
         materials.push(Material::Diffuse(Diffuse { albedo: Vec3::ZERO }));
         two_sided.push(true);
@@ -151,10 +203,18 @@ impl Scene {
 
         let mut prims = Vec::new();
         let mut lights = Vec::new();
+        let mut attributes = MeshAttributes::default();
         let (mut scene_lo, mut scene_hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
         for shape in &desc.shapes {
             let first_prim = prims.len();
             let mat = shape.material.map_or(black, |m| m as u32);
+            if shape.emission_texture.is_some() {
+                // Parsed and checked, not rendered yet: refuse rather than render its mean.
+                return Err(SceneError::new(
+                    format!("{}.emission", shape.json_path),
+                    "textured emission is not rendered yet (issue 17); use a constant radiance",
+                ));
+            }
             let le = v(shape.emission);
             let emits = le.cmpgt(Vec3::ZERO).any();
             let err = |what: &str| SceneError::new(&shape.json_path, what);
@@ -168,15 +228,36 @@ impl Scene {
                 lights.push(light);
                 Ok(lights.len() as u32 - 1)
             };
-            let mut push_tris = |tris: &[[Vec3; 3]], light: u32| {
-                for t in tris {
-                    if let Some(shape) = Shape::triangle(*t) {
-                        prims.push(Primitive {
-                            shape,
-                            material: mat,
-                            light,
-                        });
+            // Triangles with attribute indices `attr` (`None`: no attributes) into `attributes`.
+            let mut push_tris =
+                |tris: &[[Vec3; 3]],
+                 light: u32,
+                 attributes: &mut MeshAttributes,
+                 attr: &dyn Fn(usize) -> Option<AttrTriangle>| {
+                    for (i, t) in tris.iter().enumerate() {
+                        if let Some(shape) = Shape::triangle(*t) {
+                            let attr = attr(i).map_or(NONE, |a| {
+                                attributes.triangles.push(a);
+                                attributes.triangles.len() as u32 - 1
+                            });
+                            prims.push(Primitive {
+                                shape,
+                                material: mat,
+                                light,
+                                attr,
+                            });
+                        }
                     }
+                };
+            let no_attr = |_: usize| None;
+            // A quad's two triangles with their corners' texture coordinates.
+            let quad_uvs = |attributes: &mut MeshAttributes| {
+                let mesh = add_mesh(attributes, None, Some(&QUAD_UVS));
+                move |i: usize| {
+                    Some(AttrTriangle {
+                        v: QUAD_UV_TRIANGLES[i],
+                        mesh,
+                    })
                 }
             };
             match &shape.geometry {
@@ -187,7 +268,8 @@ impl Scene {
                 } => {
                     let (c, eu, ev) = (v(*corner), v(*edge_u), v(*edge_v));
                     let light = push_light(QuadLight::new(c, eu, ev, le).map(Light::Quad))?;
-                    push_tris(&quad_triangles(c, eu, ev), light);
+                    let uvs = quad_uvs(&mut attributes);
+                    push_tris(&quad_triangles(c, eu, ev), light, &mut attributes, &uvs);
                 }
                 GeometryDesc::Polygon { vertices } => {
                     let n = polygon::newell_normal(vertices).normalize().as_vec3();
@@ -202,7 +284,7 @@ impl Scene {
                         .collect();
                     let light =
                         push_light(PolygonLight::new(verts, indices, n, le).map(Light::Polygon))?;
-                    push_tris(&tris, light);
+                    push_tris(&tris, light, &mut attributes, &no_attr);
                 }
                 GeometryDesc::Triangles { .. } | GeometryDesc::Mesh { .. } => {
                     // One primitive, and for an emitter one triangle light, per triangle.
@@ -219,6 +301,29 @@ impl Scene {
                         ),
                         _ => unreachable!("matched above"),
                     };
+                    // Vertex attributes, stored once per vertex, normals in world space.
+                    let mut attr_mesh = None;
+                    if let GeometryDesc::Mesh {
+                        to_world,
+                        mesh,
+                        face_normals,
+                        ..
+                    } = &shape.geometry
+                    {
+                        let normals = mesh.normals.as_ref().filter(|_| !face_normals).map(|ns| {
+                            let m = normal_matrix(*to_world);
+                            ns.iter()
+                                .map(|n| (m * n.as_dvec3()).normalize_or_zero().as_vec3())
+                                .collect::<Vec<_>>()
+                        });
+                        if normals.is_some() || mesh.uvs.is_some() {
+                            attr_mesh = Some(add_mesh(
+                                &mut attributes,
+                                normals.as_deref(),
+                                mesh.uvs.as_deref(),
+                            ));
+                        }
+                    }
                     for idx in indices {
                         let t = idx.map(|i| world[i as usize]);
                         let light =
@@ -230,7 +335,8 @@ impl Scene {
                                     le,
                                 })
                             }))?;
-                        push_tris(&[t], light);
+                        let attr = |_: usize| attr_mesh.map(|mesh| AttrTriangle { v: *idx, mesh });
+                        push_tris(&[t], light, &mut attributes, &attr);
                     }
                 }
                 GeometryDesc::Disk {
@@ -248,6 +354,7 @@ impl Scene {
                         shape: Shape::Disk(disk),
                         material: mat,
                         light,
+                        attr: NONE,
                     });
                 }
                 GeometryDesc::Sphere { center, radius } => {
@@ -260,6 +367,7 @@ impl Scene {
                         shape: Shape::Sphere(sphere),
                         material: mat,
                         light,
+                        attr: NONE,
                     });
                 }
                 GeometryDesc::Box {
@@ -271,7 +379,8 @@ impl Scene {
                     for [c, eu, ev] in box_faces(*min, *max, *rotate_y_deg, *translate) {
                         let (c, eu, ev) = (v(c), v(eu), v(ev));
                         let light = push_light(QuadLight::new(c, eu, ev, le).map(Light::Quad))?;
-                        push_tris(&quad_triangles(c, eu, ev), light);
+                        let uvs = quad_uvs(&mut attributes);
+                        push_tris(&quad_triangles(c, eu, ev), light, &mut attributes, &uvs);
                     }
                 }
             }
@@ -330,6 +439,8 @@ impl Scene {
             lights,
             light_sampler,
             background_light,
+            attributes,
+            material_textures,
         })
     }
 

@@ -5,7 +5,8 @@
 //! it: finite numbers, positive radii, unit disk normals, valid polygons, in-range indices.
 
 use crate::image_io::Image;
-use glam::DVec3;
+use crate::textures::{Channel, Texture, UvTransform, WrapMode};
+use glam::{DVec3, Vec2, Vec3};
 use serde_json::{Map, Value, json};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -75,6 +76,91 @@ pub struct NamedMaterial {
     pub material: MaterialDesc,
     /// Whether the back side sees the same BSDF with the normal flipped (default) or is black.
     pub two_sided: bool,
+    /// The parameters given as textures; an untextured material has none.
+    pub textures: MaterialTextures,
+}
+
+/// The textured parameters of a material, one `Option` per slot. Where a slot has a texture,
+/// the constant field of [`MaterialDesc`] holds the texture's mean over the unit uv square
+/// ([`TextureDesc::mean_color`], [`TextureDesc::mean_scalar`]), so that code which ignores
+/// textures still sees a sensible value; the texture is what renders.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MaterialTextures {
+    /// `albedo` of a diffuse or a plastic material (every texel in [0, 1]).
+    pub albedo: Option<TextureDesc>,
+    /// `reflectance` of a conductor (every texel in [0, 1]); never with `eta`/`k`.
+    pub reflectance: Option<TextureDesc>,
+    /// GGX `alpha` of a conductor, plastic or dielectric, read by
+    /// [`crate::textures::Texture::eval_scalar`] (every scalar texel in [0, 1]).
+    pub alpha: Option<TextureDesc>,
+}
+
+impl MaterialTextures {
+    /// Whether no slot has a texture.
+    pub fn is_empty(&self) -> bool {
+        self.albedo.is_none() && self.reflectance.is_none() && self.alpha.is_none()
+    }
+}
+
+/// A texture in a texturable slot, loaded and checked for that slot's range (texels of a
+/// bitmap are linear; the file and options are kept for messages and writing the scene back).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureDesc {
+    /// The texture, ready to evaluate.
+    pub texture: Texture,
+}
+
+impl TextureDesc {
+    /// The mean over the unit uv square, as a colour (the constant a texture slot stands in for).
+    pub fn mean_color(&self) -> DVec3 {
+        self.texture.mean().as_dvec3()
+    }
+
+    /// The mean of the scalar a scalar slot reads.
+    pub fn mean_scalar(&self) -> f64 {
+        self.texture.mean_scalar() as f64
+    }
+
+    /// The texture in the scene format.
+    pub fn to_json(&self) -> Value {
+        let uv_keys = |obj: &mut Value, uv: &UvTransform| {
+            if uv.scale != Vec2::ONE {
+                obj["uv_scale"] = json!([uv.scale.x, uv.scale.y]);
+            }
+            if uv.offset != Vec2::ZERO {
+                obj["uv_offset"] = json!([uv.offset.x, uv.offset.y]);
+            }
+        };
+        let color = |c: Vec3| json!([c.x, c.y, c.z]);
+        match &self.texture {
+            Texture::Constant(c) => color(*c),
+            Texture::Bitmap(b) => {
+                let o = b.options();
+                let mut obj = json!({"type": "bitmap", "file": b.file.to_string_lossy()});
+                if o.wrap != WrapMode::Repeat {
+                    obj["wrap"] = json!(o.wrap.name());
+                }
+                if b.raw {
+                    obj["raw"] = json!(true);
+                }
+                uv_keys(&mut obj, &o.uv);
+                if o.scale != Vec3::ONE {
+                    obj["scale"] = color(o.scale);
+                }
+                if o.channel != Channel::Luminance {
+                    obj["channel"] = json!(o.channel.name());
+                }
+                obj
+            }
+            Texture::Checkerboard(c) => {
+                let mut obj = json!({
+                    "type": "checkerboard", "color0": color(c.color0), "color1": color(c.color1),
+                });
+                uv_keys(&mut obj, &c.uv);
+                obj
+            }
+        }
+    }
 }
 
 /// A BSDF and its parameters.
@@ -134,8 +220,12 @@ pub struct ShapeDesc {
     pub geometry: GeometryDesc,
     /// Index into [`SceneDesc::materials`]; `None` = black diffuse.
     pub material: Option<usize>,
-    /// Emitted radiance on the side the normal points to; zero for non-emitters.
+    /// Emitted radiance on the side the normal points to; zero for non-emitters. With an
+    /// [`ShapeDesc::emission_texture`], its mean over the unit uv square.
     pub emission: DVec3,
+    /// Emitted radiance as a texture (every texel ≥ 0 and finite), if given as one; whether the
+    /// shape emits at all is then `texture.max() > 0`, not `emission != 0`.
+    pub emission_texture: Option<TextureDesc>,
     /// Where the shape is in the file (`shapes[3]`), for messages.
     pub json_path: String,
 }
@@ -292,7 +382,9 @@ impl SceneDesc {
         if let Some(i) = shape.material {
             obj["material"] = json!(self.materials[i].name);
         }
-        if shape.emission != DVec3::ZERO {
+        if let Some(t) = &shape.emission_texture {
+            obj["emission"] = t.to_json();
+        } else if shape.emission != DVec3::ZERO {
             obj["emission"] = vec3(shape.emission);
         }
         obj
@@ -323,6 +415,17 @@ fn material_json(m: &NamedMaterial) -> Value {
             json!({"type": "dielectric", "ior": ior, "alpha": alpha})
         }
     };
+    let t = &m.textures;
+    for (key, slot) in [
+        ("albedo", &t.albedo),
+        ("reflectance", &t.reflectance),
+        ("alpha", &t.alpha),
+    ] {
+        // A constant "texture" is already written as the slot's constant.
+        if let Some(tex) = slot.as_ref().filter(|t| !t.texture.is_constant()) {
+            obj[key] = tex.to_json();
+        }
+    }
     if !m.two_sided && !matches!(m.material, MaterialDesc::Dielectric { .. }) {
         obj["two_sided"] = json!(false);
     }

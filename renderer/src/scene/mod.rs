@@ -18,6 +18,8 @@ mod parse_materials;
 mod parse_mesh;
 mod parse_mesh_file;
 mod parse_shapes;
+mod parse_texture;
+pub mod surface;
 mod walk;
 
 #[cfg(test)]
@@ -25,8 +27,8 @@ mod tests;
 
 pub use build::Scene;
 pub use desc::{
-    BackgroundDesc, CameraDesc, EnvmapDesc, FresnelDesc, GeometryDesc, MaterialDesc, NamedMaterial,
-    SceneDesc, ShapeDesc,
+    BackgroundDesc, CameraDesc, EnvmapDesc, FresnelDesc, GeometryDesc, MaterialDesc,
+    MaterialTextures, NamedMaterial, SceneDesc, ShapeDesc, TextureDesc,
 };
 pub use error::SceneError;
 pub use parse::{load_scene, parse_scene, parse_scene_in, parse_scene_value, parse_scene_value_in};

@@ -27,8 +27,8 @@ pub fn is_model_file(path: &Path) -> bool {
         .is_some_and(|e| MESH_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()))
 }
 
-/// The scene of a model file: the mesh (diffuse, albedo 0.8, flat-shaded until vertex normals are
-/// interpolated), a constant environment of radiance 1, and a camera 20° above the bounding box's
+/// The scene of a model file: the mesh (diffuse, albedo 0.8, its vertex normals as shading
+/// normals where it has them), a constant environment of radiance 1, and a camera 20° above the bounding box's
 /// centre, looking at it along +z from −z, at the distance where the bounding sphere fills the
 /// 40° field of view (with 10% margin).
 pub fn model_scene(path: &Path) -> Result<SceneDesc, SceneError> {

@@ -9,6 +9,7 @@ use super::error::SceneError;
 use super::parse_background::parse_background;
 use super::parse_materials::parse_materials;
 use super::parse_shapes::{parse_shapes, unit};
+use super::parse_texture::TextureLoader;
 use super::walk::{Obj, array, check_components, integer, parse_json};
 use glam::DVec3;
 use serde_json::Value;
@@ -89,8 +90,10 @@ pub fn parse_scene_value_in(value: &Value, folder: &Path) -> Result<SceneDesc, S
         Some(v) => parse_background(v, folder)?,
     };
 
+    // One loader for the whole scene, so that a file named twice is read once.
+    let mut textures = TextureLoader::new(folder);
     let materials = match root.get("materials") {
-        Some(v) => parse_materials(&Obj::new(v, "materials")?)?,
+        Some(v) => parse_materials(&Obj::new(v, "materials")?, &mut textures)?,
         None => Vec::new(),
     };
     let mut warnings = Vec::new();
@@ -98,6 +101,7 @@ pub fn parse_scene_value_in(value: &Value, folder: &Path) -> Result<SceneDesc, S
         array(root.req("shapes")?, "shapes")?,
         &materials,
         folder,
+        &mut textures,
         &mut warnings,
     )?;
     Ok(SceneDesc {

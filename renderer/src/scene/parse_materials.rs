@@ -1,12 +1,17 @@
 //! The `materials` map: diffuse, conductor, plastic and dielectric, with their range rules.
 
-use super::desc::{FresnelDesc, MaterialDesc, NamedMaterial};
+use super::desc::{FresnelDesc, MaterialDesc, MaterialTextures, NamedMaterial, TextureDesc};
 use super::error::SceneError;
+use super::parse_texture::{TextureLoader, TextureUse, texture_at};
 use super::walk::{Obj, check_components};
 use glam::DVec3;
 
-/// Every material of the map, sorted by name (the map's order).
-pub(crate) fn parse_materials(obj: &Obj) -> Result<Vec<NamedMaterial>, SceneError> {
+/// Every material of the map, sorted by name (the map's order); texture files come from
+/// `loader`.
+pub(crate) fn parse_materials(
+    obj: &Obj,
+    loader: &mut TextureLoader,
+) -> Result<Vec<NamedMaterial>, SceneError> {
     obj.map()
         .iter()
         .map(|(name, value)| {
@@ -14,18 +19,24 @@ pub(crate) fn parse_materials(obj: &Obj) -> Result<Vec<NamedMaterial>, SceneErro
             if name.is_empty() {
                 return Err(SceneError::new(m.path, "a material name must not be empty"));
             }
-            parse_material(name, &m)
+            parse_material(name, &m, loader)
         })
         .collect()
 }
 
-fn parse_material(name: &str, obj: &Obj) -> Result<NamedMaterial, SceneError> {
+fn parse_material(
+    name: &str,
+    obj: &Obj,
+    loader: &mut TextureLoader,
+) -> Result<NamedMaterial, SceneError> {
     let kind = obj.string("type")?;
+    let mut textures = MaterialTextures::default();
+    let t = &mut textures;
     let material = match kind {
         "diffuse" => {
             obj.only_keys(&["type", "albedo", "two_sided"], true)?;
             MaterialDesc::Diffuse {
-                albedo: unit_color(obj, "albedo")?,
+                albedo: albedo(obj, loader, &mut t.albedo)?,
             }
         }
         "conductor" => {
@@ -34,8 +45,8 @@ fn parse_material(name: &str, obj: &Obj) -> Result<NamedMaterial, SceneError> {
                 true,
             )?;
             MaterialDesc::Conductor {
-                alpha: alpha(obj)?,
-                fresnel: fresnel(obj)?,
+                alpha: alpha(obj, loader, &mut t.alpha)?,
+                fresnel: fresnel(obj, loader, &mut t.reflectance)?,
             }
         }
         "plastic" => {
@@ -52,7 +63,8 @@ fn parse_material(name: &str, obj: &Obj) -> Result<NamedMaterial, SceneError> {
                 Some(_) => unit_color(obj, "specular")?,
                 None => DVec3::ONE,
             };
-            let (albedo, alpha) = (unit_color(obj, "albedo")?, alpha(obj)?);
+            let albedo = albedo(obj, loader, &mut t.albedo)?;
+            let alpha = alpha(obj, loader, &mut t.alpha)?;
             MaterialDesc::Plastic {
                 albedo,
                 alpha,
@@ -73,7 +85,7 @@ fn parse_material(name: &str, obj: &Obj) -> Result<NamedMaterial, SceneError> {
                 return Err(SceneError::new(obj.at("ior"), msg));
             }
             let alpha = match obj.get("alpha") {
-                Some(_) => alpha(obj)?,
+                Some(_) => alpha(obj, loader, &mut t.alpha)?,
                 None => 0.0,
             };
             MaterialDesc::Dielectric { ior, alpha }
@@ -93,7 +105,21 @@ fn parse_material(name: &str, obj: &Obj) -> Result<NamedMaterial, SceneError> {
         name: name.to_owned(),
         material,
         two_sided,
+        textures,
     })
+}
+
+/// The required `albedo`: a colour in [0, 1] or a texture (then its mean, and `slot` is set).
+fn albedo(
+    obj: &Obj,
+    loader: &mut TextureLoader,
+    slot: &mut Option<TextureDesc>,
+) -> Result<DVec3, SceneError> {
+    *slot = texture_at(obj, "albedo", TextureUse::Albedo, loader)?;
+    match slot {
+        Some(t) => Ok(t.mean_color()),
+        None => unit_color(obj, "albedo"),
+    }
 }
 
 /// A required colour with every channel in [0, 1] (reflectances: more would create energy).
@@ -107,8 +133,16 @@ fn unit_color(obj: &Obj, key: &str) -> Result<DVec3, SceneError> {
     )
 }
 
-/// The required GGX α in [0, 1].
-fn alpha(obj: &Obj) -> Result<f64, SceneError> {
+/// The required GGX α in [0, 1], or a texture (then its mean, and `slot` is set).
+fn alpha(
+    obj: &Obj,
+    loader: &mut TextureLoader,
+    slot: &mut Option<TextureDesc>,
+) -> Result<f64, SceneError> {
+    *slot = texture_at(obj, "alpha", TextureUse::Alpha, loader)?;
+    if let Some(t) = slot {
+        return Ok(t.mean_scalar());
+    }
     let a = obj.number("alpha")?;
     if !(0.0..=1.0).contains(&a) {
         return Err(SceneError::new(
@@ -119,8 +153,13 @@ fn alpha(obj: &Obj) -> Result<f64, SceneError> {
     Ok(a)
 }
 
-/// Either `eta` + `k` or `reflectance`, never both or a half.
-fn fresnel(obj: &Obj) -> Result<FresnelDesc, SceneError> {
+/// Either `eta` + `k` or `reflectance` (a colour or a texture: then its mean, and `slot` is
+/// set), never both or a half.
+fn fresnel(
+    obj: &Obj,
+    loader: &mut TextureLoader,
+    slot: &mut Option<TextureDesc>,
+) -> Result<FresnelDesc, SceneError> {
     let (eta, k, refl) = (obj.get("eta"), obj.get("k"), obj.get("reflectance"));
     match (eta.is_some(), k.is_some(), refl.is_some()) {
         (true, true, false) => {
@@ -130,7 +169,13 @@ fn fresnel(obj: &Obj) -> Result<FresnelDesc, SceneError> {
             check_components(k, &obj.at("k"), |x| x >= 0.0, "must not be negative")?;
             Ok(FresnelDesc::Complex { eta, k })
         }
-        (false, false, true) => Ok(FresnelDesc::Reflectance(unit_color(obj, "reflectance")?)),
+        (false, false, true) => {
+            *slot = texture_at(obj, "reflectance", TextureUse::Reflectance, loader)?;
+            Ok(FresnelDesc::Reflectance(match slot {
+                Some(t) => t.mean_color(),
+                None => unit_color(obj, "reflectance")?,
+            }))
+        }
         (true, false, false) => Err(SceneError::new(obj.at("k"), "`eta` is given without `k`")),
         (false, true, false) => Err(SceneError::new(obj.at("eta"), "`k` is given without `eta`")),
         (false, false, false) => Err(SceneError::new(

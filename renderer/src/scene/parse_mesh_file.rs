@@ -72,14 +72,6 @@ pub(crate) fn mesh(
         let list = dropped_list(&dropped, |t| t.to_string());
         warnings.push(format!("{file_path}: {}: {list}", file.display()));
     }
-    if data.normals.is_some() && !face_normals {
-        // Not silently: the image differs from a renderer that interpolates them.
-        warnings.push(format!(
-            "{file_path}: {}: the file's vertex normals are not interpolated yet (issue 17): \
-             the mesh is flat-shaded; set \"face_normals\": true to silence this",
-            file.display()
-        ));
-    }
     if kept.is_empty() {
         warnings.push(format!(
             "{file_path}: {}: the mesh has no triangles",

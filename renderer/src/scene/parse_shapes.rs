@@ -5,17 +5,19 @@ use super::error::SceneError;
 use super::parse::check_radiance;
 use super::parse_mesh::{DEGENERATE_TRIANGLE, polygon, triangles};
 use super::parse_mesh_file::mesh;
+use super::parse_texture::{TextureLoader, TextureUse, texture_at};
 use super::walk::Obj;
 use glam::DVec3;
 use serde_json::Value;
 use std::path::Path;
 
 /// Every shape, in file order; degenerate non-emitting triangles are dropped into `warnings`.
-/// `mesh` files are relative to `folder`.
+/// `mesh` files are relative to `folder`; emission textures come from `loader`.
 pub(crate) fn parse_shapes(
     items: &[Value],
     materials: &[NamedMaterial],
     folder: &Path,
+    loader: &mut TextureLoader,
     warnings: &mut Vec<String>,
 ) -> Result<Vec<ShapeDesc>, SceneError> {
     items
@@ -26,6 +28,7 @@ pub(crate) fn parse_shapes(
                 &Obj::new(v, format!("shapes[{i}]"))?,
                 materials,
                 folder,
+                loader,
                 warnings,
             )
         })
@@ -36,6 +39,7 @@ fn parse_shape(
     obj: &Obj,
     materials: &[NamedMaterial],
     folder: &Path,
+    loader: &mut TextureLoader,
     warnings: &mut Vec<String>,
 ) -> Result<ShapeDesc, SceneError> {
     let kind = obj.string("type")?;
@@ -65,14 +69,23 @@ fn parse_shape(
         None => None,
         Some(_) => Some(material_index(obj, materials)?),
     };
-    let emission = obj.opt_vec3("emission")?.unwrap_or(DVec3::ZERO);
+    // A texture's texels are checked as it loads; its mean stands in for the constant.
+    let emission_texture = texture_at(obj, "emission", TextureUse::Emission, loader)?;
+    let emission = match &emission_texture {
+        Some(t) => t.mean_color(),
+        None => obj.opt_vec3("emission")?.unwrap_or(DVec3::ZERO),
+    };
     check_radiance(emission, &obj.at("emission"))?;
+    let emits = emission != DVec3::ZERO
+        || emission_texture
+            .as_ref()
+            .is_some_and(|t| t.texture.max().max_element() > 0.0);
 
     let geometry = match kind {
         "quad" => quad(obj)?,
         "polygon" => polygon(obj)?,
-        "triangles" => triangles(obj, emission != DVec3::ZERO, warnings)?,
-        "mesh" => mesh(obj, folder, emission != DVec3::ZERO, warnings)?,
+        "triangles" => triangles(obj, emits, warnings)?,
+        "mesh" => mesh(obj, folder, emits, warnings)?,
         "disk" => {
             let normal = obj.vec3("normal")?;
             if normal == DVec3::ZERO {
@@ -95,6 +108,7 @@ fn parse_shape(
         geometry,
         material,
         emission,
+        emission_texture,
         json_path: obj.path.clone(),
     })
 }

@@ -110,6 +110,7 @@ mod tests {
             },
             material: 0,
             light: crate::geometry::primitive::NONE,
+            attr: crate::geometry::primitive::NONE,
         };
         let depth_of = |n: usize| {
             let prims = (0..n * n)

@@ -72,12 +72,12 @@ fn cdf(weights: &[f32]) -> Vec<f32> {
     out
 }
 
-/// The records of `scene`'s lights; polygon lights append their triangles to `light_tris` (three
+/// The records of `scene`'s lights; polygon lights append their triangles to `vertex_data` (three
 /// vec4 each, the first two w's holding the triangle's interval of the by-area CDF), an
 /// environment map its sampling tables to `tables`.
 pub(super) fn encode(
     scene: &Scene,
-    light_tris: &mut Vec<[f32; 4]>,
+    vertex_data: &mut Vec<[f32; 4]>,
     tables: &mut Vec<f32>,
 ) -> Vec<GpuLight> {
     scene
@@ -108,12 +108,12 @@ pub(super) fn encode(
                         .map(crate::geometry::triangle::triangle_area)
                         .collect();
                     let c = cdf(&areas);
-                    g.h[1] = (light_tris.len() / 3) as u32;
+                    g.h[1] = (vertex_data.len() / 3) as u32;
                     g.h[2] = p.triangles.len() as u32;
                     for (i, t) in p.triangles.iter().enumerate() {
-                        light_tris.push(v4(t[0], c[i]));
-                        light_tris.push(v4(t[1], c[i + 1]));
-                        light_tris.push(v4(t[2], 0.0));
+                        vertex_data.push(v4(t[0], c[i]));
+                        vertex_data.push(v4(t[1], c[i + 1]));
+                        vertex_data.push(v4(t[2], 0.0));
                     }
                     g.a = v4(p.origin, 0.0);
                     g.d = v4(p.n, 0.0);

@@ -1,8 +1,8 @@
 //! [`GpuScene`]: the scene flattened into GPU storage buffers, one record encoder per kind
-//! ([`materials`], [`lights`], [`shapes`], [`bvh`]) whose layouts the WGSL records mirror, the
-//! environment map as a texture ([`envmap`]), and the per-dispatch uniform ([`params`]). Each
-//! kind's tags are a `#[repr(u32)]` enum next to its encoder, which the generated WGSL prelude
-//! (`gpu/prelude.rs`) names for the shaders.
+//! ([`materials`], [`lights`], [`shapes`], [`attributes`], [`bvh`]) whose layouts the WGSL
+//! records mirror, the environment map as a texture ([`envmap`]), and the per-dispatch uniform
+//! ([`params`]). Each kind's tags are a `#[repr(u32)]` enum next to its encoder, which the
+//! generated WGSL prelude (`gpu/prelude.rs`) names for the shaders.
 //! WGSL twin: `bindings.wgsl` (the bind group this module creates).
 //!
 //! Primitives are uploaded in the BVH's leaf order, which is the order of
@@ -11,6 +11,7 @@
 //! built over that same list and reaches it through its `primitive_indices`, so its hits index the
 //! same primitives.
 
+pub mod attributes;
 pub mod bvh;
 pub mod envmap;
 pub mod lights;
@@ -18,6 +19,7 @@ pub mod materials;
 pub mod params;
 pub mod shapes;
 
+pub use attributes::AttrOffsets;
 pub use bvh::{BVH2_STACK_SIZE, CWBVH_STACK_SIZE};
 pub use lights::{GpuLight, LightTag};
 pub use materials::{FresnelTag, GpuMaterial, MaterialTag};
@@ -41,13 +43,14 @@ pub struct GpuScene {
     prims: wgpu::Buffer,
     materials: wgpu::Buffer,
     lights: wgpu::Buffer,
-    light_tris: wgpu::Buffer,
+    vertex_data: wgpu::Buffer,
     tables: wgpu::Buffer,
     /// The environment map's texels (a 1×1 placeholder without one), kept with its view.
     _envmap: wgpu::Texture,
     envmap_view: wgpu::TextureView,
     light_cdf: u32,
     light_pmf: u32,
+    attr: AttrOffsets,
     layout: wgpu::BindGroupLayout,
 }
 
@@ -56,12 +59,15 @@ pub(crate) struct Records {
     pub(crate) prims: Vec<GpuPrim>,
     pub(crate) materials: Vec<GpuMaterial>,
     pub(crate) lights: Vec<GpuLight>,
-    pub(crate) light_tris: Vec<[f32; 4]>,
+    /// Polygon lights' triangles, then the mesh vertex attributes at `attr`.
+    pub(crate) vertex_data: Vec<[f32; 4]>,
     /// Coat albedo tables, an environment map's sampling tables, then the light-selection CDF
     /// and pmf.
     pub(crate) tables: Vec<f32>,
     pub(crate) light_cdf: u32,
     pub(crate) light_pmf: u32,
+    /// Where the attribute arrays start in `vertex_data`.
+    pub(crate) attr: AttrOffsets,
     /// The environment map's texels, if the scene has one (at most one: its background).
     pub(crate) envmap: Option<EnvmapTexels>,
 }
@@ -70,11 +76,12 @@ impl Records {
     /// Encodes every record of `scene`.
     pub(crate) fn of(scene: &Scene) -> Records {
         let mut tables = Vec::new();
-        let mut light_tris = Vec::new();
+        let mut vertex_data = Vec::new();
         let prims = shapes::encode(scene);
         let materials = materials::encode(scene, &mut tables);
-        let lights = lights::encode(scene, &mut light_tris, &mut tables);
+        let lights = lights::encode(scene, &mut vertex_data, &mut tables);
         let (light_cdf, light_pmf) = lights::selection(scene, &mut tables);
+        let attr = attributes::encode(&scene.attributes, &mut vertex_data);
         let mut maps = scene.lights.iter().filter_map(|l| match l {
             Light::Envmap(e) => Some(EnvmapTexels::of(e)),
             _ => None,
@@ -86,10 +93,11 @@ impl Records {
             prims,
             materials,
             lights,
-            light_tris,
+            vertex_data,
             tables,
             light_cdf,
             light_pmf,
+            attr,
             envmap,
         }
     }
@@ -124,6 +132,18 @@ impl GpuScene {
         GpuScene::with_bvh2(ctx, scene, false)
     }
 
+    /// Refuses scenes the GPU would render differently from the CPU: textured materials are
+    /// CPU-only for now (issue 17, item 7).
+    fn check_supported(scene: &Scene) -> Result<(), GpuError> {
+        match scene.material_textures.iter().position(Option::is_some) {
+            Some(i) => Err(GpuError::Unsupported(format!(
+                "material \"{}\" is textured",
+                scene.material_names[i]
+            ))),
+            None => Ok(()),
+        }
+    }
+
     /// Flattens and uploads `scene`; with `bvh2` (and a scene large enough for a BVH) it also
     /// builds an obvhs BVH2 and the programs traverse that instead of the CWBVH
     /// ([`Features::bvh2`]), for measuring the two. The images are the same up to float rounding
@@ -133,6 +153,7 @@ impl GpuScene {
         scene: Arc<Scene>,
         bvh2: bool,
     ) -> Result<GpuScene, GpuError> {
+        GpuScene::check_supported(&scene)?;
         let records = Records::of(&scene);
         GpuScene::upload(ctx, scene, bvh2, records)
     }
@@ -164,6 +185,10 @@ impl GpuScene {
         for (what, size) in [
             ("BVH nodes", nodes.len()),
             ("primitives", records.prims.len() * size_of::<GpuPrim>()),
+            (
+                "light triangles and mesh vertex attributes",
+                records.vertex_data.len() * size_of::<[f32; 4]>(),
+            ),
             (
                 if records.envmap.is_some() {
                     "tables (with the environment map's sampling tables)"
@@ -209,12 +234,13 @@ impl GpuScene {
             prims: storage("lumis prims", bytemuck::cast_slice(&r.prims)),
             materials: storage("lumis materials", bytemuck::cast_slice(&r.materials)),
             lights: storage("lumis lights", bytemuck::cast_slice(&r.lights)),
-            light_tris: storage("lumis light triangles", bytemuck::cast_slice(&r.light_tris)),
+            vertex_data: storage("lumis vertex data", bytemuck::cast_slice(&r.vertex_data)),
             tables: storage("lumis tables", bytemuck::cast_slice(&r.tables)),
             _envmap: envmap,
             envmap_view,
             light_cdf: r.light_cdf,
             light_pmf: r.light_pmf,
+            attr: r.attr,
             layout,
             features,
             scene,
@@ -305,7 +331,7 @@ impl GpuScene {
                     whole(2, &self.prims),
                     whole(3, &self.materials),
                     whole(4, &self.lights),
-                    whole(5, &self.light_tris),
+                    whole(5, &self.vertex_data),
                     whole(6, &self.tables),
                     whole(7, accum),
                     whole(8, counters),

@@ -52,6 +52,8 @@ pub struct GpuParams {
     pub cam_right: [f32; 4],
     /// Camera up axis.
     pub cam_up: [f32; 4],
+    /// Where the mesh attribute arrays start in the vertex data (`gpu/scene/attributes.rs`).
+    pub attr: [u32; 4],
 }
 
 /// Uniform slots are this far apart (the largest `min_uniform_buffer_offset_alignment` wgpu
@@ -147,6 +149,7 @@ impl GpuScene {
             cam_forward: v4(forward, tan_y),
             cam_right: v4(right, 0.0),
             cam_up: v4(up, 0.0),
+            attr: self.attr,
         }
     }
 }

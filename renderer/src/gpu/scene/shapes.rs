@@ -9,7 +9,9 @@ use crate::scene::Scene;
 use bytemuck::{Pod, Zeroable};
 
 /// A primitive record (`Prim` in `shape.wgsl`): a.w, b.w, c.w hold the bits of (kind, material,
-/// light); the rest is the shape (see the top of `shape.wgsl`).
+/// light); the rest is the shape (see the top of `shape.wgsl`), and a triangle's d.w (a free slot)
+/// the bits of its attribute index ([`crate::geometry::Primitive::attr`]; disks and spheres,
+/// which have none, use d.w for their radius).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuPrim {
@@ -52,7 +54,7 @@ pub(super) fn encode(scene: &Scene) -> Vec<GpuPrim> {
         .map(|p| {
             let zero = glam::Vec3::ZERO;
             let (a, b, c, d) = match p.shape {
-                Shape::Triangle { v, n } => (v[0], v[1], v[2], v4(n, 0.0)),
+                Shape::Triangle { v, n } => (v[0], v[1], v[2], v4(n, bits(p.attr))),
                 Shape::Disk(k) => (k.center, zero, zero, v4(k.n, k.radius)),
                 Shape::Sphere(s) => (s.center, zero, zero, [0.0, 0.0, 0.0, s.radius]),
             };

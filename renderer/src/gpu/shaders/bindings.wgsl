@@ -27,6 +27,8 @@ struct Params {
     cam_forward: vec4f,
     cam_right: vec4f,
     cam_up: vec4f,
+    // Where the mesh attribute arrays start in `vertex_data` (triangles, meshes, normals, uvs).
+    attr: vec4<u32>,
 }
 
 // Flags the sample when `p` holds a tag `gpu/scene/params.rs` never writes (the heuristic and the
@@ -63,7 +65,10 @@ fn check_param_tags(p: Params) {
 @group(0) @binding(2) var<storage, read> prims: array<Prim>;
 @group(0) @binding(3) var<storage, read> materials: array<Material>;
 @group(0) @binding(4) var<storage, read> lights: array<Light>;
-@group(0) @binding(5) var<storage, read> light_tris: array<vec4f>;
+// Polygon lights' triangles (`light.wgsl`), then the mesh vertex attributes at `params.attr`
+// (`mesh_attributes.wgsl`): one buffer, as the path tracer already binds the 8 storage buffers
+// wgpu's portable limits allow per stage.
+@group(0) @binding(5) var<storage, read> vertex_data: array<vec4f>;
 @group(0) @binding(6) var<storage, read> tables: array<f32>;
 // Accumulation, three planes of width·height vec4: running mean, Welford's M2, mean of the
 // even-numbered samples; then, for dispatches of several samples, one plane per sample of the

@@ -238,7 +238,7 @@ fn scene_occluded(ray: Ray) -> bool {
 fn scene_intersect(ray: Ray) -> SurfaceHit {
     let h = scene_intersect_t(ray);
     if h.prim == NONE {
-        return SurfaceHit(0.0, vec3f(0.0), vec3f(0.0), vec3f(0.0), NONE);
+        return SurfaceHit(0.0, vec3f(0.0), vec3f(0.0), vec3f(0.0), NONE, vec2f(0.0));
     }
     return shape_surface_hit(prims[h.prim], ray, h.t, h.prim);
 }

@@ -5,7 +5,7 @@
 // Record layout (see `gpu/scene/lights.rs`): h = (kind, first triangle, triangle count, _),
 // le = (radiance, area).
 //   Triangle:   a, b, c = vertices, d.xyz = normal.
-//   Polygon:    a.xyz = a point of the plane, d.xyz = normal; triangles in `light_tris`
+//   Polygon:    a.xyz = a point of the plane, d.xyz = normal; triangles in `vertex_data`
 //               (3 vec4 each, v0.w/v1.w = the triangle's interval in the by-area CDF).
 //   Quad:       a = corner, b = edge u, c = edge v, d.xyz = normal.
 //   Disk:       a.xyz = centre, a.w = radius, d.xyz = normal.

@@ -1,7 +1,7 @@
 // The unidirectional path tracer, the twin of `integrator/path.rs` (one loop, four direct-light
 // strategies, Mitsuba's max_depth, Russian roulette from rr_depth, transmission through
 // dielectrics under HAS_DIELECTRIC only, so a scene without glass runs the reflection-only
-// program), and the render kernel: one
+// program, and shading normals under HAS_SHADING_NORMALS only), and the render kernel: one
 // invocation per pixel draws one sample per dispatch and folds it into the accumulation with
 // Welford's update (stable variance in f32; the film reads back Σx and Σx² from it).
 
@@ -38,9 +38,23 @@ fn emission_weight(rule: u32, p_bsdf: f32, light: u32, light_pdf: f32) -> f32 {
     return 0.0;
 }
 
+// #if HAS_SHADING_NORMALS
+// The shading-normal rule (`same_side`): a direction counts only if the geometric normal n puts
+// it on the side the shading frame does (local_z, its cosine there), and not in the plane.
+fn same_side(w: vec3f, n: vec3f, local_z: f32) -> bool {
+    let d = dot(w, n);
+    return d != 0.0 && ((d > 0.0) == (local_z > 0.0));
+}
+// #endif
+
 // #if HAS_LIGHTS
-// Next-event estimation (`direct_light`); `mixture_w` ≥ 0 on the mixture's light branch.
+// Next-event estimation (`direct_light`); `mixture_w` ≥ 0 on the mixture's light branch;
+// `shading`: the frame is a shading normal's (the rule above applies).
+// #if HAS_SHADING_NORMALS
+fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material, u_light: f32, u: vec2f, mixture_w: f32, shading: bool) -> vec3f {
+// #else
 fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material, u_light: f32, u: vec2f, mixture_w: f32) -> vec3f {
+// #endif
     let choice = light_sampler_sample(params.light_cdf, params.light_pmf, params.n_lights, u_light);
     let light = lights[choice.index];
     let ls = light_sample(light, hit.p, u, params.light_sampling);
@@ -56,6 +70,11 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
 // #endif
         return vec3f(0.0);
     }
+// #if HAS_SHADING_NORMALS
+    if shading && !same_side(ls.wi, n, wi.z) {
+        return vec3f(0.0);
+    }
+// #endif
     let f = material_eval(m, wo, wi);
     if all(f == vec3f(0.0)) {
         return vec3f(0.0);
@@ -136,8 +155,16 @@ fn radiance(camera_ray: Ray) -> vec3f {
         }
         let mi = prim_material(prim);
         let m = materials[mi];
+        // (Textured materials will be evaluated here, at `mesh_uv(prim_attr(prim), hit.b)`.)
         let wo_world = -normalize_glam(ray.d);
+        // `n`: the geometric normal, which decides sides and ray offsets; the BSDF lives in the
+        // frame of the shading normal `ns` (the geometric one where the mesh has none).
         var n = hit.n;
+// #if HAS_SHADING_NORMALS
+        let sn = shading_normal(prim_attr(prim), hit.b, n);
+        let shading = sn.found;
+        var ns = sn.n;
+// #endif
 // #if HAS_DIELECTRIC
         // A dielectric's frame is never flipped: wo below it means the viewer is inside.
         let transmits = material_transmits(m);
@@ -149,8 +176,15 @@ fn radiance(camera_ray: Ray) -> vec3f {
                 break;
             }
             n = -n;
+// #if HAS_SHADING_NORMALS
+            ns = -ns;
+// #endif
         }
+// #if HAS_SHADING_NORMALS
+        let frame = frame_from_normal(ns);
+// #else
         let frame = frame_from_normal(n);
+// #endif
         let wo = to_local(frame, wo_world);
 // #if HAS_DIELECTRIC
         // A reflecting surface is seen from its front only; a dielectric from either side.
@@ -160,6 +194,11 @@ fn radiance(camera_ray: Ray) -> vec3f {
 // #endif
             break;
         }
+// #if HAS_SHADING_NORMALS
+        if shading && !same_side(wo_world, n, wo.z) {
+            break;
+        }
+// #endif
 
         // Direct light by light sampling, and the rule for emission the BSDF sample will find.
         var do_nee = false;
@@ -197,7 +236,11 @@ fn radiance(camera_ray: Ray) -> vec3f {
         if do_nee {
             let u_light = rng_next_f32();
             let u = rng_next_2d();
+// #if HAS_SHADING_NORMALS
+            l += beta * direct_light(hit, n, frame, wo, m, u_light, u, nee_mixture_w, shading);
+// #else
             l += beta * direct_light(hit, n, frame, wo, m, u_light, u, nee_mixture_w);
+// #endif
         }
 // #endif
 
@@ -220,6 +263,11 @@ fn radiance(camera_ray: Ray) -> vec3f {
             break;
         }
         let wi = to_world(frame, bs.wi);
+// #if HAS_SHADING_NORMALS
+        if shading && !same_side(wi, n, bs.wi.z) {
+            break;
+        }
+// #endif
         prev_p = hit.p;
         ray = spawn_ray(hit.p, hit.p_error, n, wi);
 

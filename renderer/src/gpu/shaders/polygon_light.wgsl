@@ -8,9 +8,9 @@ fn polygon_light_faces(l: Light, p: vec3f) -> bool {
 }
 
 fn polygon_tri_solid_angle(i: u32, p: vec3f) -> f32 {
-    let v0 = light_tris[3u * i].xyz;
-    let v1 = light_tris[3u * i + 1u].xyz;
-    let v2 = light_tris[3u * i + 2u].xyz;
+    let v0 = vertex_data[3u * i].xyz;
+    let v1 = vertex_data[3u * i + 1u].xyz;
+    let v2 = vertex_data[3u * i + 2u].xyz;
     return spherical_triangle_area(normalize_or_zero(v0 - p), normalize_or_zero(v1 - p), normalize_or_zero(v2 - p));
 }
 
@@ -60,9 +60,9 @@ fn polygon_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSampl
                 return no_light_sample();
             }
             let t = first + chosen;
-            let v0 = light_tris[3u * t].xyz;
-            let v1 = light_tris[3u * t + 1u].xyz;
-            let v2 = light_tris[3u * t + 2u].xyz;
+            let v0 = vertex_data[3u * t].xyz;
+            let v1 = vertex_data[3u * t + 1u].xyz;
+            let v2 = vertex_data[3u * t + 2u].xyz;
             let s = sample_spherical_triangle(v0, v1, v2, p, vec2f(ux, u.y));
             if !s.ok {
                 return no_light_sample();
@@ -78,19 +78,19 @@ fn polygon_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSampl
     var hi = count;
     while hi - lo > 1u {
         let mid = (lo + hi) / 2u;
-        if light_tris[3u * (first + mid)].w <= u.x {
+        if vertex_data[3u * (first + mid)].w <= u.x {
             lo = mid;
         } else {
             hi = mid;
         }
     }
     let t = first + lo;
-    let c0 = light_tris[3u * t].w;
-    let c1 = light_tris[3u * t + 1u].w;
+    let c0 = vertex_data[3u * t].w;
+    let c1 = vertex_data[3u * t + 1u].w;
     let ux = min((u.x - c0) / (c1 - c0), ONE_MINUS_EPSILON);
-    let v0 = light_tris[3u * t].xyz;
-    let v1 = light_tris[3u * t + 1u].xyz;
-    let v2 = light_tris[3u * t + 2u].xyz;
+    let v0 = vertex_data[3u * t].xyz;
+    let v1 = vertex_data[3u * t + 1u].xyz;
+    let v2 = vertex_data[3u * t + 2u].xyz;
     let b = sample_uniform_triangle(vec2f(ux, u.y));
     let y = b.x * v0 + b.y * v1 + b.z * v2;
     return area_sample(p, y, l.d.xyz, 1.0 / l.le.w, l.le.xyz);

@@ -2,7 +2,8 @@
 // of `Shape` (Triangle, Disk, Sphere).
 //
 // Record layout (see `gpu/scene/shapes.rs`): a.w, b.w, c.w = bits of (kind, material, light).
-//   Triangle: a, b, c = vertices, d.xyz = unit normal.
+//   Triangle: a, b, c = vertices, d.xyz = unit normal, d.w = bits of its attribute index (NONE
+//             without vertex attributes; `mesh_attributes.wgsl`).
 //   Disk:     a.xyz = centre, d.xyz = unit normal, d.w = radius.
 //   Sphere:   a.xyz = centre, d.w = radius.
 
@@ -25,6 +26,14 @@ fn prim_light(p: Prim) -> u32 {
     return bitcast<u32>(p.c.w);
 }
 
+// `Primitive::attr`: only triangles have attributes (a disk's or sphere's d.w is its radius).
+fn prim_attr(p: Prim) -> u32 {
+    if prim_kind(p) == SHAPE_TRIANGLE {
+        return bitcast<u32>(p.d.w);
+    }
+    return NONE;
+}
+
 // `SurfaceHit`.
 struct SurfaceHit {
     t: f32,
@@ -32,6 +41,8 @@ struct SurfaceHit {
     p_error: vec3f,
     n: vec3f,
     prim: u32,
+    // Barycentrics (b1, b2) of a triangle hit, for vertex attributes; zero on disks and spheres.
+    b: vec2f,
 }
 
 // `Shape::intersect_t`: the nearest hit in (0, ray.t_max), or −1.
@@ -64,13 +75,13 @@ fn shape_surface_hit(p: Prim, ray: Ray, t: f32, prim: u32) -> SurfaceHit {
 // #if HAS_DISK_SHAPE
         case SHAPE_DISK: {
             let sp = disk_surface_point(p.a.xyz, p.d.xyz, ray, t);
-            return SurfaceHit(t, sp[0], sp[1], p.d.xyz, prim);
+            return SurfaceHit(t, sp[0], sp[1], p.d.xyz, prim, vec2f(0.0));
         }
 // #endif
 // #if HAS_SPHERE_SHAPE
         case SHAPE_SPHERE: {
             let sp = sphere_surface_point(p.a.xyz, p.d.w, ray, t);
-            return SurfaceHit(t, sp.p, sp.p_error, sp.n, prim);
+            return SurfaceHit(t, sp.p, sp.p_error, sp.n, prim, vec2f(0.0));
         }
 // #endif
         // SHAPE_TRIANGLE (an unknown kind never gets here: `shape_intersect_t` flags it and misses).
@@ -83,7 +94,7 @@ fn shape_surface_hit(p: Prim, ray: Ray, t: f32, prim: u32) -> SurfaceHit {
                 b = h.yzw;
             }
             let tp = triangle_point(p.a.xyz, p.b.xyz, p.c.xyz, b);
-            return SurfaceHit(t, tp[0], tp[1], p.d.xyz, prim);
+            return SurfaceHit(t, tp[0], tp[1], p.d.xyz, prim, b.yz);
         }
     }
 }

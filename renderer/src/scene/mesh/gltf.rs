@@ -8,10 +8,10 @@
 //! - **Scene**: `scene` if the file names one, else scene 0, else (no scenes) every root node.
 //! - **Transforms**: a node's `matrix`, or T·R·S from `translation`/`rotation`/`scale`, composed
 //!   parent × child down the hierarchy (which must be a tree). Positions go through the full
-//!   matrix; normals through the inverse transpose of its 3×3 part, then are renormalised (one
-//!   that a singular matrix flattens to zero stays zero). A matrix with negative determinant
-//!   swaps two indices of each triangle, so the right-hand rule still gives the side the file
-//!   means. Skins, morph targets and `EXT_mesh_gpu_instancing` are not applied (the rest pose).
+//!   matrix (one it takes beyond `f32` is an error); normals through the inverse transpose of
+//!   its 3×3 part, then are renormalised (one that a singular matrix flattens to zero stays
+//!   zero). A matrix with negative determinant swaps two indices of each triangle, so the
+//!   right-hand rule still gives the side the file means. Skins, morph targets and `EXT_mesh_gpu_instancing` are not applied (the rest pose).
 //! - **Modes**: TRIANGLES; TRIANGLE_STRIP and TRIANGLE_FAN are converted to triangles by the
 //!   spec's vertex order (their zero-area joins, triangles with a repeated index, are dropped).
 //!   POINTS and LINES* primitives are skipped silently (lumis renders surfaces and has no
@@ -42,11 +42,18 @@ use std::path::Path;
 /// Reads `path` as a `.gltf` or `.glb` file (told apart by the `glTF` magic, not the name).
 pub fn load(path: &Path) -> Result<MeshData, MeshError> {
     let bytes = std::fs::read(path).map_err(|e| MeshError::at(path, "", e))?;
+    load_bytes(path, &bytes)
+}
+
+/// Reads the `.gltf` or `.glb` file `bytes` as [`load`] reads a file; `path` names it in errors
+/// and its folder is where external buffers (relative `uri`s) are looked for. The entry point of
+/// the fuzz target `mesh_gltf`.
+pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
     let glb = bytes.starts_with(b"glTF");
     let (json_bytes, bin) = if glb {
-        split_glb(path, &bytes)?
+        split_glb(path, bytes)?
     } else {
-        (&bytes[..], None)
+        (bytes, None)
     };
     let document = parse_document(path, json_bytes)?;
     let placements = placements(path, &document)?;
@@ -218,6 +225,8 @@ fn parse_document(file: &Path, json_bytes: &[u8]) -> Result<Document, MeshError>
 /// One mesh primitive as the scene places it. `material` (the glTF material index, `None` for
 /// the default material) is what the material mapping will need per triangle.
 struct Placement<'a> {
+    /// The node that places it.
+    node: usize,
     mesh: usize,
     primitive: Primitive<'a>,
     world: Mat4,
@@ -262,6 +271,7 @@ fn placements<'a>(file: &Path, doc: &'a Document) -> Result<Vec<Placement<'a>>, 
         if let Some(mesh) = node.mesh() {
             for primitive in mesh.primitives() {
                 out.push(Placement {
+                    node: index,
                     mesh: mesh.index(),
                     material: primitive.material().index(),
                     primitive,
@@ -813,9 +823,20 @@ fn read_primitive(
             t.swap(1, 2);
         }
     }
-    out.mesh
-        .positions
-        .extend(positions.iter().map(|&p| world.transform_point3(p)));
+    // Finite positions and a finite matrix can still overflow (f32::MAX scaled by 2).
+    let placed = positions.iter().map(|&p| world.transform_point3(p));
+    if let Some(i) = placed.clone().position(|p| !p.is_finite()) {
+        return Err(MeshError::at(
+            file,
+            &format!("accessor {} element {i}", pos_acc.index()),
+            format!(
+                "position overflows single precision under the transform of node {} (with \
+                 its parents)",
+                place.node
+            ),
+        ));
+    }
+    out.mesh.positions.extend(placed);
     out.mesh
         .indices
         .extend(triangles.iter().map(|t| t.map(|i| i + base32)));

@@ -21,7 +21,16 @@ impl Dir {
             .join(format!("lumis-gltf-test-{}", std::process::id()))
             .join(test);
         let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
+        // Another test's drop may remove the (still empty) per-process folder between the two
+        // steps of `create_dir_all`; once this folder is in it, it stays.
+        let mut created = std::fs::create_dir_all(&dir);
+        for _ in 0..100 {
+            if created.is_ok() {
+                break;
+            }
+            created = std::fs::create_dir_all(&dir);
+        }
+        created.unwrap();
         Dir(dir)
     }
 
@@ -765,6 +774,50 @@ fn bad_indices_and_non_finite_values_are_named() {
     a.accessors[3]["componentType"] = json!(FLOAT);
     assert!(
         error(&a.write_glb(&dir, "ftype.glb")).starts_with(" accessor 3: indices must be SCALAR")
+    );
+}
+
+/// Found by `tests/mesh_mutations.rs`: f32::MAX is a finite position and 2 a finite scale, but
+/// the placed position was infinite and loaded.
+#[test]
+fn a_position_that_its_transform_overflows_is_named() {
+    let dir = Dir::new("overflow");
+    let mut a = Asset::default();
+    let mut p = QUAD;
+    p[3][0] = f32::MAX;
+    let pos = a.vec3(&p);
+    let idx = a.indices(&QUAD_TRIS, U8);
+    let mesh = a.mesh(vec![primitive(pos, None, None, Some(idx))]);
+    a.node(json!({ "children": [1], "scale": [2.0, 2.0, 2.0] }));
+    a.node(json!({ "mesh": mesh }));
+    let e = error(&a.write_glb(&dir, "overflow.glb"));
+    assert_eq!(
+        e,
+        " accessor 0 element 3: position overflows single precision under the transform of \
+         node 1 (with its parents)"
+    );
+    // At the edge but not beyond: still read.
+    a.nodes[0]["scale"] = json!([1.0, 1.0, 1.0]);
+    let mesh = load(&a.write_glb(&dir, "edge.glb")).unwrap();
+    assert_eq!(mesh.positions[3].x, f32::MAX);
+}
+
+/// Found by `tests/mesh_mutations.rs` (in PLY files): a message quotes the file, and a JSON
+/// string may hold a newline or U+2028, which must not break the message's line.
+#[test]
+fn quoted_line_breaks_are_escaped() {
+    let dir = Dir::new("one_line");
+    let a = quad(U16);
+    let path = dir.file("breaks.gltf");
+    std::fs::write(
+        &path,
+        a.json(Some("a\nb\u{2028}c\u{b}d.bin".into())).to_string(),
+    )
+    .unwrap();
+    let e = error(&path);
+    assert!(
+        e.starts_with(r" buffer 0: cannot read 'a\nb\u{2028}c\u{b}d.bin': "),
+        "{e}"
     );
 }
 

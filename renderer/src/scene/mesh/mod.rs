@@ -7,6 +7,7 @@
 pub mod gltf;
 pub mod obj;
 pub mod ply;
+pub mod uv_sphere;
 
 use glam::{Vec2, Vec3};
 use std::path::Path;
@@ -22,8 +23,9 @@ pub struct MeshData {
     pub indices: Vec<[u32; 3]>,
     /// One normal per vertex (not necessarily unit), if the file has them for every vertex.
     pub normals: Option<Vec<Vec3>>,
-    /// One texture coordinate per vertex, if the file has them for every vertex; `v` as the file
-    /// stores it (OBJ and PLY: up from the bottom of the image; glTF: down from the top).
+    /// One texture coordinate per vertex, if the file has them for every vertex, with `v = 0` at
+    /// the image's top row as textures index it: glTF and PLY values as stored, OBJ's `v`
+    /// flipped to `1 − v` (what Mitsuba 3 does with each format).
     pub uvs: Option<Vec<Vec2>>,
 }
 
@@ -35,15 +37,36 @@ pub struct MeshError(pub String);
 
 impl MeshError {
     /// An error about `file`, at `position` if not empty (`line 17`, `element face 3`,
-    /// `accessor 2`).
+    /// `accessor 2`). Always one line (see `one_line`), whatever the message quotes.
     pub fn at(file: &Path, position: &str, message: impl std::fmt::Display) -> MeshError {
         let name = file.display();
-        if position.is_empty() {
-            MeshError(format!("{name}: {message}"))
+        let text = if position.is_empty() {
+            format!("{name}: {message}")
         } else {
-            MeshError(format!("{name} {position}: {message}"))
-        }
+            format!("{name} {position}: {message}")
+        };
+        MeshError(one_line(text))
     }
+}
+
+/// `text` with every character that can break a line escaped as Rust writes it (`\u{b}`):
+/// control characters other than tab, and Unicode's line and paragraph separators. Messages
+/// quote the file's own words (an unknown keyword, a token, a `uri`), which may hold any of
+/// them, and a splitting rule that stops at ASCII whitespace does not stop at U+000B or U+2028.
+fn one_line(text: String) -> String {
+    let breaks = |c: char| (c.is_control() && c != '\t') || matches!(c, '\u{2028}' | '\u{2029}');
+    if !text.contains(breaks) {
+        return text;
+    }
+    text.chars()
+        .map(|c| {
+            if breaks(c) {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }
 
 /// The file extensions [`load_mesh`] reads (lower case).
@@ -51,26 +74,47 @@ pub const MESH_EXTENSIONS: [&str; 4] = ["obj", "ply", "gltf", "glb"];
 
 /// Reads the mesh in `path`, by extension: `.obj`, `.ply`, `.gltf` or `.glb` (case-insensitive).
 pub fn load_mesh(path: &Path) -> Result<MeshData, MeshError> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
-    match ext.as_str() {
+    match extension(path).as_str() {
         "obj" => obj::load(path),
         "ply" => ply::load(path),
         "gltf" | "glb" => gltf::load(path),
-        other => Err(MeshError::at(
-            path,
-            "",
-            format!("unsupported mesh format '.{other}' (use .obj, .ply, .gltf or .glb)"),
-        )),
+        other => Err(unsupported(path, other)),
     }
 }
 
+/// Reads the mesh file `bytes` as [`load_mesh`] reads the file `path`, choosing the reader by
+/// the extension of `path`, which also names the file in errors (and, for `.gltf`, is where
+/// external buffers are looked for). For tests and tools that hold the bytes already.
+pub fn load_mesh_bytes(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
+    match extension(path).as_str() {
+        "obj" => obj::load_bytes(path, bytes),
+        "ply" => ply::load_bytes(path, bytes),
+        "gltf" | "glb" => gltf::load_bytes(path, bytes),
+        other => Err(unsupported(path, other)),
+    }
+}
+
+/// The lower-case extension of `path` ("" if none).
+fn extension(path: &Path) -> String {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase()
+}
+
+/// The error for an extension no reader takes.
+fn unsupported(path: &Path, ext: &str) -> MeshError {
+    MeshError::at(
+        path,
+        "",
+        format!("unsupported mesh format '.{ext}' (use .obj, .ply, .gltf or .glb)"),
+    )
+}
+
 /// Checks what every reader guarantees: indices in range, `normals`/`uvs` one per vertex; the
-/// error names `file`. Readers call this last, so the front end can rely on it.
-pub(crate) fn check(file: &Path, mesh: &MeshData) -> Result<(), MeshError> {
+/// error names `file`. Readers call this last, so the front end can rely on it; public so that
+/// the mutation test and the fuzz targets can hold the readers to it.
+pub fn check(file: &Path, mesh: &MeshData) -> Result<(), MeshError> {
     let n = mesh.positions.len();
     if let Some((t, tri)) = mesh
         .indices

@@ -34,11 +34,12 @@ use std::path::Path;
 pub fn load(path: &Path) -> Result<MeshData, MeshError> {
     let bytes =
         std::fs::read(path).map_err(|e| MeshError::at(path, "", format!("cannot read: {e}")))?;
-    parse(path, &bytes)
+    load_bytes(path, &bytes)
 }
 
-/// Reads the OBJ text `bytes`; `path` names it in errors.
-fn parse(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
+/// Reads the OBJ text `bytes` as [`load`] reads a file; `path` only names it in errors (no file
+/// is opened: materials are ignored). The entry point of the fuzz target `mesh_obj`.
+pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
     // Invalid UTF-8 can only matter in names and comments; tobj needs a `str`.
     let text = String::from_utf8_lossy(bytes);
     let totals = count(&text);
@@ -298,7 +299,13 @@ fn merge(path: &Path, models: &[tobj::Model]) -> Result<MeshData, MeshError> {
             normals.extend(m.normals.chunks_exact(3).map(Vec3::from_slice));
         }
         if let Some(uvs) = &mut mesh.uvs {
-            uvs.extend(m.texcoords.chunks_exact(2).map(Vec2::from_slice));
+            // OBJ's v runs up from the image's bottom; textures index rows from the top
+            // (Mitsuba 3 flips OBJ texture coordinates the same way).
+            uvs.extend(
+                m.texcoords
+                    .chunks_exact(2)
+                    .map(|t| Vec2::new(t[0], 1.0 - t[1])),
+            );
         }
     }
     if mesh.indices.is_empty() {
@@ -317,7 +324,8 @@ pub fn write(path: &Path, mesh: &MeshData) -> io::Result<()> {
         writeln!(w, "v {} {} {}", p.x, p.y, p.z)?;
     }
     for t in mesh.uvs.iter().flatten() {
-        writeln!(w, "vt {} {}", t.x, t.y)?;
+        // Back to OBJ's bottom-up v (the reader flips it).
+        writeln!(w, "vt {} {}", t.x, 1.0 - t.y)?;
     }
     for n in mesh.normals.iter().flatten() {
         writeln!(w, "vn {} {} {}", n.x, n.y, n.z)?;

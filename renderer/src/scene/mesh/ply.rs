@@ -209,6 +209,12 @@ pub fn load(path: &Path) -> Result<MeshData, MeshError> {
     read(path, file, file_len)
 }
 
+/// Reads the PLY file `bytes` as [`load`] reads a file; `path` only names it in errors. The
+/// entry point of the fuzz target `mesh_ply`.
+pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
+    read(path, bytes, bytes.len() as u64)
+}
+
 /// Reads a PLY file of `file_len` bytes from `source`; `path` names it in errors.
 fn read(path: &Path, source: impl Read, file_len: u64) -> Result<MeshData, MeshError> {
     let mut reader = BufReader::with_capacity(1 << 16, source);

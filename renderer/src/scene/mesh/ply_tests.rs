@@ -636,6 +636,33 @@ fn structural_errors_are_named() {
     }
 }
 
+/// Found by `tests/mesh_mutations.rs`: the header splits at ASCII whitespace, which U+000B,
+/// U+0085 and U+2028 are not, so a quoted keyword or value carried the line break into the
+/// message.
+#[test]
+fn quoted_line_breaks_are_escaped() {
+    let cases = [
+        (
+            "ply\nformat ascii 1.0\nelem\u{b}ent vertex 3\nend_header\n".to_string(),
+            r" header line 3: unknown header keyword 'elem\u{b}ent'",
+        ),
+        (
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty fl\u{2028}oat x\n".to_string(),
+            r" header line 4: unknown type 'fl\u{2028}oat'",
+        ),
+        (
+            ascii(
+                &format!("{XYZ}{FACES}"),
+                "0 0 0\u{85}\n1 0 0\n0 1 0\n3 0 1 2\n",
+            ),
+            r" element vertex 0 (line 10): '0\u{85}' is not a value of type float",
+        ),
+    ];
+    for (i, (text, expected)) in cases.iter().enumerate() {
+        assert_eq!(text_error(&format!("breaks_{i}.ply"), text), *expected);
+    }
+}
+
 #[test]
 fn ascii_is_lenient_where_the_format_allows() {
     // Blank lines, CRLF line ends, tabs, trailing spaces, `.5`, `1E0`, an element count with

@@ -1,0 +1,83 @@
+// Vertex attributes of mesh triangles (shading normals, texture coordinates) found from a hit's
+// barycentrics, the twin of `geometry/mesh_attributes.rs`, same expressions in the same order,
+// same fallbacks. The records live in `vertex_data` at the offsets `params.attr` (written by
+// `gpu/scene/attributes.rs`):
+//   triangles (params.attr.x), indexed by a primitive's attr: bits of (v0, v1, v2, mesh);
+//   meshes (params.attr.y): bits of (normal_base, uv_base, flags, 0);
+//   normals (params.attr.z): (x, y, z, 0), unit and in world space;
+//   uvs (params.attr.w): two per vec4, vertex i in .xy of vec4 i/2 if i is even, .zw if odd.
+// Only in programs that need it (scenes with shading normals; textures will add theirs).
+
+fn attr_triangle(attr: u32) -> vec4<u32> {
+    return bitcast<vec4<u32>>(vertex_data[params.attr.x + attr]);
+}
+
+fn attr_mesh(mesh: u32) -> vec4<u32> {
+    return bitcast<vec4<u32>>(vertex_data[params.attr.y + mesh]);
+}
+
+fn attr_normal(i: u32) -> vec3f {
+    return vertex_data[params.attr.z + i].xyz;
+}
+
+fn attr_uv(i: u32) -> vec2f {
+    let q = vertex_data[params.attr.w + i / 2u];
+    return select(q.xy, q.zw, (i & 1u) == 1u);
+}
+
+// `MeshAttributes::shading_normal`'s `Option`: `found` false (and n = ng) where the triangle has
+// no vertex normals.
+struct ShadingNormal {
+    found: bool,
+    n: vec3f,
+}
+
+// `MeshAttributes::shading_normal`: the shading normal at barycentrics b = (b1, b2) of triangle
+// `attr` (NONE: none) with geometric normal ng.
+fn shading_normal(attr: u32, b: vec2f, ng: vec3f) -> ShadingNormal {
+    if attr == NONE {
+        return ShadingNormal(false, ng);
+    }
+    let tri = attr_triangle(attr);
+    let mesh = attr_mesh(tri.w);
+    if (mesh.z & ATTR_HAS_NORMALS) == 0u {
+        return ShadingNormal(false, ng);
+    }
+    let n0 = attr_normal(mesh.x + tri.x);
+    let n1 = attr_normal(mesh.x + tri.y);
+    let n2 = attr_normal(mesh.x + tri.z);
+    return ShadingNormal(true, interpolate_normal(n0, n1, n2, b, ng));
+}
+
+// `MeshAttributes::uv`: interpolated where the triangle has UVs, else b itself (also for NONE).
+// Textured materials will look up their texels at `mesh_uv(prim_attr(prim), hit.b)`.
+fn mesh_uv(attr: u32, b: vec2f) -> vec2f {
+    if attr == NONE {
+        return b;
+    }
+    let tri = attr_triangle(attr);
+    let mesh = attr_mesh(tri.w);
+    if (mesh.z & ATTR_HAS_UVS) == 0u {
+        return b;
+    }
+    let t0 = attr_uv(mesh.y + tri.x);
+    let t1 = attr_uv(mesh.y + tri.y);
+    let t2 = attr_uv(mesh.y + tri.z);
+    return (1.0 - b.x - b.y) * t0 + b.x * t1 + b.y * t2;
+}
+
+// `interpolate_normal`: normalize((1−b1−b2)·n0 + b1·n1 + b2·n2), turned to ng's side; ng where
+// that is not a direction (squared length not above 1e-20, or not finite: tested by its bits, as
+// a shader compiler may assume comparisons never see a NaN).
+fn interpolate_normal(n0: vec3f, n1: vec3f, n2: vec3f, b: vec2f, ng: vec3f) -> vec3f {
+    let sum = (1.0 - b.x - b.y) * n0 + b.x * n1 + b.y * n2;
+    let len2 = dot(sum, sum);
+    if !(len2 > 1e-20f && is_finite_f(len2)) {
+        return ng;
+    }
+    let ns = sum / sqrt(len2);
+    if dot(ns, ng) < 0.0 {
+        return -ns;
+    }
+    return ns;
+}

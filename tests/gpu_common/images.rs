@@ -1,0 +1,53 @@
+//! Rendering helpers of the GPU image tests: a GPU render in passes, the CPU render of the same
+//! settings, and the block z-test of one film against another image with its variance (the
+//! comparison of `tests/gpu_images.rs`).
+
+use super::context;
+use lumis::engine::{Film, Progressive};
+use lumis::gpu::GpuProgressive;
+use lumis::integrator::Settings;
+use lumis::metrics::{BlockTest, ImageWithVariance, block_z_test};
+use lumis::scene::Scene;
+use std::sync::Arc;
+
+/// A GPU render of `spp` samples in four passes (like the viewer would), as a film; `None` when
+/// GPU tests are skipped.
+pub fn gpu_render(scene: &Arc<Scene>, settings: Settings, spp: u32, seed: u32) -> Option<Film> {
+    let ctx = context()?;
+    let mut r = GpuProgressive::with_context(ctx, scene.clone(), settings, seed)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let pass = spp.div_ceil(4);
+    while r.spp() < spp {
+        r.render_pass(pass.min(spp - r.spp()));
+    }
+    Some(r.film().unwrap_or_else(|e| panic!("{e}")))
+}
+
+/// A CPU render of `spp` samples in one pass.
+pub fn cpu_render(scene: &Arc<Scene>, settings: Settings, spp: u32, seed: u32) -> Film {
+    let mut r = Progressive::new(scene.clone(), settings, seed);
+    assert!(r.render_pass(spp));
+    r.film().clone()
+}
+
+/// The block z-test (`block`×`block` pixels, family-wise α = 0.01) of `film` against `other`,
+/// each with its own per-pixel variance of the mean.
+pub fn film_z_test(film: &Film, other: &Film, block: u32) -> BlockTest {
+    let (mean, var) = (film.mean(), film.variance_of_mean());
+    let (other_mean, other_var) = (other.mean(), other.variance_of_mean());
+    assert_eq!((film.width, film.height), (other.width, other.height));
+    block_z_test(
+        film.width,
+        film.height,
+        &ImageWithVariance {
+            mean: &mean,
+            var: &var,
+        },
+        &ImageWithVariance {
+            mean: &other_mean,
+            var: &other_var,
+        },
+        block,
+        0.01,
+    )
+}
