@@ -15,9 +15,8 @@ mod gpu_common;
 use common::{
     LOCAL_BIAS_MATERIALS, STRATEGIES, check_unbiased, data_dir, reference, scene_with_scaled_albedo,
 };
-use gpu_common::context;
-use lumis::engine::{Film, Progressive};
-use lumis::gpu::GpuProgressive;
+use gpu_common::images::{cpu_render, gpu_render};
+use lumis::engine::Film;
 use lumis::image_io::Image;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSampling;
@@ -37,24 +36,6 @@ fn settings(strategy: Strategy, light_sampling: LightSampling) -> Settings {
         light_sampling,
         ..Settings::default()
     }
-}
-
-/// A GPU render of `spp` samples in four passes (like the viewer would), as a film.
-fn gpu_render(scene: &Arc<Scene>, settings: Settings, spp: u32, seed: u32) -> Option<Film> {
-    let ctx = context()?;
-    let mut r = GpuProgressive::with_context(ctx, scene.clone(), settings, seed)
-        .unwrap_or_else(|e| panic!("{e}"));
-    let pass = spp.div_ceil(4);
-    while r.spp() < spp {
-        r.render_pass(pass.min(spp - r.spp()));
-    }
-    Some(r.film().unwrap_or_else(|e| panic!("{e}")))
-}
-
-fn cpu_render(scene: &Arc<Scene>, settings: Settings, spp: u32, seed: u32) -> Film {
-    let mut r = Progressive::new(scene.clone(), settings, seed);
-    assert!(r.render_pass(spp));
-    r.film().clone()
 }
 
 fn variance_image(img: &Image) -> Vec<[f64; 3]> {

@@ -10,14 +10,13 @@
 //! capacity, a triangle dropped from (or duplicated in) the BVH. Load and build times are
 //! reported by the `make_mesh --scene` example, not asserted here.
 
+use lumis::alloc_count::{CountingAllocator, live_bytes, peak_bytes, reset_peak};
 use lumis::engine::Progressive;
 use lumis::integrator::Settings;
 use lumis::scene::Scene;
 use lumis::scene::mesh::ply;
 use lumis::scene::mesh::uv_sphere::UvSphere;
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The bound of the issue: peak heap over the baseline during load + build, per triangle.
 const MAX_BYTES_PER_TRIANGLE: f64 = 200.0;
@@ -25,59 +24,8 @@ const MAX_BYTES_PER_TRIANGLE: f64 = 200.0;
 /// Triangles in the generated mesh (at least; the sphere rounds up to whole stacks).
 const TRIANGLES: usize = 1_000_000;
 
-/// The system allocator, counting live bytes and their peak.
-struct Counting;
-
-static LIVE: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-fn grew(bytes: usize) {
-    let now = LIVE.fetch_add(bytes, Ordering::Relaxed) + bytes;
-    PEAK.fetch_max(now, Ordering::Relaxed);
-}
-
-// SAFETY: every call is forwarded to `System` unchanged; only the counters are added.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc(layout) };
-        if !p.is_null() {
-            grew(layout.size());
-        }
-        p
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc_zeroed(layout) };
-        if !p.is_null() {
-            grew(layout.size());
-        }
-        p
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) };
-        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let p = unsafe { System.realloc(ptr, layout, new_size) };
-        if !p.is_null() {
-            if new_size > layout.size() {
-                // Counted as if the block moved, old and new both live for a moment: an upper
-                // bound (the system may grow it in place), so the bound holds wherever it runs.
-                grew(new_size);
-                LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
-            } else {
-                // Shrinking is done in place.
-                LIVE.fetch_sub(layout.size() - new_size, Ordering::Relaxed);
-            }
-        }
-        p
-    }
-}
-
 #[global_allocator]
-static ALLOCATOR: Counting = Counting;
+static ALLOCATOR: CountingAllocator = CountingAllocator;
 
 /// The scene: the sphere in plastic on a diffuse floor, lit by a quad, 32×32 pixels.
 fn scene_json(mesh_file: &str) -> String {
@@ -144,11 +92,10 @@ fn a_million_triangle_ply_loads_within_the_memory_bound_and_renders() {
     let scene_path = dir.join("scene.json");
     std::fs::write(&scene_path, scene_json("sphere.ply")).unwrap();
 
-    let baseline = LIVE.load(Ordering::Relaxed);
-    PEAK.store(baseline, Ordering::Relaxed);
+    let baseline = reset_peak();
     let scene = Scene::load(&scene_path).unwrap_or_else(|e| panic!("{e}"));
-    let peak = PEAK.load(Ordering::Relaxed) - baseline;
-    let kept = LIVE.load(Ordering::Relaxed) - baseline;
+    let peak = peak_bytes() - baseline;
+    let kept = live_bytes() - baseline;
     std::fs::remove_dir_all(&dir).unwrap();
     let per_triangle = peak as f64 / triangles as f64;
     eprintln!(

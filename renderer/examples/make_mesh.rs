@@ -24,15 +24,14 @@
 //! `cargo run --release -p lumis-renderer --example make_mesh -- --scene /tmp/sphere_1m.json`
 
 use glam::{Vec2, Vec3};
+use lumis::alloc_count::{CountingAllocator, peak_bytes, reset_peak};
 use lumis::geometry::{Accel, Ray};
 use lumis::rng::Rng;
 use lumis::sampling::sample_uniform_sphere;
 use lumis::scene::mesh::uv_sphere::UvSphere;
 use lumis::scene::mesh::{load_mesh, obj, ply};
 use lumis::scene::{Scene, load_scene};
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 const USAGE: &str = "usage: make_mesh [--triangles N] [--bumps A] [--frequency K] \
@@ -40,67 +39,16 @@ const USAGE: &str = "usage: make_mesh [--triangles N] [--bumps A] [--frequency K
        make_mesh --load FILE
        make_mesh --scene SCENE.json";
 
-/// The system allocator, counting the bytes live on the heap and their peak.
-struct Counting;
-
-static LIVE: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-fn grew(bytes: usize) {
-    let now = LIVE.fetch_add(bytes, Ordering::Relaxed) + bytes;
-    PEAK.fetch_max(now, Ordering::Relaxed);
-}
-
-// SAFETY: every call is forwarded to `System` unchanged; only the counters are added.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc(layout) };
-        if !p.is_null() {
-            grew(layout.size());
-        }
-        p
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc_zeroed(layout) };
-        if !p.is_null() {
-            grew(layout.size());
-        }
-        p
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) };
-        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let p = unsafe { System.realloc(ptr, layout, new_size) };
-        if !p.is_null() {
-            if new_size > layout.size() {
-                // As tests/mesh_scale.rs counts it: growing as if the block moved (an upper
-                // bound), shrinking in place.
-                grew(new_size);
-                LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
-            } else {
-                LIVE.fetch_sub(layout.size() - new_size, Ordering::Relaxed);
-            }
-        }
-        p
-    }
-}
-
 #[global_allocator]
-static ALLOCATOR: Counting = Counting;
+static ALLOCATOR: CountingAllocator = CountingAllocator;
 
 /// Runs `f`, returning its result, its seconds and its peak heap over what was live before.
 fn measured<T>(f: impl FnOnce() -> T) -> (T, f64, usize) {
-    let before = LIVE.load(Ordering::Relaxed);
-    PEAK.store(before, Ordering::Relaxed);
+    let before = reset_peak();
     let start = Instant::now();
     let out = f();
     let seconds = start.elapsed().as_secs_f64();
-    (out, seconds, PEAK.load(Ordering::Relaxed) - before)
+    (out, seconds, peak_bytes() - before)
 }
 
 /// What to do.

@@ -15,6 +15,7 @@
 //! * [`image_io`] and [`metrics`]: EXR/PFM/PNG and error metrics, statistical image tests.
 #![warn(missing_docs)]
 
+pub mod alloc_count;
 pub mod camera;
 pub mod engine;
 pub mod geometry;
