@@ -15,6 +15,9 @@
 //! Shading normals (meshes with vertex normals): the BSDF frame is the shading normal's, the
 //! geometric normal decides sides and ray offsets, and a direction that the two normals put on
 //! different sides does not count (`same_side`; docs/shading-normals.md says why).
+//!
+//! Emission is looked up through the scene ([`Scene::emitted`] at hits, [`Scene::sample_light`]
+//! for light samples), which evaluates a textured emitter's texture at the point.
 //! WGSL twin: `path.wgsl`.
 
 use super::{Heuristic, Settings, Strategy};
@@ -86,7 +89,7 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
         let prim = &scene.accel.primitives()[hit.prim as usize];
         if prim.light != NONE {
             let light = &scene.lights[prim.light as usize];
-            let le = light.radiance(hit.n, ray.d);
+            let le = scene.emitted(prim.light, &hit, ray.d);
             if le != Vec3::ZERO {
                 let w = emission_weight(scene, weight_rule, prim.light, || {
                     light.pdf(
@@ -291,8 +294,7 @@ fn direct_light<const TRANSMISSION: bool>(
         return Vec3::ZERO;
     };
     let (index, pmf) = sampler.sample(u_light);
-    let light = &scene.lights[index];
-    let Some(ls) = light.sample(hit.p, u, settings.light_sampling) else {
+    let Some(ls) = scene.sample_light(index, hit.p, u, settings.light_sampling) else {
         return Vec3::ZERO;
     };
     let wi = frame.to_local(ls.wi);

@@ -26,6 +26,7 @@ impl BackgroundLight {
             pdf: uniform_sphere_pdf(),
             le: self.le,
             infinite: true,
+            b: Vec2::ZERO,
         })
     }
 

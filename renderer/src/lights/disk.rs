@@ -14,8 +14,11 @@ pub struct DiskLight {
     /// The disk; emits on the side of its normal.
     pub disk: Disk,
     frame: Frame,
-    /// Emitted radiance.
+    /// Emitted radiance (a textured light's selection radiance: see the module doc of
+    /// [`super`]).
     pub le: Vec3,
+    /// Emission texture ([`super::Light::texture`]).
+    pub texture: u32,
 }
 
 impl DiskLight {
@@ -25,6 +28,7 @@ impl DiskLight {
             disk,
             frame: Frame::from_normal(disk.n),
             le,
+            texture: crate::geometry::primitive::NONE,
         }
     }
 

@@ -221,6 +221,7 @@ impl EnvmapLight {
             pdf,
             le: self.eval(wi),
             infinite: true,
+            b: Vec2::ZERO,
         })
     }
 

@@ -1,8 +1,31 @@
 //! Chooses a light in proportion to its emitted power.
+//!
+//! A textured emitter is weighed as if it emitted its [`selection_radiance`]: the texture's
+//! mean over the unit uv square (so an emitting mesh's triangle weighs area × mean luminance,
+//! whatever part of the texture its texture coordinates cover), or the texture's maximum where
+//! that mean is black (a texture black over the unit square may still emit where a mesh's
+//! texture coordinates leave it). Any weight that is positive wherever the light emits keeps
+//! light sampling unbiased: the estimators divide by the same probability the sampler used, and
+//! the radiance at the sampled point is the texture's there. The weight only sets how often a
+//! light is picked; a texture that is zero on part of its shape just wastes those samples.
 //! WGSL twin: `light_sampler.wgsl` and `light.wgsl`.
 
 use super::Light;
 use crate::sampling::DiscreteDistribution;
+use crate::textures::Texture;
+use glam::Vec3;
+
+/// The radiance a light emitting `texture` is weighed as, in light selection and
+/// [`Light::power`] (see the module doc): the texture's mean over the unit square, or its maximum
+/// where the mean has no luminance. Positive wherever the texture is positive somewhere.
+pub fn selection_radiance(texture: &Texture) -> Vec3 {
+    let mean = texture.mean();
+    if crate::math::luminance(mean) > 0.0 {
+        mean
+    } else {
+        texture.max()
+    }
+}
 
 /// Power-proportional light selection.
 #[derive(Clone, Debug)]

@@ -1,6 +1,16 @@
 //! Lights: every emitting shape is a one-sided area light; a constant background and an
 //! environment map are lights at infinity. Each light samples a point (by area, or by solid angle where that is better) and reports
 //! the solid-angle pdf of any direction, so every strategy and MIS can weigh the same events.
+//!
+//! Textured emission: an area light whose shape's `emission` is a texture holds the index of
+//! that texture in [`crate::scene::Scene::emission_textures`] (`texture`; [`NONE`] for a
+//! constant radiance). Its `le` is then only the radiance its selection weight assumes
+//! ([`light_sampler::selection_radiance`]): a light does not know the scene's texture
+//! coordinates, so the scene evaluates the texture at the sampled or hit point
+//! ([`crate::scene::Scene::sample_light`], [`crate::scene::Scene::emitted`]), with the one rule
+//! for "the uv of a point on a primitive" that materials use ([`crate::scene::Scene::uv_at`]).
+//! The path tracer goes through those two functions only. Untextured lights do no extra work
+//! beyond one comparison. The GPU backend refuses textured emission for now.
 //! WGSL twin: `light.wgsl`.
 
 pub mod background;
@@ -21,7 +31,9 @@ pub use quad::QuadLight;
 pub use sphere::SphereLight;
 pub use triangle::TriangleLight;
 
+use crate::geometry::primitive::NONE;
 use crate::geometry::ray::gamma;
+use crate::textures::Texture;
 use glam::{Vec2, Vec3};
 
 /// How lights pick the point to sample.
@@ -50,10 +62,24 @@ pub struct LightSample {
     pub wi: Vec3,
     /// Solid-angle pdf of `wi` (light selection not included).
     pub pdf: f32,
-    /// Radiance arriving along `-wi`.
+    /// Radiance arriving along `-wi` (for a textured light, see the module doc: its selection
+    /// radiance until [`crate::scene::Scene::sample_light`] evaluates the texture).
     pub le: Vec3,
     /// Whether this is the background (shadow ray to infinity).
     pub infinite: bool,
+    /// Barycentrics `(b1, b2)` of `p` in the sampled triangle of a triangle or polygon light
+    /// (`p = (1−b1−b2)·v0 + b1·v1 + b2·v2`, as [`crate::geometry::SurfaceHit::b`]), for its
+    /// texture coordinates; zero for the other lights, whose `p` says where the sample is.
+    pub b: Vec2,
+}
+
+/// An emission texture of the scene, with the shape it belongs to (for messages).
+#[derive(Clone, Debug)]
+pub struct EmissionTexture {
+    /// The radiance as a function of the shape's texture coordinates.
+    pub texture: Texture,
+    /// JSON path of the shape (`shapes[3]`).
+    pub shape: String,
 }
 
 /// Every kind of light. The variant order is mirrored by the GPU backend's `switch`.
@@ -101,6 +127,35 @@ impl Light {
         self.pdf_unmutated(p, wi, y, ny, method) * crate::mutants::light_pdf(self.kind_tag())
     }
 
+    /// Index of the light's emission texture in [`crate::scene::Scene::emission_textures`], or
+    /// [`NONE`] where it emits its constant `le` (always for the infinite lights).
+    #[inline(always)]
+    pub fn texture(&self) -> u32 {
+        match self {
+            Light::Triangle(l) => l.texture,
+            Light::Polygon(l) => l.texture,
+            Light::Quad(l) => l.texture,
+            Light::Disk(l) => l.texture,
+            Light::Sphere(l) => l.texture,
+            Light::Background(_) | Light::Envmap(_) => NONE,
+        }
+    }
+
+    /// Makes an area light emit emission texture `texture` ([`Light::texture`]); `false` (and
+    /// no change) for the infinite lights, which have no texture coordinates.
+    pub fn set_texture(&mut self, texture: u32) -> bool {
+        let slot = match self {
+            Light::Triangle(l) => &mut l.texture,
+            Light::Polygon(l) => &mut l.texture,
+            Light::Quad(l) => &mut l.texture,
+            Light::Disk(l) => &mut l.texture,
+            Light::Sphere(l) => &mut l.texture,
+            Light::Background(_) | Light::Envmap(_) => return false,
+        };
+        *slot = texture;
+        true
+    }
+
     /// Whether the light is at infinity (a background or environment map): its samples are
     /// directions, not points.
     pub fn is_infinite(&self) -> bool {
@@ -126,7 +181,8 @@ impl Light {
         }
     }
 
-    /// Emitted power (luminance), used to pick lights in proportion to it.
+    /// Emitted power (luminance), used to pick lights in proportion to it (for a textured light,
+    /// that of its selection radiance: [`light_sampler::selection_radiance`]).
     pub fn power(&self) -> f32 {
         let area_power =
             |area: f32, le: Vec3| std::f32::consts::PI * area * crate::math::luminance(le);
@@ -142,7 +198,9 @@ impl Light {
     }
 
     /// Radiance the light emits along `-w_in` at a point with normal `n` (one-sided; `n` unused
-    /// for the infinite lights, which emit along `-w_in` from direction `w_in`).
+    /// for the infinite lights, which emit along `-w_in` from direction `w_in`). For a textured
+    /// light, its selection radiance where it faces `-w_in`: [`crate::scene::Scene::emitted`]
+    /// evaluates the texture.
     pub fn radiance(&self, n: Vec3, w_in: Vec3) -> Vec3 {
         let le = match self {
             Light::Triangle(l) => l.le,
@@ -199,5 +257,6 @@ pub(crate) fn area_sample(
         pdf,
         le,
         infinite: false,
+        b: Vec2::ZERO,
     })
 }

@@ -31,8 +31,12 @@ pub struct PolygonLight {
     pub origin: Vec3,
     /// Total area.
     pub area: f32,
-    /// Emitted radiance.
+    /// Emitted radiance (a textured light's selection radiance: see the module doc of
+    /// [`super`]).
     pub le: Vec3,
+    /// Emission texture ([`super::Light::texture`]); its texture coordinates are each
+    /// triangle's barycentrics, as the polygon's primitives have no vertex attributes.
+    pub texture: u32,
     by_area: DiscreteDistribution,
 }
 
@@ -70,6 +74,7 @@ impl PolygonLight {
             origin,
             area,
             le,
+            texture: crate::geometry::primitive::NONE,
             by_area,
         })
     }
@@ -165,13 +170,18 @@ impl PolygonLight {
                 pdf: 1.0 / total,
                 le: self.le,
                 infinite: false,
+                b: Vec2::new(b[1], b[2]),
             });
         }
         let (i, _, ux) = self.by_area.sample(u.x);
         let v = &self.triangles[i];
         let b = sample_uniform_triangle(Vec2::new(ux, u.y));
         let y = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
-        area_sample(p, y, self.n, 1.0 / self.area, self.le)
+        let s = area_sample(p, y, self.n, 1.0 / self.area, self.le)?;
+        Some(LightSample {
+            b: Vec2::new(b[1], b[2]),
+            ..s
+        })
     }
 
     /// Solid-angle pdf of hitting `y` (normal `ny`) from `p`.

@@ -4,6 +4,7 @@
 
 use super::triangle::spherical_ok;
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
+use crate::geometry::primitive::NONE;
 use crate::sampling::SphericalRectangle;
 use glam::{Vec2, Vec3};
 
@@ -20,8 +21,15 @@ pub struct QuadLight {
     pub n: Vec3,
     /// Area.
     pub area: f32,
-    /// Emitted radiance.
+    /// Emitted radiance (a textured light's selection radiance: see the module doc of
+    /// [`super`]).
     pub le: Vec3,
+    /// Index of the vertex attributes of its first triangle in
+    /// [`crate::geometry::mesh_attributes::MeshAttributes::triangles`], the second's following
+    /// it ([`NONE`]: none); see [`QuadLight::triangle_point`].
+    pub attr: u32,
+    /// Emission texture ([`super::Light::texture`]).
+    pub texture: u32,
 }
 
 impl QuadLight {
@@ -36,7 +44,25 @@ impl QuadLight {
             n: c / area,
             area,
             le,
+            attr: NONE,
+            texture: NONE,
         })
+    }
+
+    /// Which of the quad's two triangles holds `y` (a point of the quad) and `y`'s barycentrics
+    /// `(b1, b2)` there, for texture coordinates. The triangles are those the scene builds the
+    /// quad's primitives from, `[corner, +edge_u, +edge_u+edge_v]` (0) and
+    /// `[corner, +edge_u+edge_v, +edge_v]` (1): with `y = corner + s·edge_u + t·edge_v`, the first
+    /// holds `t ≤ s` with `b = (s − t, t)`, the second `t > s` with `b = (s, t − s)`.
+    pub fn triangle_point(&self, y: Vec3) -> (u32, Vec2) {
+        let d = y - self.corner;
+        let s = (d.cross(self.edge_v).dot(self.n) / self.area).clamp(0.0, 1.0);
+        let t = (self.edge_u.cross(d).dot(self.n) / self.area).clamp(0.0, 1.0);
+        if t <= s {
+            (0, Vec2::new(s - t, t))
+        } else {
+            (1, Vec2::new(s, t - s))
+        }
     }
 
     #[inline]

@@ -18,8 +18,11 @@ pub(crate) const SMALL_CONE_SIN2: f32 = 0.000_685_23;
 pub struct SphereLight {
     /// The sphere.
     pub sphere: Sphere,
-    /// Emitted radiance.
+    /// Emitted radiance (a textured light's selection radiance: see the module doc of
+    /// [`super`]).
     pub le: Vec3,
+    /// Emission texture ([`super::Light::texture`]).
+    pub texture: u32,
 }
 
 impl SphereLight {
@@ -84,6 +87,7 @@ impl SphereLight {
             pdf,
             le: self.le,
             infinite: false,
+            b: Vec2::ZERO,
         })
     }
 
@@ -139,6 +143,7 @@ mod tests {
                 radius: 1.0,
             },
             le: Vec3::ONE,
+            texture: crate::geometry::primitive::NONE,
         };
         let p = Vec3::ZERO;
         let n = 512;

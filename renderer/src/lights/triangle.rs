@@ -19,8 +19,15 @@ pub struct TriangleLight {
     pub n: Vec3,
     /// Area.
     pub area: f32,
-    /// Emitted radiance.
+    /// Emitted radiance (a textured light's selection radiance: see the module doc of
+    /// [`super`]).
     pub le: Vec3,
+    /// Index of its primitive's vertex attributes in
+    /// [`crate::geometry::mesh_attributes::MeshAttributes::triangles`] ([`crate::geometry::primitive::NONE`]:
+    /// none), whose texture coordinates a textured light's samples look up.
+    pub attr: u32,
+    /// Emission texture ([`super::Light::texture`]).
+    pub texture: u32,
 }
 
 /// Solid angle of triangle `v` seen from `p`.
@@ -63,11 +70,16 @@ impl TriangleLight {
                 pdf: s.pdf,
                 le: self.le,
                 infinite: false,
+                b: Vec2::new(b[1], b[2]),
             });
         }
         let b = sample_uniform_triangle(u);
         let y = b[0] * self.v[0] + b[1] * self.v[1] + b[2] * self.v[2];
-        area_sample(p, y, self.n, 1.0 / self.area, self.le)
+        let s = area_sample(p, y, self.n, 1.0 / self.area, self.le)?;
+        Some(LightSample {
+            b: Vec2::new(b[1], b[2]),
+            ..s
+        })
     }
 
     /// Solid-angle pdf of hitting `y` (normal `ny`) from `p` along `wi`.

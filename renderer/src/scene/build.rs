@@ -12,9 +12,10 @@ use crate::geometry::mesh_attributes::{
 use crate::geometry::primitive::{NONE, Primitive, Shape};
 use crate::geometry::sphere::Sphere;
 use crate::geometry::{Accel, polygon};
+use crate::lights::light_sampler::selection_radiance;
 use crate::lights::{
-    BackgroundLight, DiskLight, EnvmapLight, Light, LightSampler, PolygonLight, QuadLight,
-    SphereLight, TriangleLight,
+    BackgroundLight, DiskLight, EmissionTexture, EnvmapLight, Light, LightSampler, PolygonLight,
+    QuadLight, SphereLight, TriangleLight,
 };
 use crate::materials::textured::MaterialTextures;
 use crate::materials::{Conductor, ConductorFresnel, Dielectric, Diffuse, Material, Plastic};
@@ -50,6 +51,8 @@ pub struct Scene {
     pub attributes: MeshAttributes,
     /// Per material, its textured parameters (`None`: untextured), parallel to `materials`.
     pub material_textures: Vec<Option<MaterialTextures>>,
+    /// The emission textures of textured emitters, indexed by [`Light::texture`].
+    pub emission_textures: Vec<EmissionTexture>,
 }
 
 fn v(d: DVec3) -> Vec3 {
@@ -146,6 +149,29 @@ fn add_mesh(
     attributes.meshes.len() as u32 - 1
 }
 
+/// A quad's light, whose two triangles' vertex attributes start at `attr`.
+fn quad_light(c: Vec3, eu: Vec3, ev: Vec3, le: Vec3, attr: u32) -> Option<Light> {
+    QuadLight::new(c, eu, ev, le).map(|q| Light::Quad(QuadLight { attr, ..q }))
+}
+
+/// A textured quad light looks up the texture coordinates of both its triangles (from `attr`
+/// on): an error if single precision dropped one of them (the light would still sample there).
+fn check_quad_attrs(
+    attributes: &MeshAttributes,
+    attr: u32,
+    light: u32,
+    texture: u32,
+    json_path: &str,
+) -> Result<(), SceneError> {
+    if light == NONE || texture == NONE || attributes.triangles.len() as u32 == attr + 2 {
+        return Ok(());
+    }
+    Err(SceneError::new(
+        json_path,
+        "textured emitter: a triangle of this quad has zero area in single precision",
+    ))
+}
+
 impl Scene {
     /// True if a material transmits light (a dielectric): the path tracer then runs its
     /// transmission code ([`crate::integrator::path::radiance_specialised`]).
@@ -203,28 +229,40 @@ impl Scene {
 
         let mut prims = Vec::new();
         let mut lights = Vec::new();
+        let mut emission_textures = Vec::new();
         let mut attributes = MeshAttributes::default();
         let (mut scene_lo, mut scene_hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
         for shape in &desc.shapes {
             let first_prim = prims.len();
             let mat = shape.material.map_or(black, |m| m as u32);
-            if shape.emission_texture.is_some() {
-                // Parsed and checked, not rendered yet: refuse rather than render its mean.
-                return Err(SceneError::new(
-                    format!("{}.emission", shape.json_path),
-                    "textured emission is not rendered yet (issue 17); use a constant radiance",
-                ));
-            }
-            let le = v(shape.emission);
-            let emits = le.cmpgt(Vec3::ZERO).any();
+            // A textured emitter's lights hold its texture's index and are weighed by its
+            // selection radiance; whether it emits at all is the parser's rule (`max > 0`).
+            let (le, emits, texture) = match &shape.emission_texture {
+                None => {
+                    let le = v(shape.emission);
+                    (le, le.cmpgt(Vec3::ZERO).any(), NONE)
+                }
+                Some(t) if t.texture.max().cmpgt(Vec3::ZERO).any() => {
+                    emission_textures.push(EmissionTexture {
+                        texture: t.texture.clone(),
+                        shape: shape.json_path.clone(),
+                    });
+                    let index = emission_textures.len() as u32 - 1;
+                    (selection_radiance(&t.texture), true, index)
+                }
+                Some(_) => (Vec3::ZERO, false, NONE),
+            };
             let err = |what: &str| SceneError::new(&shape.json_path, what);
             let mut push_light = |light: Option<Light>| -> Result<u32, SceneError> {
                 if !emits {
                     return Ok(NONE);
                 }
-                let light = light.ok_or_else(|| {
+                let mut light = light.ok_or_else(|| {
                     err("emitter has zero area, or an area too large, in single precision")
                 })?;
+                if texture != NONE {
+                    light.set_texture(texture);
+                }
                 lights.push(light);
                 Ok(lights.len() as u32 - 1)
             };
@@ -267,9 +305,11 @@ impl Scene {
                     edge_v,
                 } => {
                     let (c, eu, ev) = (v(*corner), v(*edge_u), v(*edge_v));
-                    let light = push_light(QuadLight::new(c, eu, ev, le).map(Light::Quad))?;
+                    let attr = attributes.triangles.len() as u32;
+                    let light = push_light(quad_light(c, eu, ev, le, attr))?;
                     let uvs = quad_uvs(&mut attributes);
                     push_tris(&quad_triangles(c, eu, ev), light, &mut attributes, &uvs);
+                    check_quad_attrs(&attributes, attr, light, texture, &shape.json_path)?;
                 }
                 GeometryDesc::Polygon { vertices } => {
                     let n = polygon::newell_normal(vertices).normalize().as_vec3();
@@ -326,6 +366,9 @@ impl Scene {
                     }
                     for idx in indices {
                         let t = idx.map(|i| world[i as usize]);
+                        // The attributes `push_tris` gives this triangle's primitive: it makes
+                        // one exactly when the triangle has a normal, as the light needs.
+                        let attr = attr_mesh.map_or(NONE, |_| attributes.triangles.len() as u32);
                         let light =
                             push_light(crate::geometry::triangle::triangle_normal(&t).map(|n| {
                                 Light::Triangle(TriangleLight {
@@ -333,6 +376,8 @@ impl Scene {
                                     n,
                                     area: crate::geometry::triangle::triangle_area(&t),
                                     le,
+                                    attr,
+                                    texture: NONE,
                                 })
                             }))?;
                         let attr = |_: usize| attr_mesh.map(|mesh| AttrTriangle { v: *idx, mesh });
@@ -362,7 +407,11 @@ impl Scene {
                         center: v(*center),
                         radius: *radius as f32,
                     };
-                    let light = push_light(Some(Light::Sphere(SphereLight { sphere, le })))?;
+                    let light = push_light(Some(Light::Sphere(SphereLight {
+                        sphere,
+                        le,
+                        texture: NONE,
+                    })))?;
                     prims.push(Primitive {
                         shape: Shape::Sphere(sphere),
                         material: mat,
@@ -378,9 +427,11 @@ impl Scene {
                 } => {
                     for [c, eu, ev] in box_faces(*min, *max, *rotate_y_deg, *translate) {
                         let (c, eu, ev) = (v(c), v(eu), v(ev));
-                        let light = push_light(QuadLight::new(c, eu, ev, le).map(Light::Quad))?;
+                        let attr = attributes.triangles.len() as u32;
+                        let light = push_light(quad_light(c, eu, ev, le, attr))?;
                         let uvs = quad_uvs(&mut attributes);
                         push_tris(&quad_triangles(c, eu, ev), light, &mut attributes, &uvs);
+                        check_quad_attrs(&attributes, attr, light, texture, &shape.json_path)?;
                     }
                 }
             }
@@ -441,6 +492,7 @@ impl Scene {
             background_light,
             attributes,
             material_textures,
+            emission_textures,
         })
     }
 

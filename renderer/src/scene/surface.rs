@@ -2,35 +2,134 @@
 //! coordinates by shape: mesh triangles interpolate their file's UVs (else their barycentrics),
 //! quads and box faces run `u` along `edge_u` and `v` along `edge_v`, other triangles give their
 //! barycentrics; spheres as Mitsuba 3's (`u = φ/2π` from +x towards +y, `v = θ/π` from +z),
-//! disks `(r/radius, φ/2π)` around the normal's frame.
+//! disks `(r/radius, φ/2π)` around the normal's frame. Emission with its texture evaluated
+//! at a hit or at a point sampled on a light, by the same rule ([`Scene::uv_at`]).
 
 use super::Scene;
+use crate::geometry::disk::Disk;
+use crate::geometry::primitive::NONE;
+use crate::geometry::sphere::Sphere;
 use crate::geometry::{Shape, SurfaceHit};
+use crate::lights::{Light, LightSample, LightSampling};
 use crate::materials::Material;
 use crate::math::{Frame, atan2};
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 use std::borrow::Cow;
 use std::f32::consts::{PI, TAU};
 
+/// A point of a primitive, in the terms its texture coordinates are computed from.
+#[derive(Clone, Copy, Debug)]
+pub enum SurfacePoint<'a> {
+    /// Barycentrics `b = (b1, b2)` in a triangle whose vertex attributes are `attr`
+    /// ([`NONE`]: none, and the texture coordinates are `b`).
+    Triangle {
+        /// Index into [`crate::geometry::mesh_attributes::MeshAttributes::triangles`], or
+        /// [`NONE`].
+        attr: u32,
+        /// Barycentrics `(b1, b2)`.
+        b: Vec2,
+    },
+    /// A point on a sphere.
+    Sphere(&'a Sphere, Vec3),
+    /// A point on a disk.
+    Disk(&'a Disk, Vec3),
+}
+
 impl Scene {
     /// The texture coordinates of `hit`.
+    #[inline]
     pub fn uv(&self, hit: &SurfaceHit) -> Vec2 {
         let prim = &self.accel.primitives()[hit.prim as usize];
-        match &prim.shape {
-            Shape::Triangle { .. } => self.attributes.uv(prim.attr, hit.b),
-            Shape::Sphere(s) => {
-                let d = (hit.p - s.center) / s.radius;
+        self.uv_at(match &prim.shape {
+            Shape::Triangle { .. } => SurfacePoint::Triangle {
+                attr: prim.attr,
+                b: hit.b,
+            },
+            Shape::Sphere(s) => SurfacePoint::Sphere(s, hit.p),
+            Shape::Disk(d) => SurfacePoint::Disk(d, hit.p),
+        })
+    }
+
+    /// The texture coordinates of a point of a primitive: the one rule for hits
+    /// ([`Scene::uv`]) and points sampled on lights ([`Scene::light_uv`]), so that the two
+    /// cannot disagree.
+    pub fn uv_at(&self, point: SurfacePoint<'_>) -> Vec2 {
+        match point {
+            SurfacePoint::Triangle { attr, b } => self.attributes.uv(attr, b),
+            SurfacePoint::Sphere(s, p) => {
+                let d = (p - s.center) / s.radius;
                 let phi = atan2(d.y, d.x);
                 let u = if phi < 0.0 { phi + TAU } else { phi } / TAU;
                 Vec2::new(u, d.z.clamp(-1.0, 1.0).acos() / PI)
             }
-            Shape::Disk(d) => {
-                let local = Frame::from_normal(d.n).to_local(hit.p - d.center);
+            SurfacePoint::Disk(d, p) => {
+                let local = Frame::from_normal(d.n).to_local(p - d.center);
                 let phi = atan2(local.y, local.x);
                 let v = if phi < 0.0 { phi + TAU } else { phi } / TAU;
                 Vec2::new((local.x.hypot(local.y) / d.radius).min(1.0), v)
             }
         }
+    }
+
+    /// The texture coordinates of the point `s` sampled on `light` (`None` for the lights at
+    /// infinity): the primitive under it by the builder's construction (a triangle light's
+    /// attributes, a quad's triangle holding the point, a polygon's triangle, which has no
+    /// attributes), through [`Scene::uv_at`].
+    pub fn light_uv(&self, light: &Light, s: &LightSample) -> Option<Vec2> {
+        let point = match light {
+            Light::Triangle(l) => SurfacePoint::Triangle {
+                attr: l.attr,
+                b: s.b,
+            },
+            Light::Polygon(_) => SurfacePoint::Triangle { attr: NONE, b: s.b },
+            Light::Quad(q) => {
+                let (k, b) = q.triangle_point(s.p);
+                let attr = if q.attr == NONE { NONE } else { q.attr + k };
+                SurfacePoint::Triangle { attr, b }
+            }
+            Light::Disk(d) => SurfacePoint::Disk(&d.disk, s.p),
+            Light::Sphere(l) => SurfacePoint::Sphere(&l.sphere, s.p),
+            Light::Background(_) | Light::Envmap(_) => return None,
+        };
+        Some(self.uv_at(point))
+    }
+
+    /// Radiance emitted by light `light` (the primitive's of `hit`) at `hit` along `-w_in`: its
+    /// constant radiance, or its emission texture at the hit's texture coordinates.
+    #[inline]
+    pub fn emitted(&self, light: u32, hit: &SurfaceHit, w_in: Vec3) -> Vec3 {
+        let l = &self.lights[light as usize];
+        let le = l.radiance(hit.n, w_in);
+        let texture = l.texture();
+        if texture == NONE || le == Vec3::ZERO {
+            return le;
+        }
+        self.emission_textures[texture as usize]
+            .texture
+            .eval(self.uv(hit))
+    }
+
+    /// [`Light::sample`] of light `index` with the radiance at the sampled point: for a textured
+    /// light its texture there ([`Scene::light_uv`]); `None` also where that is black.
+    #[inline]
+    pub fn sample_light(
+        &self,
+        index: usize,
+        p: Vec3,
+        u: Vec2,
+        method: LightSampling,
+    ) -> Option<LightSample> {
+        let light = &self.lights[index];
+        let mut s = light.sample(p, u, method)?;
+        let texture = light.texture();
+        if texture != NONE {
+            let uv = self.light_uv(light, &s)?;
+            s.le = self.emission_textures[texture as usize].texture.eval(uv);
+            if !s.le.cmpgt(Vec3::ZERO).any() {
+                return None;
+            }
+        }
+        Some(s)
     }
 
     /// The material of `hit`'s primitive, its textures evaluated at the hit (borrowed when it

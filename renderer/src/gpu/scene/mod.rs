@@ -132,9 +132,15 @@ impl GpuScene {
         GpuScene::with_bvh2(ctx, scene, false)
     }
 
-    /// Refuses scenes the GPU would render differently from the CPU: textured materials are
-    /// CPU-only for now (issue 17, item 7).
+    /// Refuses scenes the GPU would render differently from the CPU: textured materials and
+    /// textured emission are CPU-only for now (issue 17, item 7).
     fn check_supported(scene: &Scene) -> Result<(), GpuError> {
+        if let Some(t) = scene.emission_textures.first() {
+            return Err(GpuError::Unsupported(format!(
+                "{}.emission is textured",
+                t.shape
+            )));
+        }
         match scene.material_textures.iter().position(Option::is_some) {
             Some(i) => Err(GpuError::Unsupported(format!(
                 "material \"{}\" is textured",
