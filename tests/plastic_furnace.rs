@@ -34,6 +34,17 @@
 //! directions, so they act as two independent replicas), `max_depth` −1, with [`spp`] samples per
 //! pixel: more for the noisier strategies.
 //!
+//! **Textured α.** Two more tests render the same views with the plastic's `alpha` a
+//! checkerboard whose two squares are both α, at the two off-grid α of [`textured_alphas`] (the
+//! midpoints in ln α of two intervals of the α grid, ≈ 0.020 and 0.247): the material then goes
+//! through the textured path, the exact α for the GGX lobe and the coat table blended from the
+//! grid (`materials/plastic_textured.rs`). Expected values take E_coat at that α and the blended
+//! table lumis shades with ([`plastic_seen`]), and [`textured_coat_table_accuracy`] bounds that
+//! table against E_coat (measured 5.7e-4 at α ≈ 0.020, 4.4e-4 at 0.247). These 792 comparisons
+//! are a family of their own (critical |z| 4.37), so the untextured cases' numbers below are
+//! unchanged; seeds 120 000 and 130 000 plus the per-render offsets below. Measured: worst |z|
+//! 3.40 and 3.29, pooled R and G detect 0.11–0.40% biases.
+//!
 //! **Test.** Per render and channel, the image mean is compared with the expected value by a
 //! two-sided z-test (sd from the per-pixel sample variances; pixels are independent). Per scene and
 //! channel the ten renders are also pooled, each weighted by 1/variance of its twin render with the
@@ -70,7 +81,7 @@ mod common;
 
 use common::{METHODS, STRATEGIES, build, closed_form_z, render};
 use lumis::integrator::{Heuristic, Settings, Strategy};
-use lumis::materials::Plastic;
+use lumis::materials::{Material, Plastic};
 use lumis::metrics::{normal_two_sided_critical, sidak};
 use lumis::scene::Scene;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -107,6 +118,23 @@ const POWER_Z: f64 = 8.0;
 /// Critical |z| of one comparison.
 fn critical() -> f64 {
     normal_two_sided_critical(sidak(0.01, N_COMPARISONS))
+}
+
+/// Off-grid roughnesses of the textured-α cases: the midpoints (in ln α) of two intervals of the
+/// plastic's α grid, where its blended coat table is furthest from both nodes (≈ 0.020, 0.247).
+fn textured_alphas() -> [f32; 2] {
+    use lumis::materials::plastic_textured::node_alpha;
+    let mid = |i: usize| (0.5 * (node_alpha(i).ln() + node_alpha(i + 1).ln())).exp();
+    [mid(20), mid(37)]
+}
+
+/// Every comparison of the textured-α cases, a family of their own (so that adding them left the
+/// untextured cases' critical value and measured power as they were).
+const N_TEXTURED_COMPARISONS: usize = 2 * IORS.len() * VIEWS_MU.len() * (RENDERS_PER_SCENE + 1) * 3;
+
+/// Critical |z| of one textured-α comparison.
+fn textured_critical() -> f64 {
+    normal_two_sided_critical(sidak(0.01, N_TEXTURED_COMPARISONS))
 }
 
 /// Samples per pixel: light sampling of a uniform-sphere background wastes half its samples below
@@ -245,6 +273,24 @@ const QUAD_TOL: f64 = 1e-10;
 
 /// The plastic plane seen at μo = `mu`.
 fn view_scene(alpha: f32, ior: f32, mu: f64) -> Arc<Scene> {
+    view_scene_with(&format!("{alpha}"), ior, mu)
+}
+
+/// [`view_scene`] with the plastic's α a checkerboard texture whose two squares are both `alpha`:
+/// every pixel sees that α through the textured path (the α grid's blended coat table).
+fn textured_view_scene(alpha: f32, ior: f32, mu: f64) -> Arc<Scene> {
+    let a = format!("[{alpha}, {alpha}, {alpha}]");
+    let texture = format!(r#"{{"type": "checkerboard", "color0": {a}, "color1": {a}}}"#);
+    let scene = view_scene_with(&texture, ior, mu);
+    assert!(
+        scene.material_textures[0].is_some(),
+        "the plastic is textured"
+    );
+    scene
+}
+
+/// The plastic plane seen at μo = `mu`, its `alpha` given by the JSON text `alpha`.
+fn view_scene_with(alpha: &str, ior: f32, mu: f64) -> Arc<Scene> {
     let sin_o = (1.0 - mu * mu).sqrt();
     let h = PLANE_HALF;
     let json = format!(
@@ -294,13 +340,29 @@ fn gauss_legendre_unit(n: usize) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// The plane's plastic as lumis shades it: its texture (if any) evaluated at the centre of the
+/// view (both squares of a [`textured_view_scene`] are alike, so every pixel sees this one).
+fn plastic_seen(scene: &Scene) -> Plastic {
+    let base = &scene.materials[0];
+    let m = match &scene.material_textures[0] {
+        Some(t) => t.at(base, glam::Vec2::splat(0.5)),
+        None => base.clone(),
+    };
+    let Material::Plastic(p) = m else {
+        panic!("the plane is plastic")
+    };
+    p
+}
+
 /// The expected image mean per channel: the film average (box filter, uniform positions) of
 /// `L·(s·E_coat(μ) + a·(1 − E_table(μ)))`, μ the cosine of the camera ray through each film
-/// position. E_coat is smooth in μ: `n`×`n` Gauss–Legendre over the film. E_table is piecewise
-/// linear, with kinks at its nodes (Gauss–Legendre would be off by ~1e-5 there): `m`×`m`
-/// midpoints, cheap because it is a table lookup.
-fn expected(scene: &Scene, alpha: f32, ior: f32, n: usize, m: usize) -> [f64; 3] {
-    let table = Plastic::new(glam::Vec3::ONE, alpha, ior, glam::Vec3::ONE);
+/// position, for the plastic lumis shades ([`plastic_seen`]: its α, its table). E_coat is smooth
+/// in μ: `n`×`n` Gauss–Legendre over the film. E_table is piecewise linear, with kinks at its
+/// nodes (Gauss–Legendre would be off by ~1e-5 there): `m`×`m` midpoints, cheap because it is a
+/// table lookup.
+fn expected(scene: &Scene, ior: f32, n: usize, m: usize) -> [f64; 3] {
+    let table = plastic_seen(scene);
+    let alpha = table.alpha();
     let f0 = f0_of(ior);
     let mu_at = |u: f64, v: f64| {
         let ray = scene
@@ -340,6 +402,8 @@ struct Estimate {
 /// that a failing run lists them all.
 #[derive(Default)]
 struct Tally {
+    /// Critical |z| of the family.
+    critical: f64,
     comparisons: usize,
     worst_z: f64,
     worst: String,
@@ -354,7 +418,7 @@ struct Tally {
 impl Tally {
     fn compare(&mut self, what: &str, label: &str, mean: f64, var: f64, expected: f64) {
         let sd = var.sqrt();
-        let (z, ok) = closed_form_z(mean, sd, expected, critical());
+        let (z, ok) = closed_form_z(mean, sd, expected, self.critical);
         self.comparisons += 1;
         self.zs.push(z);
         let line = format!("{what}: {mean:.6} vs {expected:.6} (sd {sd:.2e}, z = {z:.2})");
@@ -363,7 +427,7 @@ impl Tally {
             self.worst = line.clone();
         }
         if expected > 0.0 {
-            let rel = critical() * sd / expected;
+            let rel = self.critical * sd / expected;
             let e = self
                 .detectable
                 .entry(label.to_string())
@@ -390,7 +454,7 @@ impl Tally {
              {neg} < 0), worst: {}",
             self.comparisons,
             self.failures.len(),
-            critical(),
+            self.critical,
             self.worst,
         );
         for (label, (lo, hi)) in &self.detectable {
@@ -405,7 +469,7 @@ impl Tally {
             "{test}: {} of {} comparisons fail (|z| > {:.2}):\n{}",
             self.failures.len(),
             self.comparisons,
-            critical(),
+            self.critical,
             self.failures.join("\n")
         );
         assert_eq!(self.comparisons, expected_comparisons);
@@ -428,12 +492,28 @@ fn label(strategy: Strategy) -> &'static str {
 
 /// Renders every view of plastic (`alpha`, each IOR) with every strategy and method, and compares.
 fn check_alpha(test: &str, alpha: f32, seed: u32) {
-    let mut tally = Tally::default();
+    check_views(test, alpha, seed, false)
+}
+
+/// [`check_alpha`], with α a texture (`textured`, [`textured_view_scene`]) or a constant.
+fn check_views(test: &str, alpha: f32, seed: u32, textured: bool) {
+    let mut tally = Tally {
+        critical: if textured {
+            textured_critical()
+        } else {
+            critical()
+        },
+        ..Tally::default()
+    };
     let mut problems = Vec::new();
     for (i, &ior) in IORS.iter().enumerate() {
         for (v, &mu) in VIEWS_MU.iter().enumerate() {
-            let scene = view_scene(alpha, ior, mu);
-            let expect = expected(&scene, alpha, ior, 5, 64);
+            let scene = if textured {
+                textured_view_scene(alpha, ior, mu)
+            } else {
+                view_scene(alpha, ior, mu)
+            };
+            let expect = expected(&scene, ior, 5, 64);
             let mut estimates = Vec::new();
             for (s, strategy) in STRATEGIES.into_iter().enumerate() {
                 for (m, method) in METHODS.into_iter().enumerate() {
@@ -526,6 +606,18 @@ fn rough_coat_1() {
     check_alpha("plastic furnace a=1", ALPHAS[3], 110_000);
 }
 
+#[test]
+fn textured_alpha_off_grid_narrow() {
+    let a = textured_alphas()[0];
+    check_views(&format!("plastic furnace textured a={a}"), a, 120_000, true);
+}
+
+#[test]
+fn textured_alpha_off_grid_rough() {
+    let a = textured_alphas()[1];
+    check_views(&format!("plastic furnace textured a={a}"), a, 130_000, true);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Checks of the reference itself.
 // ---------------------------------------------------------------------------------------------
@@ -561,10 +653,7 @@ fn quadrature_is_exact_and_converged() {
     for alpha in [0.05f32, 1.0] {
         for mu in VIEWS_MU {
             let scene = view_scene(alpha, 1.5, mu);
-            let (a, b) = (
-                expected(&scene, alpha, 1.5, 5, 64),
-                expected(&scene, alpha, 1.5, 3, 128),
-            );
+            let (a, b) = (expected(&scene, 1.5, 5, 64), expected(&scene, 1.5, 3, 128));
             for c in 0..3 {
                 film_worst = film_worst.max((a[c] - b[c]).abs());
             }
@@ -615,3 +704,44 @@ fn coat_table_accuracy() {
         assert!(d < 1e-6, "{mu}: {d}");
     }
 }
+
+/// How far the blended table of a textured α (what its base is coupled through) is from the
+/// coat's true albedo, at the off-grid α of the textured cases: max |E_blend − E_coat| over the
+/// μ of [`coat_table_accuracy`]. It holds the table's own error at that α and the blend's
+/// (≤ `plastic_textured::MAX_BLEND_ERROR`); the bounds are the measured maxima rounded up, and
+/// they are how far the white plastic (R) may deviate from `L` there.
+#[test]
+fn textured_coat_table_accuracy() {
+    use lumis::materials::coat_albedo::E_TABLE_SIZE;
+    use lumis::materials::plastic_textured::MAX_BLEND_ERROR;
+    let bounds = [BLEND_BOUNDS[0], BLEND_BOUNDS[1]];
+    for (alpha, bound) in textured_alphas().into_iter().zip(bounds) {
+        assert!(bound <= 4e-4 + MAX_BLEND_ERROR as f64);
+        for ior in IORS {
+            let p = plastic_seen(&textured_view_scene(alpha, ior, 0.5));
+            let (mut worst, mut at) = (0.0f64, 0.0);
+            for i in 0..E_TABLE_SIZE {
+                for k in 0..4 {
+                    if i == E_TABLE_SIZE - 1 && k > 0 {
+                        break;
+                    }
+                    let t = (i as f64 + k as f64 / 4.0) / (E_TABLE_SIZE - 1) as f64;
+                    let mu = (t * t * t).max(1e-4);
+                    let e = coat_albedo_exact(p.alpha() as f64, f0_of(ior), mu, 1e-9);
+                    let d = (p.coat_albedo(mu as f32) as f64 - e).abs();
+                    if d > worst {
+                        (worst, at) = (d, mu);
+                    }
+                }
+            }
+            eprintln!(
+                "blended E table: a {alpha} ior {ior}: max |E_blend − E_coat| = {worst:.2e} at \
+                 μ {at:.4}"
+            );
+            assert!(worst < bound, "a {alpha} ior {ior}: {worst:.2e} at μ {at}");
+        }
+    }
+}
+
+/// Bounds of [`textured_coat_table_accuracy`], per [`textured_alphas`].
+const BLEND_BOUNDS: [f64; 2] = [6.5e-4, 5e-4];

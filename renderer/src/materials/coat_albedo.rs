@@ -1,6 +1,7 @@
 //! Directional albedo E(μ) of a dielectric GGX coat (Schlick Fresnel, tint 1) and its cosine-
 //! weighted average E_avg = 2∫E(μ)μ dμ: the Kulla–Conty / Kelemen table that couples the plastic's
-//! base to its coat. Tabulated once per material; a smooth coat uses Schlick in closed form.
+//! base to its coat. Tabulated once per material (for a textured α, once per node of an α grid:
+//! [`super::plastic_textured`]); a smooth coat uses Schlick in closed form.
 //!
 //! Accuracy (|E_table − E|, measured against a 64×256-node quadrature over μ): ≤ 2.6e-3 at
 //! α = [`ggx::SMOOTH_ALPHA`] (E has a dip of width ~α near μ ≈ α that falls between nodes),
@@ -100,6 +101,21 @@ impl CoatAlbedo {
             f0,
             table,
             average,
+        }
+    }
+
+    /// The coat of roughness `alpha` whose table and E_avg are `a`'s and `b`'s blended by `t`
+    /// (0: `a`, 1: `b`), entry by entry: a textured plastic's coat between two grid tables
+    /// ([`super::plastic_textured`]). E_avg is linear in the table, so the blended average is
+    /// the exact average of the blended table (up to f32 rounding, ~1e-7), and a base coupled
+    /// through it still reflects albedo·(1 − E(μo)).
+    pub(crate) fn blend(a: &CoatAlbedo, b: &CoatAlbedo, t: f32, alpha: f32) -> CoatAlbedo {
+        debug_assert!(a.f0 == b.f0 && !ggx::is_smooth(alpha) && (0.0..=1.0).contains(&t));
+        CoatAlbedo {
+            alpha,
+            f0: a.f0,
+            table: std::array::from_fn(|i| a.table[i] + t * (b.table[i] - a.table[i])),
+            average: a.average + t * (b.average - a.average),
         }
     }
 

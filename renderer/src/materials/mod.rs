@@ -20,6 +20,7 @@ pub mod diffuse;
 pub mod fresnel;
 pub mod ggx;
 pub mod plastic;
+pub mod plastic_textured;
 #[cfg(test)]
 mod testing;
 pub mod textured;

@@ -9,17 +9,30 @@
 //! (up to the table's accuracy, see [`super::coat_albedo`]), and both terms are symmetric in
 //! (wo, wi). Sampling picks the coat with probability ∝ its albedo, clamped to [0.05, 0.95].
 //! A smooth coat (α < [`ggx::SMOOTH_ALPHA`]) is a delta mirror with E(μ) = F_schlick(μ) exactly.
+//! A textured α keeps this material as it is, with the table at the hit's α blended from tables
+//! on a grid of α ([`Plastic::set_alpha_from_grid`], [`super::plastic_textured`]).
 //!
 //! This is the original program's "Microfacet" material done right: its F0 was not squared and
 //! both of its lobes used the full colour, so it reflected more energy than it received.
 //! WGSL twin: `plastic.wgsl`.
 
 use super::coat_albedo::CoatAlbedo;
+use super::plastic_textured::CoatGrid;
 use super::{BsdfSample, fresnel, ggx};
 use crate::math::{luminance, reflect};
 use crate::sampling::sample_cosine_hemisphere;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
+
+/// 1/(1 − E_avg) of `coat`, or 0 when it reflects everything (no light reaches the base).
+fn diffuse_norm(coat: &CoatAlbedo) -> f32 {
+    let e_avg = coat.average();
+    if 1.0 - e_avg > 1e-6 {
+        1.0 / (1.0 - e_avg)
+    } else {
+        0.0
+    }
+}
 
 /// A Lambertian base under a (rough) dielectric coat.
 #[derive(Clone, Debug, PartialEq)]
@@ -41,21 +54,31 @@ impl Plastic {
     pub fn new(albedo: Vec3, alpha: f32, ior: f32, specular: Vec3) -> Plastic {
         let f0 = fresnel::schlick_f0_from_ior(ior);
         let coat = CoatAlbedo::new(alpha, f0);
-        let e_avg = coat.average();
-        let diffuse_norm = if 1.0 - e_avg > 1e-6 {
-            1.0 / (1.0 - e_avg)
-        } else {
-            0.0
-        };
         Plastic {
             albedo,
             alpha,
             ior,
             specular,
             f0,
+            diffuse_norm: diffuse_norm(&coat),
             coat,
-            diffuse_norm,
         }
+    }
+
+    /// Sets the coat roughness to `alpha` (a texture's value at a hit, clamped to [0, 1]) with
+    /// the coat table interpolated from `grid`, built for this plastic's IOR
+    /// ([`CoatGrid::coat`]): no table is built here. Eval, sample and pdf all read the one
+    /// interpolated table, so they stay consistent with each other.
+    pub fn set_alpha_from_grid(&mut self, alpha: f32, grid: &CoatGrid) {
+        debug_assert_eq!(grid.f0(), self.f0, "the grid of another IOR");
+        self.alpha = alpha.clamp(0.0, 1.0);
+        self.coat = grid.coat(self.alpha);
+        self.diffuse_norm = diffuse_norm(&self.coat);
+    }
+
+    /// Normal reflectance F0 of the coat (Schlick), from its IOR.
+    pub fn f0(&self) -> f32 {
+        self.f0
     }
 
     /// Base albedo.

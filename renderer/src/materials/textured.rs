@@ -3,10 +3,12 @@
 //! materials never come here; the path tracer uses them as they are.
 //!
 //! Which parameters: `albedo` (diffuse, plastic), `reflectance` (a conductor's tint), `alpha`
-//! (conductor, dielectric). A plastic's `alpha` is not texturable: its coat-albedo table is built
-//! per roughness (≈ 1 ms), far too slow per hit; the scene builder rejects it with a message.
+//! (conductor, plastic, dielectric). A plastic's coat-albedo table depends on its α and takes
+//! ≈ 1 ms to build, far too slow per hit: [`MaterialTextures::new`] builds the plastic's tables
+//! on a grid of α once, and a hit blends the two around its α ([`super::plastic_textured`]).
 
-use super::{ConductorFresnel, Material};
+use super::plastic_textured::CoatGrid;
+use super::{ConductorFresnel, Material, Plastic};
 use crate::textures::Texture;
 use glam::Vec2;
 
@@ -17,25 +19,40 @@ pub struct MaterialTextures {
     pub albedo: Option<Texture>,
     /// Conductor reflectance (tint).
     pub reflectance: Option<Texture>,
-    /// GGX α of a conductor or dielectric (the texture's scalar).
+    /// GGX α of a conductor, plastic or dielectric (the texture's scalar).
     pub alpha: Option<Texture>,
+    /// A plastic with a textured α: its coat tables on the α grid, for its F0.
+    coat_grid: Option<CoatGrid>,
 }
 
 impl MaterialTextures {
+    /// The textures of `base`'s slots, after [`MaterialTextures::check`]; a plastic with a
+    /// textured α gets its coat grid here (≈ 60 ms of work, at scene build).
+    pub fn new(
+        albedo: Option<Texture>,
+        reflectance: Option<Texture>,
+        alpha: Option<Texture>,
+        base: &Material,
+    ) -> Result<MaterialTextures, &'static str> {
+        let mut t = MaterialTextures {
+            albedo,
+            reflectance,
+            alpha,
+            coat_grid: None,
+        };
+        t.check(base)?;
+        if let (Material::Plastic(p), Some(_)) = (base, &t.alpha) {
+            t.coat_grid = Some(CoatGrid::new(p.f0()));
+        }
+        Ok(t)
+    }
+
     /// Whether a slot is textured for `base`'s kind, or why it cannot be.
     pub fn check(&self, base: &Material) -> Result<(), &'static str> {
         let ok = match base {
             Material::Diffuse(_) => self.reflectance.is_none() && self.alpha.is_none(),
             Material::Conductor(_) => self.albedo.is_none(),
-            Material::Plastic(_) => {
-                if self.alpha.is_some() {
-                    return Err(
-                        "a plastic's alpha cannot be textured (its coat-albedo table is \
-                                built per roughness); use a constant",
-                    );
-                }
-                self.reflectance.is_none()
-            }
+            Material::Plastic(_) => self.reflectance.is_none(),
             Material::Dielectric(_) => self.albedo.is_none() && self.reflectance.is_none(),
         };
         if ok {
@@ -65,6 +82,14 @@ impl MaterialTextures {
             Material::Plastic(p) => {
                 if let Some(t) = &self.albedo {
                     p.set_albedo(t.eval(uv));
+                }
+                match (&self.alpha, &self.coat_grid) {
+                    (Some(t), Some(grid)) => p.set_alpha_from_grid(t.eval_scalar(uv), grid),
+                    // Slots set by hand, without `new`: correct (the exact table), but slow.
+                    (Some(t), None) => {
+                        *p = Plastic::new(p.albedo(), t.eval_scalar(uv), p.ior(), p.specular())
+                    }
+                    (None, _) => {}
                 }
             }
             Material::Dielectric(d) => {
@@ -158,18 +183,73 @@ mod tests {
             alpha: tex.clone(),
             ..Default::default()
         };
-        assert!(
-            alpha
-                .check(&plastic)
-                .unwrap_err()
-                .contains("plastic's alpha")
-        );
         let diffuse = Material::Diffuse(Diffuse { albedo: Vec3::ONE });
         assert!(alpha.check(&diffuse).is_err());
+        let reflectance = MaterialTextures {
+            reflectance: tex.clone(),
+            ..Default::default()
+        };
+        assert!(reflectance.check(&plastic).is_err());
         let albedo = MaterialTextures {
             albedo: tex,
             ..Default::default()
         };
         assert!(albedo.check(&diffuse).is_ok() && albedo.check(&plastic).is_ok());
+        assert!(
+            alpha.check(&plastic).is_ok(),
+            "a plastic's alpha is texturable"
+        );
+    }
+
+    #[test]
+    fn a_textured_plastic_alpha_takes_the_texture_value_and_the_grid_coat() {
+        let tex = checker(Vec3::splat(0.03), Vec3::splat(0.6));
+        let base = Plastic::new(Vec3::splat(0.5), 0.3, 1.5, Vec3::ONE);
+        let base_m = Material::Plastic(base.clone());
+        let t = MaterialTextures::new(None, None, Some(tex.clone()), &base_m).unwrap();
+        let grid = t
+            .coat_grid
+            .as_ref()
+            .expect("a plastic with a textured alpha has a grid");
+        assert_eq!(grid.f0(), base.f0());
+        for uv in [Vec2::new(0.25, 0.25), Vec2::new(0.75, 0.25)] {
+            let Material::Plastic(p) = t.at(&base_m, uv) else {
+                panic!()
+            };
+            let a = tex.eval_scalar(uv);
+            assert_eq!(p.alpha(), a);
+            assert_eq!(p.coat(), &grid.coat(a), "the coat comes from the grid");
+            // The untextured parameters are the base's.
+            assert_eq!(
+                (p.albedo(), p.ior(), p.specular()),
+                (base.albedo(), 1.5, Vec3::ONE)
+            );
+        }
+        // Without the grid (slots set by hand) the hit builds the exact table instead.
+        let by_hand = MaterialTextures {
+            alpha: Some(tex.clone()),
+            ..Default::default()
+        };
+        let uv = Vec2::new(0.75, 0.25);
+        assert_eq!(
+            by_hand.at(&base_m, uv),
+            Material::Plastic(Plastic::new(
+                Vec3::splat(0.5),
+                tex.eval_scalar(uv),
+                1.5,
+                Vec3::ONE
+            ))
+        );
+        // Other materials and an untextured plastic alpha get no grid.
+        let albedo_only = MaterialTextures::new(Some(tex.clone()), None, None, &base_m).unwrap();
+        assert!(albedo_only.coat_grid.is_none());
+        let glass = Material::Dielectric(Dielectric {
+            ior: 1.5,
+            alpha: 0.1,
+        });
+        let rough = MaterialTextures::new(None, None, Some(tex), &glass).unwrap();
+        assert!(rough.coat_grid.is_none());
+        let err = MaterialTextures::new(None, Some(checker(Vec3::ONE, Vec3::ZERO)), None, &glass);
+        assert!(err.is_err());
     }
 }

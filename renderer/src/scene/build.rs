@@ -211,14 +211,13 @@ impl Scene {
         let mut material_textures = Vec::with_capacity(materials.len() + 1);
         for (m, built) in desc.materials.iter().zip(&materials) {
             let t = &m.textures;
-            let textures = MaterialTextures {
-                albedo: t.albedo.as_ref().map(|d| d.texture.clone()),
-                reflectance: t.reflectance.as_ref().map(|d| d.texture.clone()),
-                alpha: t.alpha.as_ref().map(|d| d.texture.clone()),
-            };
-            textures
-                .check(built)
-                .map_err(|e| SceneError::new(format!("materials.{}", m.name), e))?;
+            let textures = MaterialTextures::new(
+                t.albedo.as_ref().map(|d| d.texture.clone()),
+                t.reflectance.as_ref().map(|d| d.texture.clone()),
+                t.alpha.as_ref().map(|d| d.texture.clone()),
+                built,
+            )
+            .map_err(|e| SceneError::new(format!("materials.{}", m.name), e))?;
             material_textures.push((!t.is_empty()).then_some(textures));
         }
         material_textures.push(None);

@@ -141,6 +141,22 @@ impl GpuScene {
                 t.shape
             )));
         }
+        // A textured plastic α blends coat tables from a grid on the CPU
+        // (`materials::plastic_textured`), which has no WGSL twin yet.
+        let plastic_alpha = scene
+            .materials
+            .iter()
+            .zip(&scene.material_textures)
+            .position(|(m, t)| {
+                matches!(m, crate::materials::Material::Plastic(_))
+                    && t.as_ref().is_some_and(|t| t.alpha.is_some())
+            });
+        if let Some(i) = plastic_alpha {
+            return Err(GpuError::Unsupported(format!(
+                "material \"{}\": a plastic's textured alpha is not rendered on the GPU yet",
+                scene.material_names[i]
+            )));
+        }
         match scene.material_textures.iter().position(Option::is_some) {
             Some(i) => Err(GpuError::Unsupported(format!(
                 "material \"{}\" is textured",
