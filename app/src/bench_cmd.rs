@@ -133,7 +133,12 @@ pub fn bench(args: &BenchArgs) -> anyhow::Result<()> {
         check_output_dir(plot)?;
     }
 
-    let scene = Arc::new(load_scene(&args.scene, args.film.width, args.film.height)?);
+    lumis_app::scene_file::set_defines(&args.scene, args.define.clone());
+    let (scene, rr_depth) = load_scene(&args.scene, args.film.width, args.film.height)?;
+    let scene = Arc::new(scene);
+    if let Some(rr) = rr_depth {
+        settings.iter_mut().for_each(|s| s.rr_depth = rr);
+    }
     let (width, height) = (scene.camera.width, scene.camera.height);
     let reference = match &args.reference {
         Some(path) => {
@@ -287,21 +292,30 @@ fn schedule(args: &BenchArgs, source: ErrorSource) -> anyhow::Result<Schedule> {
     Ok(Schedule::List(list.clone()))
 }
 
-/// Loads the scene with the image size overridden where asked (a smaller image benchmarks faster).
-fn load_scene(path: &Path, width: Option<u32>, height: Option<u32>) -> anyhow::Result<Scene> {
+/// Loads the scene with the image size overridden where asked (a smaller image benchmarks
+/// faster), and the Russian roulette depth a Mitsuba scene sets.
+fn load_scene(
+    path: &Path,
+    width: Option<u32>,
+    height: Option<u32>,
+) -> anyhow::Result<(Scene, Option<u32>)> {
     for (name, v) in [("--width", width), ("--height", height)] {
         if v == Some(0) {
             bail!("{name} must be at least 1");
         }
     }
-    let mut desc = lumis_app::scene_file::load_scene_warning(path)?;
+    let loaded = lumis_app::scene_file::load_scene_file(path)?;
+    let mut desc = loaded.desc;
     if let Some(w) = width {
         desc.camera.width = w;
     }
     if let Some(h) = height {
         desc.camera.height = h;
     }
-    Ok(Scene::from_desc(&desc).map_err(|e| e.in_file(path))?)
+    Ok((
+        Scene::from_desc(&desc).map_err(|e| e.in_file(path))?,
+        loaded.rr_depth,
+    ))
 }
 
 /// Plot size in pixels.

@@ -135,10 +135,15 @@ impl EstimatorOptions {
 /// `lumis render`.
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Scene file (JSON).
+    /// Scene file (JSON, a mesh file, or a Mitsuba 3 scene `.xml`).
     pub scene: PathBuf,
-    /// Samples per pixel.
-    #[arg(long, required_unless_present = "sample_range")]
+    /// A parameter of a Mitsuba XML scene, `-D NAME=VALUE`: replaces `$NAME` in the file,
+    /// overriding its `<default>` (as `mitsuba -D`); repeatable. Only for `.xml` scenes.
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub define: Vec<(String, String)>,
+    /// Samples per pixel (default for a Mitsuba scene: its sampler's `sample_count`; required
+    /// otherwise, unless --sample-range is given).
+    #[arg(long)]
     pub spp: Option<u32>,
     /// Render only the sample indices START..END (END excluded) of the full render, instead of
     /// --spp, and write a part file (.exr) for `lumis merge`.
@@ -165,6 +170,14 @@ pub struct RenderArgs {
     /// Output image: .exr or .pfm (linear float RGB) or .png (sRGB).
     #[arg(short = 'o', long = "output")]
     pub output: PathBuf,
+}
+
+/// `-D`'s value, `NAME=VALUE` (the name is checked when the scene is read).
+fn parse_define(text: &str) -> Result<(String, String), String> {
+    match text.split_once('=') {
+        Some((name, value)) if !name.is_empty() => Ok((name.to_owned(), value.to_owned())),
+        _ => Err(format!("`{text}` is not NAME=VALUE")),
+    }
 }
 
 /// `--sample-range`'s value, `START..END` (END excluded), non-empty.
@@ -205,8 +218,13 @@ pub enum BackendArg {
 /// `lumis bench`.
 #[derive(Args, Debug)]
 pub struct BenchArgs {
-    /// Scene file (JSON).
+    /// Scene file (JSON, a mesh file, or a Mitsuba 3 scene `.xml`).
     pub scene: PathBuf,
+    /// A parameter of a Mitsuba XML scene, `-D NAME=VALUE`: replaces `$NAME` in the file,
+    /// overriding its `<default>` (as `mitsuba -D`); repeatable. Only for `.xml` scenes.
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub define: Vec<(String, String)>,
+
     /// Reference image (EXR or PFM) of the same size; without it the error is estimated from two
     /// independent half images.
     #[arg(long)]
@@ -264,8 +282,14 @@ pub struct FilmOptions {
 /// `lumis view`.
 #[derive(Args, Debug)]
 pub struct ViewArgs {
-    /// Scene file (JSON) [default: the seed Cornell box, assets/seed_cornell.json].
+    /// Scene file (JSON, a mesh file, or a Mitsuba 3 scene `.xml`) [default: the seed Cornell
+    /// box, assets/seed_cornell.json].
     pub scene: Option<PathBuf>,
+    /// A parameter of a Mitsuba XML scene, `-D NAME=VALUE`: replaces `$NAME` in the file,
+    /// overriding its `<default>` (as `mitsuba -D`); repeatable. Only for `.xml` scenes.
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub define: Vec<(String, String)>,
+
     /// Reference image (EXR or PFM, the film's size) for the error; without it the error is
     /// estimated from two independent half images.
     #[arg(long)]

@@ -13,13 +13,8 @@ use std::time::Instant;
 
 /// Renders a scene headless and writes the image.
 pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
-    let settings = args.estimator.settings()?;
-    // clap requires exactly one of --spp and --sample-range.
-    let (first, spp) = match (&args.sample_range, args.spp) {
-        (Some(r), _) => (r.start, r.end - r.start),
-        (None, spp) => (0, spp.unwrap_or(0)),
-    };
-    if spp == 0 {
+    let mut settings = args.estimator.settings()?;
+    if args.spp == Some(0) {
         bail!("--spp must be at least 1");
     }
     check_output_extension(&args.output)?;
@@ -27,7 +22,18 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
         check_part_options(args)?;
     }
     check_output_dir(&args.output)?;
-    let desc = lumis_app::scene_file::load_scene_warning(&args.scene)?;
+    lumis_app::scene_file::set_defines(&args.scene, args.define.clone());
+    let loaded = lumis_app::scene_file::load_scene_file(&args.scene)?;
+    // clap allows at most one of --spp and --sample-range; a Mitsuba scene names a default.
+    let (first, spp) = match (&args.sample_range, args.spp.or(loaded.spp)) {
+        (Some(r), _) => (r.start, r.end - r.start),
+        (None, Some(spp)) => (0, spp),
+        (None, None) => bail!("--spp is required (the scene names no sample count)"),
+    };
+    if let Some(rr) = loaded.rr_depth {
+        settings.rr_depth = rr;
+    }
+    let desc = loaded.desc;
     let scene = Arc::new(Scene::from_desc(&desc).map_err(|e| e.in_file(&args.scene))?);
     let pool = thread_pool(args.threads)?;
     let mut render = match args.sample_range {

@@ -64,8 +64,10 @@ pub fn view(args: &ViewArgs) -> anyhow::Result<()> {
         },
         equal_time: args.equal_time,
     };
+    let scene = args.scene.clone().unwrap_or_else(default_scene);
+    lumis_app::scene_file::set_defines(&scene, args.define.clone());
     run(ViewerOptions {
-        scene: args.scene.clone().unwrap_or_else(default_scene),
+        scene,
         reference: args.reference.clone(),
         params,
         seed: args.seed,

@@ -260,6 +260,8 @@ pub enum GeometryDesc {
     Mesh {
         /// The file, resolved against the scene file's folder.
         file: PathBuf,
+        /// Which mesh of the file (Mitsuba's `.serialized` holds several; 0 for other formats).
+        shape_index: u32,
         /// Object to world, affine and invertible.
         to_world: glam::DMat4,
         /// Whether to ignore the file's vertex normals (flat shading).
@@ -347,17 +349,22 @@ impl SceneDesc {
             }),
             GeometryDesc::Mesh {
                 file,
+                shape_index,
                 to_world,
                 face_normals,
                 ..
             } => {
                 let rows = to_world.transpose().to_cols_array_2d();
-                json!({
+                let mut m = json!({
                     "type": "mesh",
                     "file": file.to_string_lossy(),
                     "to_world": rows,
                     "face_normals": face_normals,
-                })
+                });
+                if *shape_index != 0 {
+                    m["shape_index"] = json!(shape_index);
+                }
+                m
             }
             GeometryDesc::Disk {
                 center,

@@ -4,6 +4,7 @@
 //! * [`desc`] — the validated description (f64 plain data) and its writer,
 //!   [`SceneDesc::to_json`].
 //! * [`parse`] — [`parse_scene`] / [`load_scene`], with materials and shapes in their own files.
+//! * [`mitsuba`] — Mitsuba 3 XML scenes, translated into the JSON format ([`load_scene_with`]).
 //! * [`error`] — [`SceneError`].
 //! * [`build`] — the render-ready [`Scene`] (primitives in a BVH, materials, lights).
 
@@ -11,6 +12,7 @@ pub mod build;
 pub mod desc;
 pub mod error;
 pub mod mesh;
+pub mod mitsuba;
 pub mod model;
 pub mod parse;
 mod parse_background;
@@ -31,4 +33,7 @@ pub use desc::{
     MaterialTextures, NamedMaterial, SceneDesc, ShapeDesc, TextureDesc,
 };
 pub use error::SceneError;
-pub use parse::{load_scene, parse_scene, parse_scene_in, parse_scene_value, parse_scene_value_in};
+pub use parse::{
+    LoadedScene, load_scene, load_scene_with, parse_scene, parse_scene_in, parse_scene_value,
+    parse_scene_value_in,
+};

@@ -37,13 +37,55 @@ pub fn parse_scene_in(text: &str, folder: &Path) -> Result<SceneDesc, SceneError
 
 /// Reads, parses and validates a scene file; errors name the file, and the files it refers to
 /// are relative to its folder. A mesh file (`.obj`, `.ply`, `.gltf`, `.glb`) is opened as a
-/// scene of its own ([`super::model::model_scene`]).
+/// scene of its own ([`super::model::model_scene`]), a `.xml` file as a Mitsuba 3 scene
+/// ([`super::mitsuba`]).
 pub fn load_scene(path: &Path) -> Result<SceneDesc, SceneError> {
-    if super::model::is_model_file(path) {
-        return super::model::model_scene(path);
+    load_scene_with(path, &[]).map(|s| s.desc)
+}
+
+/// A scene file as loaded: the description, and what a Mitsuba scene says about rendering it.
+#[derive(Clone, Debug)]
+pub struct LoadedScene {
+    /// The scene.
+    pub desc: SceneDesc,
+    /// Default samples per pixel (a Mitsuba sensor's `sample_count`); `None` for JSON scenes.
+    pub spp: Option<u32>,
+    /// Russian roulette depth (a Mitsuba `path` integrator's `rr_depth`), if the file sets one.
+    pub rr_depth: Option<u32>,
+}
+
+/// [`load_scene`] with the command line's `-D name=value` parameters, which only a Mitsuba
+/// scene has (`$name` in its attributes); giving them for another file is an error.
+pub fn load_scene_with(
+    path: &Path,
+    defines: &[(String, String)],
+) -> Result<LoadedScene, SceneError> {
+    if super::mitsuba::is_mitsuba_file(path) {
+        let m = super::mitsuba::load(path, defines)?;
+        return Ok(LoadedScene {
+            desc: m.desc,
+            spp: Some(m.spp),
+            rr_depth: m.rr_depth,
+        });
     }
-    let folder = path.parent().unwrap_or(Path::new(""));
-    parse_scene_in(&read_scene_file(path)?, folder).map_err(|e| e.in_file(path))
+    if let Some((name, value)) = defines.first() {
+        return Err(SceneError::new(
+            "",
+            format!("-D {name}={value}: parameters apply to Mitsuba XML scenes (.xml) only"),
+        )
+        .in_file(path));
+    }
+    let desc = if super::model::is_model_file(path) {
+        super::model::model_scene(path)?
+    } else {
+        let folder = path.parent().unwrap_or(Path::new(""));
+        parse_scene_in(&read_scene_file(path)?, folder).map_err(|e| e.in_file(path))?
+    };
+    Ok(LoadedScene {
+        desc,
+        spp: None,
+        rr_depth: None,
+    })
 }
 
 /// The text of a scene file; the error (missing, a directory, not UTF-8, …) names the file.

@@ -3,9 +3,9 @@
 
 use super::desc::GeometryDesc;
 use super::error::SceneError;
-use super::mesh::{MeshData, load_mesh};
+use super::mesh::{MeshData, load_mesh_index};
 use super::parse_mesh::{dropped_list, has_zero_area};
-use super::walk::{Obj, array, number};
+use super::walk::{Obj, array, integer, number};
 use glam::{DMat4, DVec3, DVec4};
 use std::path::Path;
 use std::sync::Arc;
@@ -33,8 +33,23 @@ pub(crate) fn mesh(
         Some(v) => matrix(v, &obj.at("to_world"))?,
     };
     let face_normals = obj.opt_bool("face_normals")?.unwrap_or(false);
+    // Which mesh of a file that holds several (Mitsuba's `.serialized`).
+    let shape_index = match obj.get("shape_index") {
+        None => 0,
+        Some(v) => integer(v, &obj.at("shape_index"), 0, u32::MAX as i64)? as u32,
+    };
     let file = folder.join(name);
-    let data = load_mesh(&file).map_err(|e| SceneError::new(&file_path, e.to_string()))?;
+    let serialized = file
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("serialized"));
+    if shape_index != 0 && !serialized {
+        return Err(SceneError::new(
+            obj.at("shape_index"),
+            "only a .serialized file holds several meshes",
+        ));
+    }
+    let data = load_mesh_index(&file, shape_index)
+        .map_err(|e| SceneError::new(&file_path, e.to_string()))?;
 
     let world: Vec<DVec3> = data
         .positions
@@ -80,6 +95,7 @@ pub(crate) fn mesh(
     }
     Ok(GeometryDesc::Mesh {
         file,
+        shape_index,
         to_world,
         face_normals,
         mesh: Arc::new(MeshData {

@@ -7,6 +7,7 @@
 pub mod gltf;
 pub mod obj;
 pub mod ply;
+pub mod serialized;
 pub mod uv_sphere;
 
 use glam::{Vec2, Vec3};
@@ -70,14 +71,30 @@ fn one_line(text: String) -> String {
 }
 
 /// The file extensions [`load_mesh`] reads (lower case).
-pub const MESH_EXTENSIONS: [&str; 4] = ["obj", "ply", "gltf", "glb"];
+pub const MESH_EXTENSIONS: [&str; 5] = ["obj", "ply", "gltf", "glb", "serialized"];
 
-/// Reads the mesh in `path`, by extension: `.obj`, `.ply`, `.gltf` or `.glb` (case-insensitive).
+/// Reads the mesh in `path`, by extension: `.obj`, `.ply`, `.gltf`, `.glb` or `.serialized`
+/// (its first mesh; case-insensitive).
 pub fn load_mesh(path: &Path) -> Result<MeshData, MeshError> {
-    match extension(path).as_str() {
+    load_mesh_index(path, 0)
+}
+
+/// [`load_mesh`] for mesh `shape_index` of a file that holds several (Mitsuba's `.serialized`);
+/// for the other formats, which hold one mesh, `shape_index` must be 0.
+pub fn load_mesh_index(path: &Path, shape_index: u32) -> Result<MeshData, MeshError> {
+    let ext = extension(path);
+    if shape_index != 0 && ext != "serialized" {
+        return Err(MeshError::at(
+            path,
+            "",
+            format!("shape_index {shape_index}: only .serialized files hold several meshes"),
+        ));
+    }
+    match ext.as_str() {
         "obj" => obj::load(path),
         "ply" => ply::load(path),
         "gltf" | "glb" => gltf::load(path),
+        "serialized" => serialized::load(path, shape_index),
         other => Err(unsupported(path, other)),
     }
 }
@@ -90,6 +107,7 @@ pub fn load_mesh_bytes(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError>
         "obj" => obj::load_bytes(path, bytes),
         "ply" => ply::load_bytes(path, bytes),
         "gltf" | "glb" => gltf::load_bytes(path, bytes),
+        "serialized" => serialized::load_bytes(path, bytes, 0),
         other => Err(unsupported(path, other)),
     }
 }
@@ -107,7 +125,7 @@ fn unsupported(path: &Path, ext: &str) -> MeshError {
     MeshError::at(
         path,
         "",
-        format!("unsupported mesh format '.{ext}' (use .obj, .ply, .gltf or .glb)"),
+        format!("unsupported mesh format '.{ext}' (use .obj, .ply, .gltf, .glb or .serialized)"),
     )
 }
 

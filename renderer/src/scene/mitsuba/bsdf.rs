@@ -1,0 +1,340 @@
+//! BSDFs: `diffuse`, `conductor`/`roughconductor`, `plastic`/`roughplastic`,
+//! `dielectric`/`roughdielectric`, `twosided` and `null` onto lumis' materials.
+//!
+//! Mitsuba's BSDFs are one-sided (black from the back) unless wrapped in `twosided`, so a
+//! material is `"two_sided": false` unless it comes through a `twosided`; dielectrics have two
+//! media and neither. Mitsuba's defaults are filled in (diffuse reflectance 0.5, conductor
+//! `material` "none" = a perfect mirror, `bk7`/`polypropylene` inside and `air` outside, rough
+//! α 0.1); a microfacet model must say `distribution="ggx"` (Mitsuba's default, Beckmann, is not
+//! lumis'), and an index pair becomes lumis' relative `ior` = int_ior / ext_ior (the Fresnel
+//! terms and the (η_i/η_t)² radiance scaling depend on the ratio only).
+
+use super::Ctx;
+use super::presets::conductor_preset;
+use super::texture::{color_param, is_texture, scalar_param};
+use super::values::{Slot, constant_color, ior};
+use super::xml::Element;
+use crate::scene::error::SceneError;
+use glam::DVec3;
+use serde_json::{Value as Json, json};
+
+/// The BSDF types lumis maps, for messages.
+const SUPPORTED: &str = "diffuse, conductor, roughconductor, plastic, roughplastic, dielectric, \
+                         roughdielectric, twosided, null";
+
+/// The scene format's material for BSDF element `el` (translated once, then named again),
+/// or `None` for a `null` BSDF.
+pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneError> {
+    if let Some(name) = ctx.material_names.get(&(el as *const Element)) {
+        return Ok(name.clone());
+    }
+    let plugin = ctx.plugin(el)?;
+    let (inner, two_sided) = if plugin.ty == "twosided" {
+        let nested = plugin.objects("bsdf");
+        let first = match nested.as_slice() {
+            [] => return Err(plugin.error("a twosided BSDF needs a nested <bsdf>")),
+            [one] => one,
+            [a, b] if std::ptr::eq(a.object().unwrap_or(a.el), b.object().unwrap_or(b.el)) => a,
+            [_, b, ..] => {
+                return Err(b.el.pos.error(
+                    "a twosided BSDF with different front and back BSDFs is not supported \
+                     (lumis' two-sided materials are the same on both sides)",
+                ));
+            }
+        };
+        plugin.finish("one or two (identical) nested <bsdf>")?;
+        (first.object().unwrap_or(first.el), true)
+    } else {
+        (el, false)
+    };
+    let inner_plugin = if two_sided {
+        ctx.plugin(inner)?
+    } else {
+        plugin
+    };
+    if two_sided
+        && matches!(
+            inner_plugin.ty,
+            "dielectric" | "roughdielectric" | "twosided" | "null"
+        )
+    {
+        return Err(inner_plugin.error(format!(
+            "a `{}` cannot be nested in twosided (Mitsuba refuses transmitting BSDFs there too)",
+            inner_plugin.ty
+        )));
+    }
+    if inner_plugin.ty == "null" {
+        inner_plugin.finish("nothing")?;
+        ctx.material_names.insert(el as *const Element, None);
+        return Ok(None);
+    }
+    let name = ctx.material_name(el, inner);
+    // Quoted as the JSON front end quotes it in its messages (`materials."diffuse@3:5"`).
+    let path = crate::scene::walk::join("materials", &name);
+    ctx.origin(&path, inner_plugin.pos());
+    let mut m = bsdf(ctx, &inner_plugin, &path)?;
+    if !matches!(inner_plugin.ty, "dielectric" | "roughdielectric") {
+        m["two_sided"] = json!(two_sided);
+    }
+    ctx.materials.insert(name.clone(), m);
+    ctx.material_names
+        .insert(el as *const Element, Some(name.clone()));
+    Ok(Some(name))
+}
+
+/// One non-wrapper BSDF as a material object.
+fn bsdf(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, SceneError> {
+    let at = |k: &str| format!("{path}.{k}");
+    let m = match b.ty {
+        "diffuse" => {
+            let albedo = color_param(ctx, b, "reflectance", 0.5, Slot::Reflectance, &at("albedo"))?;
+            b.finish("reflectance")?;
+            json!({"type": "diffuse", "albedo": albedo})
+        }
+        "conductor" | "roughconductor" => {
+            let alpha = match b.ty {
+                "conductor" => json!(0.0),
+                _ => rough_alpha(ctx, b, &at("alpha"), true)?,
+            };
+            let mut m = json!({"type": "conductor", "alpha": alpha});
+            conductor_fresnel(ctx, b, path, &mut m)?;
+            b.finish(
+                "material, eta, k, specular_reflectance, and for roughconductor distribution \
+                 ggx, alpha (or equal alpha_u, alpha_v); sample_visible is ignored",
+            )?;
+            m
+        }
+        "plastic" | "roughplastic" => {
+            let albedo = color_param(
+                ctx,
+                b,
+                "diffuse_reflectance",
+                0.5,
+                Slot::Reflectance,
+                &at("albedo"),
+            )?;
+            let specular = match b.get("specular_reflectance") {
+                None => json!([1.0, 1.0, 1.0]),
+                Some(p) => match constant_color(p, Slot::Reflectance, &mut ctx.warnings)? {
+                    Some(c) => {
+                        ctx.origin(&at("specular"), p.pos());
+                        json!([c.x, c.y, c.z])
+                    }
+                    None => {
+                        return Err(p.error(
+                            "a textured specular_reflectance is not supported (lumis' plastic \
+                             takes a constant specular tint)",
+                        ));
+                    }
+                },
+            };
+            let eta = index_ratio(ctx, b, "polypropylene", &at("ior"))?;
+            if b.bool("nonlinear", false)? {
+                return Err(b.get("nonlinear").map_or_else(
+                    || b.error("nonlinear"),
+                    |p| p.error("nonlinear = true is not supported"),
+                ));
+            }
+            let alpha = match b.ty {
+                "plastic" => json!(0.0),
+                _ => rough_alpha(ctx, b, &at("alpha"), false)?,
+            };
+            b.finish(
+                "diffuse_reflectance, specular_reflectance, int_ior, ext_ior, nonlinear false, \
+                 and for roughplastic distribution ggx and alpha; sample_visible is ignored",
+            )?;
+            ctx.warnings.push(format!(
+                "{}: Mitsuba's {} is imported as lumis' plastic, whose coupling of the \
+                 diffuse base and the specular coat differs (Schlick Fresnel, no internal \
+                 scattering): the image is close to Mitsuba's, not equal",
+                b.pos().describe(),
+                b.ty
+            ));
+            json!({
+                "type": "plastic", "albedo": albedo, "alpha": alpha, "ior": eta,
+                "specular": specular,
+            })
+        }
+        "dielectric" | "roughdielectric" => {
+            let eta = index_ratio(ctx, b, "bk7", &at("ior"))?;
+            for key in ["specular_reflectance", "specular_transmittance"] {
+                if let Some(p) = b.get(key) {
+                    let c = constant_color(p, Slot::Reflectance, &mut ctx.warnings)?;
+                    if c != Some(DVec3::ONE) {
+                        return Err(p.error(format!(
+                            "{key} other than 1 is not supported (lumis' dielectric is exactly \
+                             the Fresnel boundary)"
+                        )));
+                    }
+                }
+            }
+            let alpha = match b.ty {
+                "dielectric" => json!(0.0),
+                _ => rough_alpha(ctx, b, &at("alpha"), true)?,
+            };
+            b.finish(
+                "int_ior, ext_ior, specular_reflectance and specular_transmittance 1, and for \
+                 roughdielectric distribution ggx and alpha; sample_visible is ignored",
+            )?;
+            json!({"type": "dielectric", "ior": eta, "alpha": alpha})
+        }
+        other => {
+            let why = match other {
+                "thindielectric" => " (lumis' dielectric is a boundary between two media)",
+                "bumpmap" | "normalmap" => " (lumis has no bump or normal mapping)",
+                "blendbsdf" | "mask" => " (lumis has no BSDF mixtures or opacity masks)",
+                _ => "",
+            };
+            return Err(b.error(format!(
+                "BSDF type `{other}` is not supported{why}; lumis maps {SUPPORTED}"
+            )));
+        }
+    };
+    Ok(m)
+}
+
+/// The relative index of refraction int_ior / ext_ior (lumis' outside is index 1).
+fn index_ratio(
+    ctx: &mut Ctx,
+    b: &super::plugin::Plugin,
+    int_default: &str,
+    json_path: &str,
+) -> Result<f64, SceneError> {
+    let int = ior(b, "int_ior", int_default)?;
+    let ext = ior(b, "ext_ior", "air")?;
+    if !(int > 0.0 && ext > 0.0 && int != ext) {
+        return Err(b.error(format!(
+            "int_ior {int} and ext_ior {ext} must be positive and differ (as Mitsuba requires)"
+        )));
+    }
+    let pos = b
+        .get("int_ior")
+        .or(b.get("ext_ior"))
+        .map_or(b.pos(), |p| p.pos());
+    ctx.origin(json_path, pos);
+    Ok(int / ext)
+}
+
+/// A rough model's GGX α: `distribution` must be ggx, `alpha` (default 0.1) or an equal
+/// `alpha_u`/`alpha_v`; `textured` says whether lumis takes a texture there.
+fn rough_alpha(
+    ctx: &mut Ctx,
+    b: &super::plugin::Plugin,
+    json_path: &str,
+    textured: bool,
+) -> Result<Json, SceneError> {
+    match b.string("distribution")? {
+        Some((d, _)) if d.eq_ignore_ascii_case("ggx") => {}
+        Some((d, p)) => {
+            return Err(p.error(format!(
+                "distribution `{d}` is not supported: lumis' microfacet models are GGX"
+            )));
+        }
+        None => {
+            return Err(b.error(format!(
+                "{} without distribution=\"ggx\" is Beckmann (Mitsuba's default), which lumis \
+                 does not have; add <string name=\"distribution\" value=\"ggx\"/>",
+                b.ty
+            )));
+        }
+    }
+    b.ignore(&["sample_visible"]);
+    let key = match (b.has("alpha"), b.has("alpha_u"), b.has("alpha_v")) {
+        (_, false, false) => "alpha",
+        (false, true, true) => {
+            let (u, v) = (b.get("alpha_u"), b.get("alpha_v"));
+            let same = match (u.map(|p| &p.value), v.map(|p| &p.value)) {
+                (Some(a), Some(c)) => format!("{a:?}") == format!("{c:?}"),
+                _ => false,
+            };
+            if !same {
+                return Err(b.error(
+                    "different alpha_u and alpha_v (anisotropic roughness) are not supported",
+                ));
+            }
+            "alpha_u"
+        }
+        _ => {
+            return Err(b.error("give either alpha or both alpha_u and alpha_v"));
+        }
+    };
+    if !textured && b.get(key).is_some_and(is_texture) {
+        return Err(b.get(key).map_or_else(
+            || b.error("alpha"),
+            |p| p.error(format!("a textured alpha is not supported in {}", b.ty)),
+        ));
+    }
+    scalar_param(ctx, b, key, 0.1, json_path)
+}
+
+/// A conductor's Fresnel term into `m`: a named preset, `eta` + `k`, or with neither (or
+/// eta = 0: Fresnel 1 everywhere) a `reflectance` = specular_reflectance.
+fn conductor_fresnel(
+    ctx: &mut Ctx,
+    b: &super::plugin::Plugin,
+    path: &str,
+    m: &mut Json,
+) -> Result<(), SceneError> {
+    let material = b.string("material")?;
+    let named = material.filter(|(n, _)| *n != "none");
+    if named.is_some() && (b.has("eta") || b.has("k")) {
+        return Err(b.error("give either `material` or `eta` and `k`, not both"));
+    }
+    let constant = |ctx: &mut Ctx, key: &str, default: f64| -> Result<DVec3, SceneError> {
+        match b.get(key) {
+            None => Ok(DVec3::splat(default)),
+            Some(p) => {
+                ctx.origin(&format!("{path}.{key}"), p.pos());
+                constant_color(p, Slot::Unbounded, &mut ctx.warnings)?.ok_or_else(|| {
+                    p.error(format!(
+                        "a textured `{key}` is not supported (lumis' eta and k are constants)"
+                    ))
+                })
+            }
+        }
+    };
+    let (eta, k) = match named {
+        Some((name, p)) => {
+            ctx.origin(&format!("{path}.eta"), p.pos());
+            ctx.origin(&format!("{path}.k"), p.pos());
+            conductor_preset(name).ok_or_else(|| {
+                p.error(format!(
+                    "unknown conductor material `{name}` (Mitsuba's presets: {})",
+                    super::presets::names().join(", ")
+                ))
+            })?
+        }
+        None => (constant(ctx, "eta", 0.0)?, constant(ctx, "k", 1.0)?),
+    };
+    let refl = b.get("specular_reflectance");
+    if eta == DVec3::ZERO {
+        // |(cos θ − i k)/(cos θ + i k)|² = 1: a perfect mirror times specular_reflectance.
+        m["reflectance"] = color_param(
+            ctx,
+            b,
+            "specular_reflectance",
+            1.0,
+            Slot::Reflectance,
+            &format!("{path}.reflectance"),
+        )?;
+        return Ok(());
+    }
+    if eta.min_element() <= 0.0 {
+        return Err(b.get("eta").map_or_else(
+            || b.error("eta"),
+            |p| p.error("eta must be positive in every channel (or 0 in all: a perfect mirror)"),
+        ));
+    }
+    if let Some(p) = refl {
+        let c = constant_color(p, Slot::Reflectance, &mut ctx.warnings)?;
+        if c != Some(DVec3::ONE) {
+            return Err(p.error(
+                "specular_reflectance other than 1 together with eta and k is not supported \
+                 (lumis' conductor takes either eta and k, or a reflectance)",
+            ));
+        }
+    }
+    m["eta"] = json!(eta.to_array());
+    m["k"] = json!(k.to_array());
+    Ok(())
+}

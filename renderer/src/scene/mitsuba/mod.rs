@@ -1,0 +1,266 @@
+//! Mitsuba 3 XML scenes (`lumis render scene.xml`): the document ([`xml`]) is translated into a
+//! scene-format JSON value, which then goes through the JSON front end
+//! ([`crate::scene::parse_scene_value_in`]), so an imported scene gets every check a JSON scene
+//! gets. The supported subset, the mapping and the refusals are in `docs/mitsuba.md`.
+//!
+//! Every JSON path the translation writes is remembered with the XML element or attribute it
+//! came from, so an error found by the JSON validation still names `file:line:col` and the
+//! element path (`scene.xml:12:9: scene/shape[3]/bsdf/rgb@value: …`), as do errors found while
+//! translating. Anything Mitsuba would render that lumis cannot render the same is refused with
+//! one such error, never dropped.
+
+mod bsdf;
+mod cie;
+mod emitter;
+mod plugin;
+mod presets;
+mod sensor;
+mod shape;
+mod texture;
+mod transform;
+pub mod values;
+pub mod xml;
+
+#[cfg(test)]
+mod tests;
+
+use crate::scene::desc::{GeometryDesc, SceneDesc};
+use crate::scene::error::SceneError;
+use crate::scene::parse::parse_scene_value_in;
+use plugin::Plugin;
+use serde_json::{Map, Value as Json, json};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use xml::{Element, Pos};
+
+pub use presets::conductor_preset;
+pub use transform::rotation;
+
+/// A Mitsuba scene, imported: the description and what Mitsuba keeps outside it.
+#[derive(Clone, Debug)]
+pub struct Imported {
+    /// The scene.
+    pub desc: SceneDesc,
+    /// The sensor's `sample_count` (Mitsuba's default 4 when the sensor has no sampler): the
+    /// default samples per pixel.
+    pub spp: u32,
+    /// The `path` integrator's `rr_depth` (Russian roulette from this path length), if it has
+    /// one; it changes the noise, not the image.
+    pub rr_depth: Option<u32>,
+    /// The translated scene in the JSON format, for `lumis` to save or show.
+    pub json: Json,
+}
+
+/// Whether `path` names a Mitsuba XML scene (by its `.xml` extension).
+pub fn is_mitsuba_file(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+}
+
+/// Reads the Mitsuba scene `path` with the command line's `-D name=value` parameters.
+pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Imported, SceneError> {
+    let doc = xml::load(path, defines)?;
+    let ids = doc.ids()?;
+    let folder = path.parent().unwrap_or(Path::new("")).to_owned();
+    let mut ctx = Ctx {
+        ids,
+        folder: folder.clone(),
+        origins: Vec::new(),
+        warnings: Vec::new(),
+        materials: Map::new(),
+        material_names: HashMap::new(),
+        used_names: HashMap::new(),
+    };
+    let scene = ctx.plugin(&doc.root)?;
+
+    let (max_depth, rr_depth) = match scene.object("integrator")? {
+        Some(p) => {
+            let it = ctx.plugin(target(p))?;
+            sensor::integrator(&mut ctx, &it)?
+        }
+        // Mitsuba's default integrator is `path` with its defaults.
+        None => (-1, None),
+    };
+    let sensors = scene.objects("sensor");
+    let Some(first) = sensors.first() else {
+        return Err(doc.root.pos.error(
+            "the scene has no <sensor>: lumis needs a camera (Mitsuba would place a default \
+             one, which lumis does not)",
+        ));
+    };
+    if let Some(second) = sensors.get(1) {
+        ctx.warnings.push(format!(
+            "{}: the scene has {} sensors; lumis renders the first, as `mitsuba` does by default",
+            second.el.pos.describe(),
+            sensors.len()
+        ));
+    }
+    let sensor_plugin = ctx.plugin(target(first))?;
+    let cam = sensor::sensor(&mut ctx, &sensor_plugin)?;
+
+    let mut background = None;
+    for e in scene.objects("emitter") {
+        let plugin = ctx.plugin(target(e))?;
+        if background.is_some() {
+            return Err(plugin.error(
+                "a second environment emitter: lumis has one background (constant or envmap)",
+            ));
+        }
+        background = Some(emitter::background(&mut ctx, &plugin)?);
+    }
+    let mut shapes = Vec::new();
+    let mut shape_pos = Vec::new();
+    for s in scene.objects("shape") {
+        let plugin = ctx.plugin(target(s))?;
+        if let Some(obj) = shape::shape(&mut ctx, &plugin, shapes.len())? {
+            shapes.push(obj);
+            shape_pos.push(plugin.pos().clone());
+        }
+    }
+    // Declarations for <ref>: translated where they are used.
+    scene.objects("bsdf");
+    scene.objects("texture");
+    for tag in ["medium", "volume", "phase"] {
+        if let Some(p) = scene.objects(tag).first() {
+            return Err(p.el.pos.error(format!(
+                "<{tag}> is not supported (lumis renders surfaces in vacuum)"
+            )));
+        }
+    }
+    scene.finish("integrator, sensor, shape, emitter, bsdf, texture")?;
+
+    let mut json = json!({
+        "comment": format!("imported from the Mitsuba scene {}", path.display()),
+        "camera": cam.camera,
+        "max_depth": max_depth,
+        "materials": Json::Object(ctx.materials.clone()),
+        "shapes": shapes,
+    });
+    if let Some(bg) = background {
+        json["background"] = bg;
+    }
+    let mut desc = parse_scene_value_in(&json, &folder).map_err(|e| ctx.locate(e, path))?;
+    for (shape, pos) in desc.shapes.iter_mut().zip(&shape_pos) {
+        shape.json_path = pos.describe();
+        if let GeometryDesc::Mesh {
+            face_normals: false,
+            mesh,
+            file,
+            ..
+        } = &shape.geometry
+            && mesh.normals.is_none()
+        {
+            ctx.warnings.push(format!(
+                "{}: {} has no vertex normals; Mitsuba would compute smooth ones \
+                 (face_normals = false), lumis shades it flat",
+                pos.describe(),
+                file.display()
+            ));
+        }
+    }
+    desc.warnings.extend(ctx.warnings);
+    Ok(Imported {
+        desc,
+        spp: cam.spp,
+        rr_depth,
+        json,
+    })
+}
+
+/// The element a child property names (itself, or a `<ref>`'s target).
+fn target<'a>(p: &plugin::Prop<'a>) -> &'a Element {
+    p.object().unwrap_or(p.el)
+}
+
+/// The translation's state.
+pub(crate) struct Ctx<'a> {
+    /// Elements by `id`.
+    ids: HashMap<&'a str, &'a Element>,
+    /// The main file's folder: file names are relative to it (Mitsuba's file resolver).
+    folder: PathBuf,
+    /// JSON paths written, with where they came from.
+    origins: Vec<(String, Pos)>,
+    /// Things accepted that do not match Mitsuba exactly.
+    warnings: Vec<String>,
+    /// The `materials` object being built.
+    materials: Map<String, Json>,
+    /// Material names by BSDF element (`None`: a null BSDF).
+    material_names: HashMap<*const Element, Option<String>>,
+    /// How often each base name was used, to keep generated names unique.
+    used_names: HashMap<String, usize>,
+}
+
+impl<'a> Ctx<'a> {
+    /// The object `el` with its properties.
+    fn plugin(&self, el: &'a Element) -> Result<Plugin<'a>, SceneError> {
+        Plugin::new(el, &self.ids)
+    }
+
+    /// Records that JSON path `path` came from `pos`.
+    fn origin(&mut self, path: &str, pos: &Pos) {
+        match self.origins.iter_mut().find(|(p, _)| p == path) {
+            Some(entry) => entry.1 = pos.clone(),
+            None => self.origins.push((path.to_owned(), pos.clone())),
+        }
+    }
+
+    /// A fresh material name for BSDF `el`, whose BSDF proper is `inner` (a `twosided`'s nested
+    /// one, else `el`): its id, `twosided(ID)` for an anonymous wrapper of `inner` with an id,
+    /// or `TYPE@LINE:COL`.
+    fn material_name(&mut self, el: &Element, inner: &Element) -> String {
+        let at = |e: &Element| {
+            format!(
+                "{}@{}:{}",
+                e.value("type").unwrap_or("bsdf"),
+                e.pos.line,
+                e.pos.col
+            )
+        };
+        let base = match (el.value("id"), inner.value("id")) {
+            (Some(id), _) => id.to_owned(),
+            (None, Some(id)) if !std::ptr::eq(el, inner) => format!("twosided({id})"),
+            _ => at(el),
+        };
+        let n = self.used_names.entry(base.clone()).or_insert(0);
+        *n += 1;
+        let name = if *n == 1 { base } else { format!("{base}#{n}") };
+        if self.materials.contains_key(&name) {
+            return self.material_name(el, inner);
+        }
+        name
+    }
+
+    /// A file a property names, as the JSON should say it: relative to the main file's folder
+    /// when it is there (Mitsuba resolves file names against the main scene's folder), else
+    /// relative to the folder of the XML file that names it.
+    fn resolve_file(&self, name: &str, el: &Element) -> String {
+        let own = el.pos.file.parent().unwrap_or(Path::new("")).join(name);
+        if self.folder.join(name).exists() || !own.exists() {
+            return name.to_owned();
+        }
+        std::path::absolute(&own)
+            .unwrap_or(own)
+            .to_string_lossy()
+            .into_owned()
+    }
+
+    /// A JSON validation error, placed at the XML it came from (the longest recorded prefix of
+    /// its path), or at the file when nothing matches.
+    fn locate(&self, e: SceneError, file: &Path) -> SceneError {
+        let matches = |p: &str| {
+            e.path == p
+                || (e.path.starts_with(p)
+                    && matches!(e.path.as_bytes().get(p.len()), Some(b'.') | Some(b'[')))
+        };
+        let best = self
+            .origins
+            .iter()
+            .filter(|(p, _)| matches(p))
+            .max_by_key(|(p, _)| p.len());
+        match best {
+            Some((_, pos)) => pos.error(format!("{} (lumis scene key {})", e.message, e.path)),
+            None => e.in_file(file),
+        }
+    }
+}

@@ -1,0 +1,282 @@
+//! Shapes: `obj`, `ply`, `serialized` (lumis' `mesh`), `rectangle` (a `quad`), `cube`
+//! (`triangles`), `disk` and `sphere`, with `to_world`, `flip_normals` and `face_normals`, their
+//! BSDF and area emitter.
+//!
+//! Mitsuba's rectangle is `to_world` of [-1, 1]² at z = 0 with normal +z and `uv` = the
+//! position in [0, 1]², which is lumis' quad from `to_world(-1, -1, 0)` with edges
+//! `to_world(2, 0, 0)` and `to_world(0, 2, 0)` (u along the first edge, normal `edge_u × edge_v`).
+//! Its cube is `to_world` of [-1, 1]³ with outward normals; its disk the unit disk at z = 0
+//! facing +z; its sphere `to_world · translate(center) · scale(radius)` of the unit sphere.
+//! A shape without a BSDF gets Mitsuba's default, a one-sided diffuse of reflectance 0.5 (0 if
+//! it emits); a `null` BSDF without an emitter is invisible and is left out.
+
+use super::Ctx;
+use super::bsdf::material;
+use super::emitter::area;
+use super::plugin::Plugin;
+use super::transform::rows_json;
+use crate::scene::error::SceneError;
+use glam::{DMat3, DMat4, DVec3};
+use serde_json::{Value as Json, json};
+
+/// Name of the material standing in for Mitsuba's default BSDF.
+const DEFAULT_MATERIAL: &str = "mitsuba_default_diffuse";
+
+/// The scene format's shape for `s`, to go at `shapes[index]`; `None` when it is invisible.
+pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, SceneError> {
+    let path = format!("shapes[{index}]");
+    ctx.origin(&path, s.pos());
+    if let Some(medium) = s.objects("medium").first() {
+        return Err(medium
+            .el
+            .pos
+            .error("media (interior/exterior) are not supported"));
+    }
+    if let Some(p) = s.objects("sensor").first() {
+        return Err(p
+            .el
+            .pos
+            .error("a sensor attached to a shape is not supported"));
+    }
+    let emission = match s.object("emitter")? {
+        Some(p) => {
+            let e = ctx.plugin(p.object().unwrap_or(p.el))?;
+            Some(area(ctx, &e, &format!("{path}.emission"))?)
+        }
+        None => None,
+    };
+    let mat = match s.object("bsdf")? {
+        Some(p) => {
+            let el = p.object().unwrap_or(p.el);
+            ctx.origin(&format!("{path}.material"), &p.el.pos);
+            match material(ctx, el)? {
+                Some(name) => Some(name),
+                None if emission.is_some() => {
+                    return Err(p.el.pos.error(
+                        "an emitting shape with a null BSDF is not supported: lumis' surfaces \
+                         always block rays",
+                    ));
+                }
+                None => {
+                    s.ignore(&SHAPE_PROPERTIES);
+                    return Ok(None);
+                }
+            }
+        }
+        // Mitsuba's default; black (lumis' "no material") when the shape emits.
+        None if emission.is_some() => None,
+        None => {
+            ctx.materials.entry(DEFAULT_MATERIAL).or_insert_with(
+                || json!({"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "two_sided": false}),
+            );
+            Some(DEFAULT_MATERIAL.to_owned())
+        }
+    };
+    let textured = emission.as_ref().is_some_and(Json::is_object)
+        || mat.as_ref().is_some_and(|m| {
+            ctx.materials
+                .get(m)
+                .and_then(Json::as_object)
+                .is_some_and(|o| o.values().any(Json::is_object))
+        });
+    let flip = s.bool("flip_normals", false)?;
+    let (to_world, tpos) = match s.transform("to_world")? {
+        Some((m, p)) => {
+            ctx.origin(&format!("{path}.to_world"), &p.el.pos);
+            (m, p.el.pos.clone())
+        }
+        None => (DMat4::IDENTITY, s.pos().clone()),
+    };
+    // Importance of silhouettes for differentiable rendering only.
+    s.ignore(&["silhouette_sampling_weight"]);
+    let no_uv = |what: &str| -> Result<(), SceneError> {
+        if textured {
+            return Err(s.error(format!(
+                "a textured {what} is not supported: lumis gives it no texture coordinates \
+                 like Mitsuba's"
+            )));
+        }
+        Ok(())
+    };
+    let mirror = DMat3::from_mat4(to_world).determinant() < 0.0;
+    if mirror && matches!(s.ty, "rectangle" | "cube" | "disk") {
+        return Err(tpos.error(format!(
+            "a mirroring to_world (negative determinant) on a {} is not supported: its \
+             geometric and shading normals would disagree",
+            s.ty
+        )));
+    }
+    let mut obj = match s.ty {
+        "obj" | "ply" | "serialized" => {
+            let (file, fp) = s
+                .string("filename")?
+                .ok_or_else(|| s.error(format!("a `{}` shape needs `filename`", s.ty)))?;
+            ctx.origin(&format!("{path}.file"), fp.pos());
+            let file = ctx.resolve_file(file, fp.el);
+            if flip {
+                return Err(s.get("flip_normals").map_or_else(
+                    || s.error("flip_normals"),
+                    |p| p.error("flip_normals = true is not supported on mesh files"),
+                ));
+            }
+            let flip_default = s.ty == "obj";
+            if s.ty != "serialized" && s.bool("flip_tex_coords", flip_default)? != flip_default {
+                return Err(s.get("flip_tex_coords").map_or_else(
+                    || s.error("flip_tex_coords"),
+                    |p| {
+                        p.error(format!(
+                            "flip_tex_coords = {} is not supported (lumis reads {} texture \
+                             coordinates as Mitsuba does by default)",
+                            !flip_default, s.ty
+                        ))
+                    },
+                ));
+            }
+            let mut m = json!({
+                "type": "mesh", "file": file, "to_world": rows_json(&to_world),
+                "face_normals": s.bool("face_normals", false)?,
+            });
+            if s.ty == "serialized" {
+                let index = s.int("shape_index", 0)?;
+                if let Some(p) = s.get("shape_index") {
+                    ctx.origin(&format!("{path}.shape_index"), p.pos());
+                }
+                m["shape_index"] = json!(index);
+            }
+            m
+        }
+        "rectangle" => {
+            if flip {
+                no_uv("flipped rectangle")?;
+            }
+            let corner = to_world.transform_point3(DVec3::new(-1.0, -1.0, 0.0));
+            let mut eu = to_world.transform_vector3(DVec3::new(2.0, 0.0, 0.0));
+            let mut ev = to_world.transform_vector3(DVec3::new(0.0, 2.0, 0.0));
+            if flip {
+                std::mem::swap(&mut eu, &mut ev);
+            }
+            ctx.origin(&format!("{path}.edge_u"), &tpos);
+            ctx.origin(&format!("{path}.edge_v"), &tpos);
+            json!({"type": "quad", "corner": corner.to_array(), "edge_u": eu.to_array(),
+                   "edge_v": ev.to_array()})
+        }
+        "cube" => {
+            no_uv("cube")?;
+            let (positions, indices) = cube(&to_world, flip);
+            json!({"type": "triangles", "positions": positions, "indices": indices})
+        }
+        "disk" => {
+            no_uv("disk")?;
+            let m = DMat3::from_mat4(to_world);
+            let (du, dv) = (m.x_axis, m.y_axis);
+            let r = du.length();
+            if (dv.length() - r).abs() > 1e-6 * r || du.dot(dv).abs() > 1e-6 * r * r {
+                return Err(tpos.error(
+                    "the disk's to_world makes it an ellipse, which lumis' disk cannot be",
+                ));
+            }
+            // Normals transform by the inverse transpose.
+            let mut n = m.inverse().transpose() * DVec3::Z;
+            if flip {
+                n = -n;
+            }
+            ctx.origin(&format!("{path}.radius"), &tpos);
+            json!({"type": "disk", "center": to_world.w_axis.truncate().to_array(),
+                   "normal": n.to_array(), "radius": r})
+        }
+        "sphere" => {
+            no_uv("sphere")?;
+            let center = s.vector("center", DVec3::ZERO)?;
+            let radius = s.float("radius", 1.0)?;
+            if let Some(p) = s.get("radius") {
+                ctx.origin(&format!("{path}.radius"), p.pos());
+            }
+            let m = to_world
+                * DMat4::from_translation(center)
+                * DMat4::from_scale(DVec3::splat(radius));
+            let m3 = DMat3::from_mat4(m);
+            let r = m3.x_axis.length();
+            let lengths = [m3.y_axis.length(), m3.z_axis.length()];
+            if lengths.iter().any(|l| (l - r).abs() > 1e-6 * r)
+                || m3.x_axis.dot(m3.y_axis).abs() > 1e-6 * r * r
+            {
+                ctx.warnings.push(format!(
+                    "{}: the sphere's to_world scales non-uniformly; like Mitsuba, lumis \
+                     renders a sphere of radius |to_world · x| = {r}",
+                    tpos.describe()
+                ));
+            }
+            if flip != (m3.determinant() < 0.0) {
+                return Err(s.error(
+                    "a sphere with inward normals (flip_normals, or a negative scale) is not \
+                     supported: lumis' spheres face outward",
+                ));
+            }
+            json!({"type": "sphere", "center": m.w_axis.truncate().to_array(), "radius": r})
+        }
+        other => {
+            let why = match other {
+                "shapegroup" | "instance" => " (lumis has no instancing)",
+                "cylinder" => " (use a mesh)",
+                _ => "",
+            };
+            return Err(s.error(format!(
+                "shape type `{other}` is not supported{why}; lumis maps obj, ply, serialized, \
+                 rectangle, cube, disk and sphere"
+            )));
+        }
+    };
+    s.finish(
+        "filename, to_world, face_normals, flip_normals (not on meshes or spheres), shape_index \
+         (serialized), center and radius (sphere), one bsdf, one area emitter",
+    )?;
+    if let Some(name) = mat {
+        obj["material"] = json!(name);
+    }
+    if let Some(e) = emission {
+        obj["emission"] = e;
+    }
+    Ok(Some(obj))
+}
+
+/// Every property a shape may have (an invisible shape's are read without effect).
+const SHAPE_PROPERTIES: [&str; 9] = [
+    "filename",
+    "to_world",
+    "face_normals",
+    "flip_normals",
+    "flip_tex_coords",
+    "shape_index",
+    "center",
+    "radius",
+    "silhouette_sampling_weight",
+];
+
+/// The 8 corners of `to_world([-1, 1]³)` and its 12 triangles, wound outward (inward with
+/// `flip`).
+fn cube(to_world: &DMat4, flip: bool) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let positions: Vec<[f64; 3]> = (0..8)
+        .map(|i| {
+            let c = |bit: u32| if i & bit != 0 { 1.0 } else { -1.0 };
+            to_world
+                .transform_point3(DVec3::new(c(1), c(2), c(4)))
+                .to_array()
+        })
+        .collect();
+    // Each face as corners in counter-clockwise order seen from outside.
+    let faces: [[u32; 4]; 6] = [
+        [1, 3, 7, 5], // +x
+        [0, 4, 6, 2], // -x
+        [2, 6, 7, 3], // +y
+        [0, 1, 5, 4], // -y
+        [4, 5, 7, 6], // +z
+        [0, 2, 3, 1], // -z
+    ];
+    let mut indices = Vec::with_capacity(12);
+    for [a, b, c, d] in faces {
+        for t in [[a, b, c], [a, c, d]] {
+            indices.push(if flip { [t[0], t[2], t[1]] } else { t });
+        }
+    }
+    (positions, indices)
+}
