@@ -19,6 +19,7 @@ pub mod dielectric;
 pub mod diffuse;
 pub mod fresnel;
 pub mod ggx;
+pub mod mix;
 pub mod plastic;
 #[cfg(test)]
 mod testing;
@@ -27,6 +28,7 @@ pub mod textured;
 pub use conductor::{Conductor, ConductorFresnel};
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
+pub use mix::Mix;
 pub use plastic::Plastic;
 
 use glam::{Vec2, Vec3};
