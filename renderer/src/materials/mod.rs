@@ -19,6 +19,7 @@ pub mod dielectric;
 pub mod diffuse;
 pub mod fresnel;
 pub mod ggx;
+pub mod mix;
 pub mod plastic;
 pub mod plastic_textured;
 #[cfg(test)]
@@ -28,6 +29,7 @@ pub mod textured;
 pub use conductor::{Conductor, ConductorFresnel};
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
+pub use mix::Mix;
 pub use plastic::Plastic;
 
 use glam::{Vec2, Vec3};

@@ -18,7 +18,8 @@ use crate::lights::{
     QuadLight, SphereLight, TriangleLight,
 };
 use crate::materials::textured::MaterialTextures;
-use crate::materials::{Conductor, ConductorFresnel, Dielectric, Diffuse, Material, Plastic};
+use crate::materials::{Conductor, ConductorFresnel, Dielectric, Diffuse, Material, Mix, Plastic};
+use crate::textures::Texture;
 use glam::{DVec3, Vec2, Vec3};
 
 /// Largest supported extent of a scene's bounding box (on its longest axis). The BVH builder
@@ -53,6 +54,10 @@ pub struct Scene {
     pub material_textures: Vec<Option<MaterialTextures>>,
     /// The emission textures of textured emitters, indexed by [`Light::texture`].
     pub emission_textures: Vec<EmissionTexture>,
+    /// Per material, the mix it is (`None`: not a mix), parallel to `materials`; empty when the
+    /// scene has no mix. A mix's entry in `materials` is the material its mean weight favours
+    /// (for code that reads one BSDF); [`Scene::material_at`] resolves the mix per hit.
+    pub mixes: Vec<Option<Mix>>,
 }
 
 fn v(d: DVec3) -> Vec3 {
@@ -88,6 +93,54 @@ fn material(desc: &MaterialDesc) -> Material {
             alpha: *alpha as f32,
         }),
     }
+}
+
+/// The mixes of `desc`'s materials, parallel to them (empty if there are none). The parser
+/// rules out a mix that contains itself; a description built otherwise is checked here, so that
+/// resolving a mix at a hit always ends.
+fn mixes(desc: &SceneDesc) -> Result<Vec<Option<Mix>>, SceneError> {
+    let n = desc.materials.len();
+    if desc.materials.iter().all(|m| m.mix.is_none()) {
+        return Ok(Vec::new());
+    }
+    let mut out = Vec::with_capacity(n + 1);
+    for (i, m) in desc.materials.iter().enumerate() {
+        let mix = m.mix.as_ref().map(|mix| {
+            let weight = match &mix.weight_texture {
+                Some(t) => t.texture.clone(),
+                None => Texture::Constant(Vec3::splat(mix.weight as f32)),
+            };
+            Mix {
+                materials: mix.materials.map(|j| j as u32),
+                weight,
+            }
+        });
+        // Following either material from a mix must leave the mixes within `n` steps.
+        let mut frontier = vec![i];
+        for _ in 0..=n {
+            if frontier.is_empty() {
+                break;
+            }
+            frontier = frontier
+                .iter()
+                .filter_map(|&j| desc.materials.get(j).and_then(|m| m.mix.as_ref()))
+                .flat_map(|x| x.materials)
+                .collect();
+            frontier.sort_unstable();
+            frontier.dedup();
+        }
+        let dangling = m.mix.iter().any(|x| x.materials.iter().any(|&j| j >= n));
+        if mix.is_some() && (!frontier.is_empty() || dangling) {
+            return Err(SceneError::new(
+                format!("materials.{}", m.name),
+                "a mix names a material that does not exist or contains itself",
+            ));
+        }
+        out.push(mix);
+    }
+    // The black material of shapes without one.
+    out.push(None);
+    Ok(out)
 }
 
 /// The 6 faces of a box as parallelograms `(corner, edge_u, edge_v)` with outward normals, rotated
@@ -221,6 +274,7 @@ impl Scene {
             material_textures.push((!t.is_empty()).then_some(textures));
         }
         material_textures.push(None);
+        let mixes = mixes(desc)?;
         let black = materials.len() as u32;
         materials.push(Material::Diffuse(Diffuse { albedo: Vec3::ZERO }));
         two_sided.push(true);
@@ -492,6 +546,7 @@ impl Scene {
             attributes,
             material_textures,
             emission_textures,
+            mixes,
         })
     }
 

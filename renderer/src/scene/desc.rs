@@ -78,6 +78,24 @@ pub struct NamedMaterial {
     pub two_sided: bool,
     /// The parameters given as textures; an untextured material has none.
     pub textures: MaterialTextures,
+    /// `Some` for a mix of two other materials (`{"type": "mix"}`). `material` then holds the
+    /// description of the material its mean weight favours (through nested mixes: the second
+    /// at a weight ≥ ½), as a texture's mean stands in for it, for code that reads one BSDF;
+    /// `textures` is empty and `two_sided` is its materials' (which agree).
+    pub mix: Option<MixDesc>,
+}
+
+/// A mix of two materials (pbrt-v4's `MixMaterial`): each shading point sees one of them, the
+/// second with probability `weight` ([`crate::materials::mix`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MixDesc {
+    /// Indices into [`SceneDesc::materials`]; never the mix itself, directly or through other
+    /// mixes.
+    pub materials: [usize; 2],
+    /// The probability of the second, in [0, 1]; with a texture, its mean.
+    pub weight: f64,
+    /// The weight as a scalar texture (every scalar texel in [0, 1]), if given as one.
+    pub weight_texture: Option<TextureDesc>,
 }
 
 /// The textured parameters of a material, one `Option` per slot. Where a slot has a texture,
@@ -306,7 +324,7 @@ impl SceneDesc {
         let materials: Map<String, Value> = self
             .materials
             .iter()
-            .map(|m| (m.name.clone(), material_json(m)))
+            .map(|m| (m.name.clone(), material_json(m, &self.materials)))
             .collect();
         let shapes: Vec<Value> = self.shapes.iter().map(|s| self.shape_json(s)).collect();
         json!({
@@ -398,7 +416,16 @@ impl SceneDesc {
     }
 }
 
-fn material_json(m: &NamedMaterial) -> Value {
+/// `m` in the file format; `all` are the scene's materials, which a mix names.
+fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
+    if let Some(mix) = &m.mix {
+        let weight = match &mix.weight_texture {
+            Some(t) if !t.texture.is_constant() => t.to_json(),
+            _ => json!(mix.weight),
+        };
+        let names = mix.materials.map(|i| all[i].name.as_str());
+        return json!({"type": "mix", "materials": names, "weight": weight});
+    }
     let mut obj = match &m.material {
         MaterialDesc::Diffuse { albedo } => json!({"type": "diffuse", "albedo": vec3(*albedo)}),
         MaterialDesc::Conductor { alpha, fresnel } => match fresnel {

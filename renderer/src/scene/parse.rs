@@ -9,7 +9,7 @@ use super::error::SceneError;
 use super::parse_background::parse_background;
 use super::parse_materials::parse_materials;
 use super::parse_shapes::{parse_shapes, unit};
-use super::parse_texture::TextureLoader;
+use super::parse_texture::{Preloaded, TextureLoader};
 use super::walk::{Obj, array, check_components, integer, parse_json};
 use glam::DVec3;
 use serde_json::Value;
@@ -102,6 +102,16 @@ pub fn parse_scene_value(value: &Value) -> Result<SceneDesc, SceneError> {
 
 /// Validates an already parsed JSON value whose file references are relative to `folder`.
 pub fn parse_scene_value_in(value: &Value, folder: &Path) -> Result<SceneDesc, SceneError> {
+    parse_scene_value_preloaded(value, folder, Preloaded::default())
+}
+
+/// [`parse_scene_value_in`] with some of the files already in memory (`preloaded`, looked up
+/// before the file system), for a front end that has read them itself.
+pub(crate) fn parse_scene_value_preloaded(
+    value: &Value,
+    folder: &Path,
+    preloaded: Preloaded,
+) -> Result<SceneDesc, SceneError> {
     if !value.is_object() {
         // No JSON path to name, so say where in words.
         return Err(SceneError::new(
@@ -133,7 +143,7 @@ pub fn parse_scene_value_in(value: &Value, folder: &Path) -> Result<SceneDesc, S
     };
 
     // One loader for the whole scene, so that a file named twice is read once.
-    let mut textures = TextureLoader::new(folder);
+    let mut textures = TextureLoader::new(folder).with_preloaded(preloaded);
     let materials = match root.get("materials") {
         Some(v) => parse_materials(&Obj::new(v, "materials")?, &mut textures)?,
         None => Vec::new(),

@@ -1,37 +1,50 @@
-//! The `materials` map: diffuse, conductor, plastic and dielectric, with their range rules.
+//! The `materials` map: diffuse, conductor, plastic, dielectric and mix, with their range rules.
 
-use super::desc::{FresnelDesc, MaterialDesc, MaterialTextures, NamedMaterial, TextureDesc};
+use super::desc::{
+    FresnelDesc, MaterialDesc, MaterialTextures, MixDesc, NamedMaterial, TextureDesc,
+};
 use super::error::SceneError;
 use super::parse_texture::{TextureLoader, TextureUse, texture_at};
-use super::walk::{Obj, check_components};
+use super::walk::{Obj, array, check_components};
 use glam::DVec3;
 
 /// Every material of the map, sorted by name (the map's order); texture files come from
-/// `loader`.
+/// `loader`. Mixes are resolved once every material is known (`resolve_mixes`).
 pub(crate) fn parse_materials(
     obj: &Obj,
     loader: &mut TextureLoader,
 ) -> Result<Vec<NamedMaterial>, SceneError> {
-    obj.map()
-        .iter()
-        .map(|(name, value)| {
-            let m = Obj::new(value, obj.at(name))?;
-            if name.is_empty() {
-                return Err(SceneError::new(m.path, "a material name must not be empty"));
-            }
-            parse_material(name, &m, loader)
-        })
-        .collect()
+    let mut materials = Vec::with_capacity(obj.map().len());
+    let mut mixes = Vec::with_capacity(obj.map().len());
+    for (name, value) in obj.map() {
+        let m = Obj::new(value, obj.at(name))?;
+        if name.is_empty() {
+            return Err(SceneError::new(m.path, "a material name must not be empty"));
+        }
+        let (material, mix) = parse_material(name, &m, loader)?;
+        materials.push(material);
+        mixes.push(mix);
+    }
+    resolve_mixes(obj, &mut materials, mixes)?;
+    Ok(materials)
+}
+
+/// A mix as parsed, before its material names are looked up.
+struct PendingMix {
+    names: [String; 2],
+    weight: f64,
+    weight_texture: Option<TextureDesc>,
 }
 
 fn parse_material(
     name: &str,
     obj: &Obj,
     loader: &mut TextureLoader,
-) -> Result<NamedMaterial, SceneError> {
+) -> Result<(NamedMaterial, Option<PendingMix>), SceneError> {
     let kind = obj.string("type")?;
     let mut textures = MaterialTextures::default();
     let t = &mut textures;
+    let mut mix = None;
     let material = match kind {
         "diffuse" => {
             obj.only_keys(&["type", "albedo", "two_sided"], true)?;
@@ -90,23 +103,180 @@ fn parse_material(
             };
             MaterialDesc::Dielectric { ior, alpha }
         }
+        "mix" => {
+            if obj.get("two_sided").is_some() {
+                let msg = "a mix has no sides of its own: its materials' `two_sided` apply";
+                return Err(SceneError::new(obj.at("two_sided"), msg));
+            }
+            obj.only_keys(&["type", "materials", "weight"], true)?;
+            mix = Some(parse_mix(obj, loader)?);
+            // Replaced by the favoured material's once the names resolve.
+            MaterialDesc::Diffuse {
+                albedo: DVec3::ZERO,
+            }
+        }
         other => {
             return Err(SceneError::new(
                 obj.at("type"),
                 format!(
-                    "unknown material type `{other}` (expected diffuse, conductor, plastic or \
-                     dielectric)"
+                    "unknown material type `{other}` (expected diffuse, conductor, plastic, \
+                     dielectric or mix)"
                 ),
             ));
         }
     };
     let two_sided = kind != "dielectric" && obj.opt_bool("two_sided")?.unwrap_or(true);
-    Ok(NamedMaterial {
+    let named = NamedMaterial {
         name: name.to_owned(),
         material,
         two_sided,
         textures,
+        mix: None,
+    };
+    Ok((named, mix))
+}
+
+/// A mix's `materials` (two names) and `weight` (a number or a scalar texture, in [0, 1]).
+fn parse_mix(obj: &Obj, loader: &mut TextureLoader) -> Result<PendingMix, SceneError> {
+    let path = obj.at("materials");
+    let items = array(obj.req("materials")?, &path)?;
+    if items.len() != 2 {
+        let msg = format!("expected 2 material names, found {}", items.len());
+        return Err(SceneError::new(path, msg));
+    }
+    let name = |i: usize| -> Result<String, SceneError> {
+        items[i].as_str().map(str::to_owned).ok_or_else(|| {
+            SceneError::new(
+                format!("{path}[{i}]"),
+                "expected a material name (a string)",
+            )
+        })
+    };
+    let names = [name(0)?, name(1)?];
+    let weight_texture = texture_at(obj, "weight", TextureUse::Weight, loader)?;
+    let weight = match &weight_texture {
+        Some(t) => t.mean_scalar(),
+        None => {
+            let w = obj.number("weight")?;
+            if !(0.0..=1.0).contains(&w) {
+                let msg = format!("weight {w} is outside [0, 1]");
+                return Err(SceneError::new(obj.at("weight"), msg));
+            }
+            w
+        }
+    };
+    Ok(PendingMix {
+        names,
+        weight,
+        weight_texture,
     })
+}
+
+/// Looks up the names of every mix, then checks that no mix contains itself (directly or
+/// through others) and that its materials agree on `two_sided` (dielectrics have no sides), and
+/// gives each mix the description of the material its mean weight favours.
+fn resolve_mixes(
+    obj: &Obj,
+    materials: &mut [NamedMaterial],
+    pending: Vec<Option<PendingMix>>,
+) -> Result<(), SceneError> {
+    let names: Vec<String> = materials.iter().map(|m| m.name.clone()).collect();
+    for (i, p) in pending.into_iter().enumerate() {
+        let Some(p) = p else { continue };
+        let path = join_materials(obj, &names[i]);
+        let mut index = [0; 2];
+        for (k, name) in p.names.iter().enumerate() {
+            index[k] = names.iter().position(|n| n == name).ok_or_else(|| {
+                SceneError::new(
+                    format!("{path}[{k}]"),
+                    format!("unknown material `{name}` (defined: {})", names.join(", ")),
+                )
+            })?;
+        }
+        materials[i].mix = Some(MixDesc {
+            materials: index,
+            weight: p.weight,
+            weight_texture: p.weight_texture,
+        });
+    }
+    // Depth-first over the mixes (an explicit stack; 1 = on the stack, 2 = done), so every
+    // mix is finished after its materials: `sides` then holds, per material, the `two_sided` of
+    // the sided materials under it (`None`: dielectrics only).
+    let n = materials.len();
+    let mut state = vec![0u8; n];
+    let mut sides: Vec<Option<bool>> = vec![None; n];
+    for root in 0..n {
+        if state[root] != 0 {
+            continue;
+        }
+        let mut stack = vec![(root, 0usize)];
+        state[root] = 1;
+        while let Some(&mut (m, ref mut next)) = stack.last_mut() {
+            let children = materials[m]
+                .mix
+                .as_ref()
+                .map_or(&[][..], |x| &x.materials[..]);
+            if let Some(&c) = children.get(*next) {
+                *next += 1;
+                match state[c] {
+                    0 => {
+                        state[c] = 1;
+                        stack.push((c, 0));
+                    }
+                    1 => {
+                        let from = stack.iter().position(|&(s, _)| s == c).unwrap_or(0);
+                        let cycle: Vec<&str> = stack[from..]
+                            .iter()
+                            .map(|&(s, _)| names[s].as_str())
+                            .chain([names[c].as_str()])
+                            .collect();
+                        let msg = format!("a mix cannot contain itself: {}", cycle.join(" → "));
+                        return Err(SceneError::new(join_materials(obj, &names[m]), msg));
+                    }
+                    _ => {}
+                }
+                continue;
+            }
+            stack.pop();
+            state[m] = 2;
+            sides[m] = match &materials[m].mix {
+                None if matches!(materials[m].material, MaterialDesc::Dielectric { .. }) => None,
+                None => Some(materials[m].two_sided),
+                Some(mix) => {
+                    let [a, b] = mix.materials;
+                    match (sides[a], sides[b]) {
+                        (Some(x), Some(y)) if x != y => {
+                            let msg = format!(
+                                "its materials differ in `two_sided` (`{}` is {x}, `{}` is {y}): \
+                                 a mix has one set of sides",
+                                names[a], names[b]
+                            );
+                            return Err(SceneError::new(join_materials(obj, &names[m]), msg));
+                        }
+                        (x, y) => x.or(y),
+                    }
+                }
+            };
+        }
+    }
+    for i in 0..n {
+        if materials[i].mix.is_none() {
+            continue;
+        }
+        // Acyclic now, so this ends within `n` steps.
+        let mut favoured = i;
+        while let Some(mix) = &materials[favoured].mix {
+            favoured = mix.materials[usize::from(mix.weight >= 0.5)];
+        }
+        materials[i].material = materials[favoured].material.clone();
+        materials[i].two_sided = sides[i].unwrap_or(false);
+    }
+    Ok(())
+}
+
+/// The JSON path of a mix's `materials`.
+fn join_materials(obj: &Obj, name: &str) -> String {
+    super::walk::join(&obj.at(name), "materials")
 }
 
 /// The required `albedo`: a colour in [0, 1] or a texture (then its mean, and `slot` is set).
@@ -370,3 +540,7 @@ mod tests {
         assert!(parse_scene_value(&with("white", ok)).is_ok());
     }
 }
+
+#[cfg(test)]
+#[path = "parse_materials_mix_tests.rs"]
+mod mix_tests;

@@ -5,6 +5,7 @@ use super::desc::GeometryDesc;
 use super::error::SceneError;
 use super::mesh::{MeshData, load_mesh_index};
 use super::parse_mesh::{dropped_list, has_zero_area};
+use super::parse_texture::TextureLoader;
 use super::walk::{Obj, array, integer, number};
 use glam::{DMat4, DVec3, DVec4};
 use std::path::Path;
@@ -14,12 +15,14 @@ use std::sync::Arc;
 /// is singular for all practical purposes (normals could not be transformed).
 const SINGULAR: f64 = 1e-12;
 
-/// A `mesh` shape: the file (relative to `folder`), `to_world`, `face_normals`. Zero-area
+/// A `mesh` shape: the file (relative to `folder`; a mesh `loader` holds in memory first),
+/// `to_world`, `face_normals`. Zero-area
 /// triangles (after `to_world`) are an error when the shape emits (`emits`), otherwise dropped
 /// with a warning.
 pub(crate) fn mesh(
     obj: &Obj,
     folder: &Path,
+    loader: &mut TextureLoader,
     emits: bool,
     warnings: &mut Vec<String>,
 ) -> Result<GeometryDesc, SceneError> {
@@ -48,8 +51,11 @@ pub(crate) fn mesh(
             "only a .serialized file holds several meshes",
         ));
     }
-    let data = load_mesh_index(&file, shape_index)
-        .map_err(|e| SceneError::new(&file_path, e.to_string()))?;
+    let data = match loader.take_mesh(&file) {
+        Some(data) => data,
+        None => load_mesh_index(&file, shape_index)
+            .map_err(|e| SceneError::new(&file_path, e.to_string()))?,
+    };
 
     let world: Vec<DVec3> = data
         .positions

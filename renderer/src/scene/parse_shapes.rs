@@ -85,7 +85,7 @@ fn parse_shape(
         "quad" => quad(obj)?,
         "polygon" => polygon(obj)?,
         "triangles" => triangles(obj, emits, warnings)?,
-        "mesh" => mesh(obj, folder, emits, warnings)?,
+        "mesh" => mesh(obj, folder, loader, emits, warnings)?,
         "disk" => {
             let normal = obj.vec3("normal")?;
             if normal == DVec3::ZERO {

@@ -6,6 +6,7 @@
 
 use super::desc::TextureDesc;
 use super::error::SceneError;
+use super::mesh::MeshData;
 use super::parse::MAX_RADIANCE;
 use super::walk::{Obj, array, number, vec3};
 use crate::image_io::Image;
@@ -29,13 +30,15 @@ pub(crate) enum TextureUse {
     Reflectance,
     /// GGX α: a scalar in [0, 1].
     Alpha,
+    /// A mix's weight: a scalar in [0, 1].
+    Weight,
     /// Emitted radiance: RGB ≥ 0, at most [`MAX_RADIANCE`].
     Emission,
 }
 
 impl TextureUse {
     fn is_scalar(self) -> bool {
-        self == TextureUse::Alpha
+        matches!(self, TextureUse::Alpha | TextureUse::Weight)
     }
 
     /// Why `x` is not allowed here, if it is not.
@@ -51,6 +54,8 @@ impl TextureUse {
             TextureUse::Alpha => {
                 (!(0.0..=1.0).contains(&x)).then_some("is outside [0, 1]: alpha must lie in [0, 1]")
             }
+            TextureUse::Weight => (!(0.0..=1.0).contains(&x))
+                .then_some("is outside [0, 1]: a mix weight must lie in [0, 1]"),
             TextureUse::Emission => {
                 if x < 0.0 {
                     Some("is negative: radiance must be ≥ 0")
@@ -65,10 +70,23 @@ impl TextureUse {
 }
 
 /// Reads texture files relative to the scene's folder, each (file, raw) once: textures that name
-/// the same file (however spelled) share its texels.
+/// the same file (however spelled) share its texels. It also hands out the files a front end
+/// has already read ([`Preloaded`]).
 pub(crate) struct TextureLoader {
     folder: PathBuf,
     cache: HashMap<(PathBuf, bool), Arc<Image>>,
+    preloaded: Preloaded,
+}
+
+/// Files already in memory, by the path the scene's names resolve to (`folder/name`): a glTF
+/// file opened on its own ([`super::model`]) hands its decoded images (per `raw`) and its
+/// primitives to the JSON front end this way, which then checks them as it checks files.
+#[derive(Default)]
+pub(crate) struct Preloaded {
+    /// Decoded images by (path, raw).
+    pub images: HashMap<(PathBuf, bool), Arc<Image>>,
+    /// Meshes by path, each for one `mesh` shape.
+    pub meshes: HashMap<PathBuf, MeshData>,
 }
 
 impl TextureLoader {
@@ -77,7 +95,19 @@ impl TextureLoader {
         TextureLoader {
             folder: folder.to_owned(),
             cache: HashMap::new(),
+            preloaded: Preloaded::default(),
         }
+    }
+
+    /// The loader, looking in `preloaded` before the file system.
+    pub fn with_preloaded(mut self, preloaded: Preloaded) -> TextureLoader {
+        self.preloaded = preloaded;
+        self
+    }
+
+    /// The preloaded mesh that the resolved path `file` names, taken out (each is for one shape).
+    pub fn take_mesh(&mut self, file: &Path) -> Option<MeshData> {
+        self.preloaded.meshes.remove(file)
     }
 
     /// The file `name` resolved and decoded; errors at `json_path` name the file.
@@ -91,6 +121,9 @@ impl TextureLoader {
             return Err(SceneError::new(json_path, "the file name is empty"));
         }
         let file = self.folder.join(name);
+        if let Some(image) = self.preloaded.images.get(&(file.clone(), raw)) {
+            return Ok((file, image.clone()));
+        }
         // `raw` changes nothing for float files, so they are shared either way.
         let key_raw = raw || is_float_format(&file);
         let key = (
@@ -151,7 +184,7 @@ fn bitmap(
     if obj.get("channel").is_some() && !use_.is_scalar() {
         return Err(SceneError::new(
             obj.at("channel"),
-            "`channel` is only for a scalar parameter (alpha): a colour reads all three",
+            "`channel` is only for a scalar parameter (alpha, a mix weight): a colour reads all three",
         ));
     }
     let mut keys = vec![

@@ -1,4 +1,4 @@
-//! A hit's texture coordinates and its material with textures evaluated there. Texture
+//! A hit's texture coordinates and its material: a mix resolved, textures evaluated there. Texture
 //! coordinates by shape: mesh triangles interpolate their file's UVs (else their barycentrics),
 //! quads and box faces run `u` along `edge_u` and `v` along `edge_v`, other triangles give their
 //! barycentrics; spheres as Mitsuba 3's (`u = φ/2π` from +x towards +y, `v = θ/π` from +z),
@@ -132,14 +132,29 @@ impl Scene {
         Some(s)
     }
 
-    /// The material of `hit`'s primitive, its textures evaluated at the hit (borrowed when it
-    /// has none).
+    /// The material of `hit`'s primitive: a mix resolved to one of its materials
+    /// ([`Scene::resolve_mix`]), then its textures evaluated at the hit (borrowed when it has
+    /// none).
     #[inline]
     pub fn material_at(&self, hit: &SurfaceHit, material: u32) -> Cow<'_, Material> {
+        let material = self.resolve_mix(hit, material);
         let base = &self.materials[material as usize];
         match &self.material_textures[material as usize] {
             None => Cow::Borrowed(base),
             Some(t) => Cow::Owned(t.at(base, self.uv(hit))),
         }
+    }
+
+    /// The material a mix chooses at `hit`, through nested mixes (`material` itself when it is
+    /// no mix): pbrt-v4's `ChooseMaterial`, by the hash of [`crate::materials::mix`], so that
+    /// one hit always sees one material.
+    #[inline]
+    pub fn resolve_mix(&self, hit: &SurfaceHit, material: u32) -> u32 {
+        let mut m = material;
+        // The builder checked that every chain of mixes ends.
+        while let Some(Some(mix)) = self.mixes.get(m as usize) {
+            m = mix.choose(hit.p, hit.t, m, || self.uv(hit));
+        }
+        m
     }
 }

@@ -132,9 +132,16 @@ impl GpuScene {
         GpuScene::with_bvh2(ctx, scene, false)
     }
 
-    /// Refuses scenes the GPU would render differently from the CPU: textured materials and
-    /// textured emission are CPU-only for now (issue 17, item 7).
+    /// Refuses scenes the GPU would render differently from the CPU: mixes, textured materials
+    /// and textured emission are CPU-only for now (issue 17, items 3 and 7).
     fn check_supported(scene: &Scene) -> Result<(), GpuError> {
+        // Mixes are resolved on the CPU only (`Scene::resolve_mix`).
+        if let Some(i) = scene.mixes.iter().position(Option::is_some) {
+            return Err(GpuError::Unsupported(format!(
+                "material \"{}\" is a mix",
+                scene.material_names[i]
+            )));
+        }
         if let Some(t) = scene.emission_textures.first() {
             return Err(GpuError::Unsupported(format!(
                 "{}.emission is textured",

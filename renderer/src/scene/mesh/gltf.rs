@@ -3,8 +3,9 @@
 //! scene, placed by its node transforms, is merged into one [`MeshData`].
 //!
 //! The rules, in the order they apply:
-//! - **Extensions**: any entry of `extensionsRequired` is an error naming it (lumis implements
-//!   none; Draco and meshopt compression are the usual ones). Optional extensions are ignored.
+//! - **Extensions**: an entry of `extensionsRequired` is an error naming it (Draco and meshopt
+//!   compression are the usual ones), except the material extensions `materials::HANDLED` that
+//!   a model scene reads. Optional extensions are ignored here.
 //! - **Scene**: `scene` if the file names one, else scene 0, else (no scenes) every root node.
 //! - **Transforms**: a node's `matrix`, or T·R·S from `translation`/`rotation`/`scale`, composed
 //!   parent × child down the hierarchy (which must be a tree). Positions go through the full
@@ -29,14 +30,21 @@
 //! `mesh 0 primitive 2`, `node 4`, `glb header`, `glb chunk 1`, or the JSON paths of the `gltf`
 //! crate's validation.
 
+#[path = "gltf_buffers.rs"]
+mod buffers;
+#[path = "gltf_materials.rs"]
+pub mod materials;
+#[path = "gltf_model.rs"]
+pub mod model;
+
 use super::{MeshData, MeshError, check};
 use ::gltf::accessor::{Accessor, DataType, Dimensions};
-use ::gltf::buffer::{Source, View};
+use ::gltf::buffer::View;
 use ::gltf::json;
 use ::gltf::mesh::{Mode, Semantic};
 use ::gltf::{Document, Primitive};
+use buffers::load_buffers;
 use glam::{Mat3, Mat4, Quat, Vec2, Vec3};
-use std::borrow::Cow;
 use std::path::Path;
 
 /// Reads `path` as a `.gltf` or `.glb` file (told apart by the `glTF` magic, not the name).
@@ -56,8 +64,10 @@ pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
         (bytes, None)
     };
     let document = parse_document(path, json_bytes)?;
-    let placements = placements(path, &document)?;
-    let buffers = load_buffers(path, &document, &placements, glb, bin)?;
+    let (placements, _) = placements(path, &document)?;
+    let mut needed = vec![false; document.buffers().len()];
+    mark_geometry_buffers(&placements, &mut needed);
+    let buffers = load_buffers(path, &document, &needed, glb, bin)?;
     let slices: Vec<&[u8]> = buffers.iter().map(|b| &b[..]).collect();
 
     let mut merged = Merged::default();
@@ -68,21 +78,23 @@ pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
         }
     }
     if merged.mesh.indices.is_empty() {
-        return Err(MeshError::at(
-            path,
-            "",
-            format!(
-                "no triangles in the default scene ({} primitives placed, {skipped} of them \
-                 POINTS or LINES, which lumis skips)",
-                placements.len()
-            ),
-        ));
+        return Err(no_triangles(path, placements.len(), skipped));
     }
-    let mut mesh = merged.mesh;
-    mesh.normals = merged.normals;
-    mesh.uvs = merged.uvs;
+    let mesh = merged.finish();
     check(path, &mesh)?;
     Ok(mesh)
+}
+
+/// The error for a default scene without triangles.
+fn no_triangles(path: &Path, placed: usize, skipped: usize) -> MeshError {
+    MeshError::at(
+        path,
+        "",
+        format!(
+            "no triangles in the default scene ({placed} primitives placed, {skipped} of them \
+             POINTS or LINES, which lumis skips)"
+        ),
+    )
 }
 
 /// GLB chunk types (little-endian `JSON` and `BIN\0`).
@@ -158,12 +170,18 @@ fn parse_document(file: &Path, json_bytes: &[u8]) -> Result<Document, MeshError>
     let root = json::Root::from_slice(&json_bytes[..end])
         .map_err(|e| MeshError::at(file, "", format!("invalid glTF JSON: {e}")))?;
 
-    if !root.extensions_required.is_empty() {
-        let names = root.extensions_required.join(", ");
-        let compressed = root
-            .extensions_required
+    // The material extensions lumis reads leave the geometry as it is, required or not.
+    let unsupported: Vec<&str> = root
+        .extensions_required
+        .iter()
+        .map(String::as_str)
+        .filter(|e| !materials::HANDLED.contains(e))
+        .collect();
+    if !unsupported.is_empty() {
+        let names = unsupported.join(", ");
+        let compressed = unsupported
             .iter()
-            .any(|e| e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression");
+            .any(|&e| e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression");
         let hint = if compressed {
             " (compressed geometry: export the file without compression)"
         } else {
@@ -205,6 +223,12 @@ fn parse_document(file: &Path, json_bytes: &[u8]) -> Result<Document, MeshError>
             // POSITION's bounds are a spec formality lumis does not use; exporters omit them.
             let bounds =
                 path.ends_with("[\"POSITION\"].min") || path.ends_with("[\"POSITION\"].max");
+            // The crate knows no extension of its own; the check above kept lumis' ones only.
+            let required = path.starts_with("extensionsRequired[")
+                && matches!(error, json::validation::Error::Unsupported);
+            if required {
+                return;
+            }
             if !(bounds && matches!(error, json::validation::Error::Missing)) {
                 errors.push(format!("{path}: {error}"));
             }
@@ -222,22 +246,27 @@ fn parse_document(file: &Path, json_bytes: &[u8]) -> Result<Document, MeshError>
     Ok(Document::from_json_without_validation(root))
 }
 
-/// One mesh primitive as the scene places it. `material` (the glTF material index, `None` for
-/// the default material) is what the material mapping will need per triangle.
+/// One mesh primitive as the scene places it, with its glTF material (`None`: the default
+/// material), which only [`model::load_model`] reads.
 struct Placement<'a> {
     /// The node that places it.
     node: usize,
     mesh: usize,
     primitive: Primitive<'a>,
     world: Mat4,
-    // Read by the glTF material mapping (issue 17, item 3), not yet by the geometry.
-    #[allow(dead_code)]
     material: Option<usize>,
 }
 
+/// A camera node's index and world matrix.
+type CameraPlacement = (usize, Mat4);
+
 /// Every primitive of the default scene (see the module doc) with its world matrix, depth
-/// first in the file's order.
-fn placements<'a>(file: &Path, doc: &'a Document) -> Result<Vec<Placement<'a>>, MeshError> {
+/// first in the file's order, and the first node on that walk with a camera, with its world
+/// matrix.
+fn placements<'a>(
+    file: &Path,
+    doc: &'a Document,
+) -> Result<(Vec<Placement<'a>>, Option<CameraPlacement>), MeshError> {
     let nodes: Vec<_> = doc.nodes().collect();
     let roots: Vec<usize> = match doc.default_scene().or_else(|| doc.scenes().next()) {
         Some(scene) => scene.nodes().map(|n| n.index()).collect(),
@@ -254,6 +283,7 @@ fn placements<'a>(file: &Path, doc: &'a Document) -> Result<Vec<Placement<'a>>, 
 
     let mut seen = vec![false; nodes.len()];
     let mut out = Vec::new();
+    let mut camera = None;
     // An explicit stack: a deep chain of nodes must not overflow the call stack.
     let mut stack: Vec<(usize, Mat4)> = roots.iter().rev().map(|&i| (i, Mat4::IDENTITY)).collect();
     while let Some((index, parent)) = stack.pop() {
@@ -267,6 +297,9 @@ fn placements<'a>(file: &Path, doc: &'a Document) -> Result<Vec<Placement<'a>>, 
         let world = parent * local_matrix(node).map_err(at)?;
         if !world.is_finite() {
             return Err(at("transform is not finite (composed with its parents)"));
+        }
+        if camera.is_none() && node.camera().is_some() {
+            camera = Some((index, world));
         }
         if let Some(mesh) = node.mesh() {
             for primitive in mesh.primitives() {
@@ -282,7 +315,7 @@ fn placements<'a>(file: &Path, doc: &'a Document) -> Result<Vec<Placement<'a>>, 
         let children: Vec<usize> = node.children().map(|c| c.index()).collect();
         stack.extend(children.into_iter().rev().map(|c| (c, world)));
     }
-    Ok(out)
+    Ok((out, camera))
 }
 
 /// A node's own matrix, or what is wrong with it.
@@ -333,16 +366,8 @@ fn is_surface(mode: Mode) -> bool {
     )
 }
 
-/// The data of every buffer the surface primitives use (others stay empty), each at least its
-/// declared `byteLength` long.
-fn load_buffers<'a>(
-    file: &Path,
-    doc: &Document,
-    placements: &[Placement],
-    glb: bool,
-    bin: Option<&'a [u8]>,
-) -> Result<Vec<Cow<'a, [u8]>>, MeshError> {
-    let mut needed = vec![false; doc.buffers().len()];
+/// Marks, per buffer, whether the surface primitives of `placements` read it.
+fn mark_geometry_buffers(placements: &[Placement], needed: &mut [bool]) {
     let mut mark = |view: View| needed[view.buffer().index()] = true;
     for place in placements.iter().filter(|p| is_surface(p.primitive.mode())) {
         for accessor in used_accessors(&place.primitive) {
@@ -353,135 +378,6 @@ fn load_buffers<'a>(
             }
         }
     }
-
-    let folder = file.parent().unwrap_or(Path::new(""));
-    let mut out = Vec::with_capacity(needed.len());
-    for buffer in doc.buffers() {
-        let index = buffer.index();
-        let at = |m: String| MeshError::at(file, &format!("buffer {index}"), m);
-        if !needed[index] {
-            out.push(Cow::Borrowed(&[][..]));
-            continue;
-        }
-        let (data, what): (Cow<[u8]>, String) = match buffer.source() {
-            Source::Bin => match bin {
-                Some(bin) if index == 0 => (Cow::Borrowed(bin), "the BIN chunk".into()),
-                None if index == 0 && glb => {
-                    return Err(at("has no uri and the .glb has no BIN chunk".into()));
-                }
-                _ => {
-                    return Err(at(
-                        "has no uri (only buffer 0 of a .glb may, for its BIN chunk)".into(),
-                    ));
-                }
-            },
-            Source::Uri(uri) if uri.starts_with("data:") => (
-                Cow::Owned(decode_data_uri(uri).map_err(at)?),
-                "its data URI".into(),
-            ),
-            Source::Uri(uri) => {
-                let name = percent_decode(uri).map_err(|m| at(format!("uri '{uri}': {m}")))?;
-                if let Some(scheme) = uri_scheme(&name) {
-                    return Err(at(format!(
-                        "uri '{uri}': unsupported scheme '{scheme}' (lumis reads relative \
-                         paths and data: URIs)"
-                    )));
-                }
-                let data = std::fs::read(folder.join(&name))
-                    .map_err(|e| at(format!("cannot read '{name}': {e}")))?;
-                (Cow::Owned(data), format!("'{name}'"))
-            }
-        };
-        if data.len() < buffer.length() {
-            return Err(at(format!(
-                "{what} has {} bytes, fewer than its byteLength {}",
-                data.len(),
-                buffer.length()
-            )));
-        }
-        out.push(data);
-    }
-    Ok(out)
-}
-
-/// The scheme of an absolute URI (`http`, `file`), if `uri` has one; a one-letter "scheme" is a
-/// Windows drive and is left to the file system.
-fn uri_scheme(uri: &str) -> Option<&str> {
-    let colon = uri.find(':')?;
-    let scheme = &uri[..colon];
-    let valid = scheme.len() > 1
-        && scheme.starts_with(|c: char| c.is_ascii_alphabetic())
-        && scheme
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c));
-    valid.then_some(scheme)
-}
-
-/// URIs in glTF are percent-encoded (`my%20mesh.bin`).
-fn percent_decode(uri: &str) -> Result<String, String> {
-    let bytes = uri.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        let hex = |b: u8| (b as char).to_digit(16);
-        if bytes[i] == b'%'
-            && let (Some(h), Some(l)) = (
-                bytes.get(i + 1).and_then(|&b| hex(b)),
-                bytes.get(i + 2).and_then(|&b| hex(b)),
-            )
-        {
-            out.push((h * 16 + l) as u8);
-            i += 3;
-        } else {
-            out.push(bytes[i]);
-            i += 1;
-        }
-    }
-    String::from_utf8(out).map_err(|_| "not UTF-8 once percent-decoded".to_string())
-}
-
-/// The bytes of a `data:[<media type>];base64,<data>` URI (glTF writers use
-/// `application/octet-stream` or `application/gltf-buffer`; any media type is accepted).
-fn decode_data_uri(uri: &str) -> Result<Vec<u8>, String> {
-    let comma = uri
-        .find(',')
-        .ok_or_else(|| "data URI without a ','".to_string())?;
-    if !uri[..comma].ends_with(";base64") {
-        return Err(format!(
-            "data URI '{}…' is not base64 (lumis reads base64 data URIs)",
-            &uri[..comma]
-        ));
-    }
-    decode_base64(&uri[comma + 1..]).map_err(|m| format!("data URI: {m}"))
-}
-
-/// Standard base64 (RFC 4648 alphabet, padding optional). A dozen lines here instead of a
-/// dependency that nothing else in the workspace pulls in.
-fn decode_base64(text: &str) -> Result<Vec<u8>, String> {
-    let text = text.trim_end_matches('=');
-    let mut out = Vec::with_capacity(text.len() / 4 * 3 + 2);
-    let (mut acc, mut bits) = (0u32, 0u32);
-    for (i, c) in text.bytes().enumerate() {
-        let v = match c {
-            b'A'..=b'Z' => c - b'A',
-            b'a'..=b'z' => c - b'a' + 26,
-            b'0'..=b'9' => c - b'0' + 52,
-            b'+' => 62,
-            b'/' => 63,
-            _ => return Err(format!("invalid base64 character {:?} at {i}", c as char)),
-        };
-        acc = (acc << 6) | v as u32;
-        bits += 6;
-        if bits >= 8 {
-            bits -= 8;
-            out.push((acc >> bits) as u8);
-            acc &= (1 << bits) - 1;
-        }
-    }
-    if text.len() % 4 == 1 {
-        return Err("truncated base64 (one character too many)".to_string());
-    }
-    Ok(out)
 }
 
 /// What a primitive reads an accessor as; decides the layouts accepted.
@@ -643,6 +539,17 @@ struct Merged {
     mesh: MeshData,
     normals: Option<Vec<Vec3>>,
     uvs: Option<Vec<Vec2>>,
+}
+
+impl Merged {
+    /// The mesh with the attributes every primitive had.
+    fn finish(self) -> MeshData {
+        MeshData {
+            normals: self.normals,
+            uvs: self.uvs,
+            ..self.mesh
+        }
+    }
 }
 
 impl Default for Merged {
@@ -882,3 +789,7 @@ fn triangles(mode: Mode, v: &[u32]) -> Result<Vec<[u32; 3]>, String> {
 #[cfg(test)]
 #[path = "gltf_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "gltf_test_asset.rs"]
+pub(crate) mod test_asset;

@@ -1,0 +1,659 @@
+//! glTF 2.0 materials as lumis materials, for a glTF file opened on its own (the rule is in
+//! docs/scene-format.md, "glTF materials"): each material the placed primitives use becomes
+//! JSON materials of the scene format (a conductor, a plastic, a dielectric, or mixes of them)
+//! and an emission, with its textures as `bitmap` objects whose images this module has decoded
+//! already, so that the JSON front end checks everything exactly as it checks a scene file.
+//!
+//! What lumis does not render (normal and occlusion maps, alpha modes, extensions other than
+//! `KHR_materials_ior`, `KHR_materials_transmission`, `KHR_materials_emissive_strength` and
+//! `KHR_texture_transform`, texture rotation, a second texture coordinate set, a sampler whose
+//! two axes wrap differently, nearest filtering) is collected by glTF path into
+//! [`Materials::ignored`], which the caller writes as one warning. Errors name the file and
+//! the glTF path of the problem (`materials[2].pbrMetallicRoughness.baseColorTexture`).
+//!
+//! Raw JSON is read for the extensions (the `gltf` crate is built without its typed ones) and
+//! for images, whose typed accessors unwrap what validation does not check.
+
+use super::buffers::{read_uri, relative_path};
+use crate::image_io::Image;
+use crate::scene::mesh::MeshError;
+use crate::textures::load::decode_texture_image;
+use ::gltf::Document;
+use ::gltf::json;
+use ::gltf::json::texture::{MagFilter, WrappingMode};
+use ::gltf::json::validation::Checked;
+use glam::Vec3;
+use serde_json::{Map, Value, json};
+use std::collections::HashMap;
+use std::path::Path;
+use std::sync::Arc;
+
+/// The extensions lumis maps (all others are named in the warning); required, they do not stop
+/// the geometry either.
+pub const HANDLED: [&str; 4] = [
+    "KHR_materials_ior",
+    "KHR_materials_transmission",
+    "KHR_materials_emissive_strength",
+    "KHR_texture_transform",
+];
+
+/// The lumis side of the materials a glTF file's primitives use.
+#[derive(Debug, Default)]
+pub struct Materials {
+    /// Per glTF material used (`None`: the default material), what its primitives get.
+    pub mapped: Vec<(Option<usize>, Mapped)>,
+    /// Every scene-format material the mapped ones need, by name.
+    pub json: Map<String, Value>,
+    /// The decoded images the textures name: (name relative to the file's folder, raw, image).
+    pub images: Vec<(String, bool, Arc<Image>)>,
+    /// What the materials have that lumis does not render, by glTF path, in file order.
+    pub ignored: Vec<String>,
+}
+
+/// What the primitives of one glTF material get.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mapped {
+    /// The scene-format material (a key of [`Materials::json`]).
+    pub name: String,
+    /// The shape's `emission` (a colour or a texture), if it emits.
+    pub emission: Option<Value>,
+    /// Whether a parameter is textured (so the primitive needs texture coordinates).
+    pub textured: bool,
+}
+
+/// Marks the buffers that hold the images of the materials in `used` (bad indices are left to
+/// [`read`], which names them).
+pub fn mark_image_buffers(doc: &Document, used: &[Option<usize>], needed: &mut [bool]) {
+    let root = doc.as_json();
+    for &i in used.iter().flatten() {
+        let Some(m) = root.materials.get(i) else {
+            continue;
+        };
+        let pbr = &m.pbr_metallic_roughness;
+        let mut textures: Vec<usize> = [
+            &pbr.base_color_texture,
+            &pbr.metallic_roughness_texture,
+            &m.emissive_texture,
+        ]
+        .into_iter()
+        .flatten()
+        .map(|t| t.index.value())
+        .collect();
+        textures.extend(
+            extension(
+                m.extensions.as_ref().map(|e| &e.others),
+                "KHR_materials_transmission",
+            )
+            .and_then(|t| t.get("transmissionTexture")?.get("index")?.as_u64())
+            .map(|t| t as usize),
+        );
+        for t in textures {
+            let image = root.textures.get(t).map(|t| t.source.value());
+            let view = image.and_then(|k| root.images.get(k)?.buffer_view);
+            let buffer = view.and_then(|v| root.buffer_views.get(v.value()));
+            if let Some(b) = buffer.and_then(|v| needed.get_mut(v.buffer.value())) {
+                *b = true;
+            }
+        }
+    }
+}
+
+/// The lumis materials of the glTF materials in `used` (`None`: the default material), whose
+/// images are in `buffers` (those [`mark_image_buffers`] marked) or beside `file`.
+pub fn read(
+    file: &Path,
+    doc: &Document,
+    buffers: &[&[u8]],
+    used: &[Option<usize>],
+) -> Result<Materials, MeshError> {
+    let root = doc.as_json();
+    let mut reader = Reader {
+        file,
+        root,
+        buffers,
+        file_name: file
+            .file_name()
+            .map_or_else(|| "model".into(), |n| n.to_string_lossy().into_owned()),
+        decoded: HashMap::new(),
+        out: Materials::default(),
+    };
+    for &index in used {
+        let mapped = reader.material(index)?;
+        reader.out.mapped.push((index, mapped));
+    }
+    for name in &root.extensions_used {
+        if !HANDLED.contains(&name.as_str()) {
+            reader.out.ignored.push(format!("extension {name}"));
+        }
+    }
+    let mut out = reader.out;
+    let decoded = reader.decoded.into_iter();
+    out.images
+        .extend(decoded.map(|((_, raw), (name, image))| (name, raw, image)));
+    out.images.sort_by(|a, b| (&a.0, a.1).cmp(&(&b.0, b.1)));
+    Ok(out)
+}
+
+/// A parameter: a constant or a texture object.
+#[derive(Clone, Debug)]
+enum Param {
+    Constant(Value),
+    Texture(Value),
+}
+
+impl Param {
+    fn json(&self) -> Value {
+        match self {
+            Param::Constant(v) | Param::Texture(v) => v.clone(),
+        }
+    }
+
+    fn is_texture(&self) -> bool {
+        matches!(self, Param::Texture(_))
+    }
+}
+
+/// A texture as read: its `bitmap` object (file, raw, wrap, uv transform) and its image.
+struct TextureRef {
+    json: Value,
+    image: Arc<Image>,
+}
+
+struct Reader<'a> {
+    file: &'a Path,
+    root: &'a json::Root,
+    buffers: &'a [&'a [u8]],
+    /// The file's name, which names embedded images (`model.glb#images[2]`).
+    file_name: String,
+    /// Images decoded so far, by (image, raw): their name and texels (images derived from them,
+    /// such as a baked roughness², go straight to `out.images`).
+    decoded: HashMap<(usize, bool), (String, Arc<Image>)>,
+    out: Materials,
+}
+
+impl Reader<'_> {
+    fn error(&self, at: &str, message: impl std::fmt::Display) -> MeshError {
+        MeshError::at(self.file, at, message)
+    }
+
+    /// Maps one glTF material (`None`: the default one, all properties at their defaults).
+    fn material(&mut self, index: Option<usize>) -> Result<Mapped, MeshError> {
+        let default = json::Material::default();
+        let m = match index {
+            Some(i) => self
+                .root
+                .materials
+                .get(i)
+                .ok_or_else(|| self.error("", format!("material {i} does not exist")))?,
+            None => &default,
+        };
+        let at = index.map_or_else(
+            || "default material".to_owned(),
+            |i| format!("materials[{i}]"),
+        );
+        let name = match (&m.name, index) {
+            (Some(n), Some(_)) if !n.is_empty() => format!("{at} {n}"),
+            _ => at.clone(),
+        };
+        let others = m.extensions.as_ref().map(|e| &e.others);
+        for key in others.into_iter().flat_map(|o| o.keys()) {
+            if !HANDLED.contains(&key.as_str()) {
+                self.out.ignored.push(format!("{at}.extensions.{key}"));
+            }
+        }
+        if m.normal_texture.is_some() {
+            self.out.ignored.push(format!("{at}.normalTexture"));
+        }
+        if m.occlusion_texture.is_some() {
+            self.out.ignored.push(format!("{at}.occlusionTexture"));
+        }
+        match m.alpha_mode {
+            Checked::Valid(json::material::AlphaMode::Opaque) => {}
+            Checked::Valid(json::material::AlphaMode::Mask) => {
+                self.out.ignored.push(format!("{at}.alphaMode MASK"));
+            }
+            Checked::Valid(json::material::AlphaMode::Blend) => {
+                self.out.ignored.push(format!("{at}.alphaMode BLEND"));
+            }
+            Checked::Invalid => self.out.ignored.push(format!("{at}.alphaMode")),
+        }
+        if m.alpha_cutoff.is_some() {
+            self.out.ignored.push(format!("{at}.alphaCutoff"));
+        }
+
+        let pbr = &m.pbr_metallic_roughness;
+        let pbr_at = format!("{at}.pbrMetallicRoughness");
+        let f = pbr.base_color_factor.0;
+        let base_factor = Vec3::new(f[0], f[1], f[2]);
+        unit_components(self, &format!("{pbr_at}.baseColorFactor"), &f[..3])?;
+        let metallic = unit(
+            self,
+            &format!("{pbr_at}.metallicFactor"),
+            pbr.metallic_factor.0,
+        )?;
+        let roughness = unit(
+            self,
+            &format!("{pbr_at}.roughnessFactor"),
+            pbr.roughness_factor.0,
+        )?;
+
+        let base = match &pbr.base_color_texture {
+            Some(info) => {
+                let t = self.texture(&format!("{pbr_at}.baseColorTexture"), info, false)?;
+                let mut j = t.json;
+                j["scale"] = vec3(base_factor);
+                Param::Texture(j)
+            }
+            None => Param::Constant(vec3(base_factor)),
+        };
+        // glTF keeps roughness in G and metallic in B of one linear texture.
+        let mr = match &pbr.metallic_roughness_texture {
+            Some(info) => {
+                Some(self.texture(&format!("{pbr_at}.metallicRoughnessTexture"), info, true)?)
+            }
+            None => None,
+        };
+        let alpha = match &mr {
+            // α = roughness² is not linear in the texel: baked per texel, before filtering.
+            Some(t) => {
+                let name = format!("{}#{at}.alpha", self.file_name);
+                let data = t
+                    .image
+                    .data
+                    .iter()
+                    .map(|c| Vec3::splat((roughness * c.y).powi(2)));
+                let image = Image {
+                    width: t.image.width,
+                    height: t.image.height,
+                    data: data.collect(),
+                };
+                self.out.images.push((name.clone(), true, Arc::new(image)));
+                let mut j = t.json.clone();
+                j["file"] = json!(name);
+                Param::Texture(j)
+            }
+            None => Param::Constant(json!((roughness as f64).powi(2))),
+        };
+        let metal_weight = match &mr {
+            Some(t) if metallic > 0.0 => {
+                let mut j = t.json.clone();
+                j["channel"] = json!("b");
+                j["scale"] = json!(metallic);
+                Some(Param::Texture(j))
+            }
+            _ => (metallic > 0.0 && metallic < 1.0).then(|| Param::Constant(json!(metallic))),
+        };
+
+        let ior_at = format!("{at}.extensions.KHR_materials_ior.ior");
+        let ior = match extension(others, "KHR_materials_ior") {
+            Some(e) => self.number(e, "ior", &ior_at, 1.5)?,
+            None => 1.5,
+        };
+        // `number` is finite.
+        if ior < 1.0 {
+            return Err(self.error(&ior_at, format!("{ior} must be at least 1")));
+        }
+
+        let transmission = match extension(others, "KHR_materials_transmission") {
+            Some(e) => Some(self.transmission(e, &at)?),
+            None => None,
+        };
+        let transmission = transmission.filter(|(factor, _)| *factor > 0.0);
+        if transmission.is_some() {
+            if base.is_texture() || base_factor != Vec3::ONE {
+                self.out.ignored.push(format!(
+                    "{at}: the base colour's tint of light through KHR_materials_transmission"
+                ));
+            }
+            if extension(others, "KHR_materials_volume").is_none() {
+                self.out.ignored.push(format!(
+                    "{at}: thin-walled KHR_materials_transmission (without KHR_materials_volume; \
+                     lumis refracts it as a solid dielectric)"
+                ));
+            }
+            let max = crate::materials::dielectric::MAX_IOR as f64;
+            if ior == 1.0 || ior > max {
+                return Err(self.error(
+                    &ior_at,
+                    format!(
+                        "{ior}: a transmitting material needs an index of refraction other \
+                         than 1 and at most {max}"
+                    ),
+                ));
+            }
+        }
+
+        let two_sided = |mut v: Value| {
+            if !m.double_sided {
+                v["two_sided"] = json!(false);
+            }
+            v
+        };
+        let json = &mut self.out.json;
+        let mut add = |suffix: &str, v: Value| -> String {
+            let key = format!("{name}{suffix}");
+            json.insert(key.clone(), v);
+            key
+        };
+        // The dielectric part: a plastic (a diffuse at ior 1, whose coat reflects nothing),
+        // a glass, or a mix of the two by the transmission.
+        let plastic = if ior == 1.0 {
+            two_sided(json!({"type": "diffuse", "albedo": base.json()}))
+        } else {
+            two_sided(json!({
+                "type": "plastic", "albedo": base.json(), "alpha": alpha.json(), "ior": ior,
+                "specular": [1, 1, 1],
+            }))
+        };
+        let glass = json!({"type": "dielectric", "ior": ior, "alpha": alpha.json()});
+        let conductor = two_sided(json!({
+            "type": "conductor", "alpha": alpha.json(), "reflectance": base.json(),
+        }));
+        let mix = |a: &str, b: &str, w: &Param| json!({"type": "mix", "materials": [a, b], "weight": w.json()});
+        let metal_only = metallic == 1.0 && metal_weight.is_none();
+        let top_suffix = |part: &str| {
+            if metallic == 0.0 || metal_only {
+                String::new()
+            } else {
+                part.to_owned()
+            }
+        };
+        let dielectric_part = match &transmission {
+            _ if metal_only => None,
+            None => Some(add(&top_suffix(" (plastic)"), plastic)),
+            Some((factor, None)) if *factor == 1.0 => Some(add(&top_suffix(" (glass)"), glass)),
+            Some((factor, texture)) => {
+                let w = texture.clone().unwrap_or(Param::Constant(json!(factor)));
+                let a = add(" (plastic)", plastic);
+                let b = add(" (glass)", glass);
+                Some(add(&top_suffix(" (dielectric)"), mix(&a, &b, &w)))
+            }
+        };
+        let top = match (dielectric_part, &metal_weight) {
+            (None, _) => add("", conductor),
+            (Some(d), None) => d,
+            (Some(d), Some(w)) => {
+                let c = add(" (metal)", conductor);
+                add("", mix(&d, &c, w))
+            }
+        };
+
+        let emission = self.emission(m, others, &at)?;
+        let textured = base.is_texture()
+            || mr.is_some()
+            || transmission.as_ref().is_some_and(|(_, t)| t.is_some())
+            || emission.as_ref().is_some_and(Param::is_texture);
+        Ok(Mapped {
+            name: top,
+            emission: emission.map(|e| e.json()),
+            textured,
+        })
+    }
+
+    /// `KHR_materials_transmission`: the factor and, if given, the texture's R channel times
+    /// it (as a mix weight).
+    fn transmission(
+        &mut self,
+        e: &Map<String, Value>,
+        at: &str,
+    ) -> Result<(f64, Option<Param>), MeshError> {
+        let ext_at = format!("{at}.extensions.KHR_materials_transmission");
+        let factor_at = format!("{ext_at}.transmissionFactor");
+        let factor = self.number(e, "transmissionFactor", &factor_at, 0.0)?;
+        if !(0.0..=1.0).contains(&factor) {
+            return Err(self.error(&factor_at, format!("{factor} is outside [0, 1]")));
+        }
+        let tex_at = format!("{ext_at}.transmissionTexture");
+        let texture = match e.get("transmissionTexture") {
+            Some(v) if factor > 0.0 => {
+                let info: json::texture::Info =
+                    serde_json::from_value(v.clone()).map_err(|err| {
+                        self.error(&tex_at, format!("invalid texture reference: {err}"))
+                    })?;
+                let count = self.root.textures.len();
+                if info.index.value() >= count {
+                    return Err(self.error(
+                        &format!("{tex_at}.index"),
+                        format!(
+                            "texture {} does not exist ({count} textures)",
+                            info.index.value()
+                        ),
+                    ));
+                }
+                let mut j = self.texture(&tex_at, &info, true)?.json;
+                j["channel"] = json!("r");
+                j["scale"] = json!(factor);
+                Some(Param::Texture(j))
+            }
+            _ => None,
+        };
+        Ok((factor, texture))
+    }
+
+    /// `emissiveFactor` × `KHR_materials_emissive_strength` (× `emissiveTexture`, sRGB), if
+    /// not black.
+    fn emission(
+        &mut self,
+        m: &json::Material,
+        others: Option<&Map<String, Value>>,
+        at: &str,
+    ) -> Result<Option<Param>, MeshError> {
+        let factor = m.emissive_factor.0;
+        unit_components(self, &format!("{at}.emissiveFactor"), &factor)?;
+        let strength_at =
+            format!("{at}.extensions.KHR_materials_emissive_strength.emissiveStrength");
+        let strength = match extension(others, "KHR_materials_emissive_strength") {
+            Some(e) => self.number(e, "emissiveStrength", &strength_at, 1.0)?,
+            None => 1.0,
+        };
+        if strength < 0.0 {
+            return Err(self.error(&strength_at, format!("{strength} must not be negative")));
+        }
+        let le = Vec3::from_array(factor).as_dvec3() * strength;
+        if le == glam::DVec3::ZERO {
+            return Ok(None);
+        }
+        Ok(Some(match &m.emissive_texture {
+            Some(info) => {
+                let mut j = self
+                    .texture(&format!("{at}.emissiveTexture"), info, false)?
+                    .json;
+                j["scale"] = json!([le.x, le.y, le.z]);
+                Param::Texture(j)
+            }
+            None => Param::Constant(json!([le.x, le.y, le.z])),
+        }))
+    }
+
+    /// The number `key` of the extension object `e` (at `at`), `default` if absent.
+    fn number(
+        &self,
+        e: &Map<String, Value>,
+        key: &str,
+        at: &str,
+        default: f64,
+    ) -> Result<f64, MeshError> {
+        match e.get(key) {
+            None => Ok(default),
+            Some(v) => v
+                .as_f64()
+                .filter(|x| x.is_finite() && (*x as f32).is_finite())
+                .ok_or_else(|| self.error(at, format!("expected a finite number, found {v}"))),
+        }
+    }
+
+    /// The texture `info` at `at` as a `bitmap` object (`file`, `raw`, `wrap`, uv transform),
+    /// with its image decoded (`raw`: linear data, else sRGB).
+    fn texture(
+        &mut self,
+        at: &str,
+        info: &json::texture::Info,
+        raw: bool,
+    ) -> Result<TextureRef, MeshError> {
+        let root = self.root;
+        let texture = &root.textures[info.index.value()];
+        let mut coord = info.tex_coord;
+        let (mut scale, mut offset) = ([1.0f64, 1.0], [0.0f64, 0.0]);
+        let others = info.extensions.as_ref().map(|e| &e.others);
+        for (key, v) in others.into_iter().flatten() {
+            if key != "KHR_texture_transform" {
+                self.out.ignored.push(format!("{at}.extensions.{key}"));
+                continue;
+            }
+            let t_at = format!("{at}.extensions.KHR_texture_transform");
+            let t = v
+                .as_object()
+                .ok_or_else(|| self.error(&t_at, "expected an object"))?;
+            for (key, out) in [("scale", &mut scale), ("offset", &mut offset)] {
+                if let Some(v) = t.get(key) {
+                    let pair = v.as_array().filter(|a| a.len() == 2);
+                    let pair = pair.and_then(|a| Some([a[0].as_f64()?, a[1].as_f64()?]));
+                    *out = pair
+                        .filter(|p| p.iter().all(|x| (*x as f32).is_finite()))
+                        .ok_or_else(|| {
+                            self.error(&format!("{t_at}.{key}"), "expected 2 finite numbers")
+                        })?;
+                }
+            }
+            if t.get("rotation")
+                .and_then(Value::as_f64)
+                .is_some_and(|r| r != 0.0)
+            {
+                self.out.ignored.push(format!("{t_at}.rotation"));
+            }
+            if let Some(c) = t.get("texCoord").and_then(Value::as_u64) {
+                coord = c as u32;
+            }
+        }
+        if coord != 0 {
+            self.out
+                .ignored
+                .push(format!("{at} TEXCOORD_{coord} (lumis reads TEXCOORD_0)"));
+        }
+
+        let mut wrap = "repeat";
+        if let Some(s) = texture.sampler {
+            let sampler = &root.samplers[s.value()];
+            let mode = |m: &Checked<WrappingMode>| match m {
+                Checked::Valid(WrappingMode::ClampToEdge) => "clamp",
+                Checked::Valid(WrappingMode::MirroredRepeat) => "mirror",
+                _ => "repeat",
+            };
+            wrap = mode(&sampler.wrap_s);
+            if mode(&sampler.wrap_t) != wrap {
+                self.out.ignored.push(format!(
+                    "samplers[{}].wrapT (lumis wraps both axes as wrapS)",
+                    s.value()
+                ));
+            }
+            if sampler.mag_filter == Some(Checked::Valid(MagFilter::Nearest)) {
+                self.out.ignored.push(format!(
+                    "samplers[{}].magFilter NEAREST (lumis filters bilinearly)",
+                    s.value()
+                ));
+            }
+        }
+        let (name, image) = self.image(at, texture.source.value(), raw)?;
+        let mut j = json!({"type": "bitmap", "file": name, "raw": raw, "wrap": wrap});
+        if scale != [1.0, 1.0] {
+            j["uv_scale"] = json!(scale);
+        }
+        if offset != [0.0, 0.0] {
+            j["uv_offset"] = json!(offset);
+        }
+        Ok(TextureRef { json: j, image })
+    }
+
+    /// Image `k` decoded (once per `raw`), and the name the JSON texture gives it: its path for
+    /// an external file (so a scene written back reads the same file), `model.glb#images[k]`
+    /// for an embedded one.
+    fn image(&mut self, at: &str, k: usize, raw: bool) -> Result<(String, Arc<Image>), MeshError> {
+        if let Some((name, image)) = self.decoded.get(&(k, raw)) {
+            return Ok((name.clone(), image.clone()));
+        }
+        let fail = |what: &str, m: String| self.error(at, format!("images[{k}] ({what}): {m}"));
+        let img = &self.root.images[k];
+        let embedded = format!("{}#images[{k}]", self.file_name);
+        let folder = self.file.parent().unwrap_or(Path::new(""));
+        let (bytes, name): (Vec<u8>, String) = match (&img.buffer_view, &img.uri) {
+            (Some(v), _) => {
+                let view = &self.root.buffer_views[v.value()];
+                let data = self
+                    .buffers
+                    .get(view.buffer.value())
+                    .copied()
+                    .unwrap_or_default();
+                let start = view.byte_offset.map_or(0, |o| o.0) as usize;
+                let len = view.byte_length.0 as usize;
+                let bytes = start.checked_add(len).and_then(|end| data.get(start..end));
+                let bytes = bytes.ok_or_else(|| {
+                    fail(
+                        &format!("buffer view {}", v.value()),
+                        format!(
+                            "bytes {start}..+{len} run past the end of buffer {} ({} bytes)",
+                            view.buffer.value(),
+                            data.len()
+                        ),
+                    )
+                })?;
+                (bytes.to_vec(), embedded)
+            }
+            (None, Some(uri)) if uri.starts_with("data:") => (
+                read_uri(folder, uri)
+                    .map_err(|m| fail("its data URI", m))?
+                    .0,
+                embedded,
+            ),
+            (None, Some(uri)) => {
+                let name = relative_path(uri).map_err(|m| fail(uri, m))?;
+                let (bytes, _) =
+                    read_uri(folder, uri).map_err(|m| fail(&format!("'{name}'"), m))?;
+                (bytes, name)
+            }
+            (None, None) => {
+                return Err(fail(
+                    "no source",
+                    "it has neither a uri nor a bufferView".into(),
+                ));
+            }
+        };
+        let image = decode_texture_image(&bytes, Path::new(&name), raw)
+            .map_err(|e| fail(&format!("'{name}'"), e.message))?;
+        let image = Arc::new(image);
+        self.decoded.insert((k, raw), (name.clone(), image.clone()));
+        Ok((name, image))
+    }
+}
+
+/// The extension `name` of an `extensions` map, if it is an object.
+fn extension<'j>(
+    others: Option<&'j Map<String, Value>>,
+    name: &str,
+) -> Option<&'j Map<String, Value>> {
+    others?.get(name)?.as_object()
+}
+
+/// A factor in [0, 1].
+fn unit(r: &Reader, at: &str, x: f32) -> Result<f32, MeshError> {
+    if (0.0..=1.0).contains(&x) {
+        Ok(x)
+    } else {
+        Err(r.error(at, format!("{x} is outside [0, 1]")))
+    }
+}
+
+/// Every component of a colour factor in [0, 1].
+fn unit_components(r: &Reader, at: &str, c: &[f32]) -> Result<(), MeshError> {
+    for (i, &x) in c.iter().enumerate() {
+        unit(r, &format!("{at}[{i}]"), x)?;
+    }
+    Ok(())
+}
+
+fn vec3(c: Vec3) -> Value {
+    json!([c.x, c.y, c.z])
+}
+
+#[cfg(test)]
+#[path = "gltf_materials_tests.rs"]
+mod tests;

@@ -1,0 +1,567 @@
+//! The glTF material rules (docs/scene-format.md, "glTF materials"), on files built here and
+//! opened on their own ([`model_scene`]): each rule's lumis material, textures from a GLB
+//! buffer, a data URI and an external file, the one warning, and errors with glTF paths.
+
+use crate::scene::Scene;
+use crate::scene::desc::{
+    BackgroundDesc, FresnelDesc, MaterialDesc, NamedMaterial, SceneDesc, TextureDesc,
+};
+use crate::scene::mesh::gltf::test_asset::*;
+use crate::scene::model::model_scene;
+use crate::textures::load::srgb_to_linear;
+use crate::textures::{BitmapTexture, Channel, Texture, WrapMode};
+use glam::{DVec3, Vec2, Vec3};
+use serde_json::{Value, json};
+use std::path::Path;
+
+/// One unit quad per material of `materials` (quad `i` at x = 2i, with material `i`), normals
+/// and texture coordinates included.
+fn quads(materials: Value) -> Asset {
+    let mut a = Asset::default();
+    let n = materials.as_array().map_or(0, Vec::len);
+    for i in 0..n.max(1) {
+        let x = 2.0 * i as f32;
+        let pos = a.vec3(&QUAD.map(|p| [p[0] + x, p[1], p[2]]));
+        let nrm = a.vec3(&[[0.0, 0.0, 1.0]; 4]);
+        let uv = a.vec2(&QUAD_UV);
+        let idx = a.indices(&QUAD_TRIS, U16);
+        let mut p = primitive(pos, Some(nrm), Some(uv), Some(idx));
+        if n > 0 {
+            p["material"] = json!(i);
+        }
+        let mesh = a.mesh(vec![p]);
+        a.node(json!({ "mesh": mesh }));
+    }
+    if n > 0 {
+        a.root.insert("materials".into(), materials);
+    }
+    a
+}
+
+/// A PNG of `w × h` RGB bytes.
+fn png(w: u32, h: u32, bytes: Vec<u8>) -> Vec<u8> {
+    let mut out = Vec::new();
+    image::RgbImage::from_raw(w, h, bytes)
+        .unwrap()
+        .write_to(&mut std::io::Cursor::new(&mut out), image::ImageFormat::Png)
+        .unwrap();
+    out
+}
+
+/// The 4 × 2 test image: texel (i, j) = (40i + 10, 100j + 20, 250 − 50i).
+fn test_png() -> (Vec<u8>, Vec<[u8; 3]>) {
+    let texels: Vec<[u8; 3]> = (0..2u8)
+        .flat_map(|j| (0..4u8).map(move |i| [40 * i + 10, 100 * j + 20, 250 - 50 * i]))
+        .collect();
+    (png(4, 2, texels.concat()), texels)
+}
+
+fn open(path: &Path) -> SceneDesc {
+    model_scene(path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn named<'a>(d: &'a SceneDesc, name: &str) -> &'a NamedMaterial {
+    d.materials
+        .iter()
+        .find(|m| m.name == name)
+        .unwrap_or_else(|| {
+            let names: Vec<_> = d.materials.iter().map(|m| &m.name).collect();
+            panic!("no material {name:?} in {names:?}")
+        })
+}
+
+fn bitmap(t: &Option<TextureDesc>) -> &BitmapTexture {
+    match t.as_ref().map(|t| &t.texture) {
+        Some(Texture::Bitmap(b)) => b,
+        other => panic!("expected a bitmap, found {other:?}"),
+    }
+}
+
+fn f(x: f32) -> f64 {
+    x as f64
+}
+
+#[test]
+fn factors_map_to_a_conductor_a_plastic_and_a_mix() {
+    let dir = Dir::new("mat-factors");
+    let a = quads(json!([
+        {"name": "Gold", "doubleSided": true, "pbrMetallicRoughness": {
+            "baseColorFactor": [1.0, 0.75, 0.25, 0.5], "metallicFactor": 1, "roughnessFactor": 0.5}},
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 0.125, 1],
+            "metallicFactor": 0, "roughnessFactor": 0.25},
+         "extensions": {"KHR_materials_ior": {"ior": 1.25}}},
+        {"doubleSided": true, "pbrMetallicRoughness": {"metallicFactor": 0.5}},
+        {"pbrMetallicRoughness": {"metallicFactor": 0}, "extensions": {"KHR_materials_ior": {"ior": 1}}},
+    ]));
+    let d = open(&a.write_glb(&dir, "m.glb"));
+    let gold = named(&d, "materials[0] Gold");
+    assert_eq!(
+        gold.material,
+        MaterialDesc::Conductor {
+            alpha: 0.25,
+            fresnel: FresnelDesc::Reflectance(DVec3::new(1.0, 0.75, 0.25)),
+        },
+        "metallic 1: a conductor tinted by the base colour (its alpha ignored), α = roughness²"
+    );
+    assert!(gold.two_sided);
+    let plastic = named(&d, "materials[1]");
+    assert_eq!(
+        plastic.material,
+        MaterialDesc::Plastic {
+            albedo: DVec3::new(0.5, 0.25, 0.125),
+            alpha: 0.0625,
+            ior: 1.25,
+            specular: DVec3::ONE,
+        }
+    );
+    assert!(!plastic.two_sided, "doubleSided defaults to false");
+    let mix = named(&d, "materials[2]");
+    let m = mix.mix.as_ref().expect("metallic 0.5 is a mix");
+    assert_eq!(m.weight, 0.5);
+    let parts = m.materials.map(|i| d.materials[i].name.as_str());
+    assert_eq!(parts, ["materials[2] (plastic)", "materials[2] (metal)"]);
+    assert_eq!(
+        d.materials[m.materials[0]].material,
+        MaterialDesc::Plastic {
+            albedo: DVec3::ONE,
+            alpha: 1.0,
+            ior: 1.5,
+            specular: DVec3::ONE
+        },
+        "the defaults: base colour 1, roughness 1, ior 1.5"
+    );
+    assert_eq!(
+        d.materials[m.materials[1]].material,
+        MaterialDesc::Conductor {
+            alpha: 1.0,
+            fresnel: FresnelDesc::Reflectance(DVec3::ONE)
+        }
+    );
+    assert!(mix.two_sided && d.materials[m.materials[1]].two_sided);
+    // ior 1: the coat reflects nothing, so the dielectric part is a diffuse.
+    assert_eq!(
+        named(&d, "materials[3]").material,
+        MaterialDesc::Diffuse { albedo: DVec3::ONE }
+    );
+    let shape_materials: Vec<&str> = d
+        .shapes
+        .iter()
+        .map(|s| d.materials[s.material.unwrap()].name.as_str())
+        .collect();
+    assert_eq!(
+        shape_materials,
+        [
+            "materials[0] Gold",
+            "materials[1]",
+            "materials[2]",
+            "materials[3]"
+        ]
+    );
+    assert_eq!(d.background, BackgroundDesc::Constant(DVec3::ONE));
+    assert!(d.warnings.is_empty(), "{:?}", d.warnings);
+    let scene = Scene::from_desc(&d).unwrap();
+    let i = d
+        .materials
+        .iter()
+        .position(|m| m.name == "materials[2]")
+        .unwrap();
+    assert!(scene.mixes[i].is_some() && scene.mixes.iter().flatten().count() == 1);
+}
+
+#[test]
+fn a_primitive_without_a_material_gets_the_default_material() {
+    let dir = Dir::new("mat-default");
+    let d = open(&quad(U16).write_glb(&dir, "q.glb"));
+    assert_eq!(d.materials.len(), 1);
+    let m = named(&d, "default material");
+    // glTF 2.0, 3.9.6: every property at its default: base colour 1, metallic 1, roughness 1,
+    // single-sided.
+    assert_eq!(
+        m.material,
+        MaterialDesc::Conductor {
+            alpha: 1.0,
+            fresnel: FresnelDesc::Reflectance(DVec3::ONE)
+        }
+    );
+    assert!(!m.two_sided && m.mix.is_none());
+}
+
+/// The base colour texture from a GLB buffer view, a data URI and an external file (its name
+/// percent-encoded): the same texels, sRGB-decoded, times the factor, with the sampler's wrap
+/// mode and `KHR_texture_transform`'s offset and scale.
+#[test]
+fn textures_from_a_glb_a_data_uri_and_a_file_are_the_same() {
+    let dir = Dir::new("mat-textures");
+    let (bytes, texels) = test_png();
+    let material = json!([{"pbrMetallicRoughness": {
+        "baseColorFactor": [0.5, 1, 1, 1], "metallicFactor": 1, "roughnessFactor": 0,
+        "baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform": {
+            "offset": [0.5, 0.25], "scale": [2, 4]}}}}}]);
+    let mut files = Vec::new();
+    for (case, image) in ["glb", "data", "file"].into_iter().zip([
+        Value::Null,
+        json!({"uri": format!("data:image/png;base64,{}", base64(&bytes))}),
+        json!({"uri": "tex%20a.png"}),
+    ]) {
+        let mut a = quads(material.clone());
+        let image = match image {
+            Value::Null => json!({"bufferView": a.view(&bytes), "mimeType": "image/png"}),
+            other => other,
+        };
+        a.root.insert("images".into(), json!([image]));
+        a.root
+            .insert("samplers".into(), json!([{"wrapS": 33071, "wrapT": 33071}]));
+        a.root
+            .insert("textures".into(), json!([{"source": 0, "sampler": 0}]));
+        std::fs::write(dir.file("tex a.png"), &bytes).unwrap();
+        let path = match case {
+            "glb" => a.write_glb(&dir, "t.glb"),
+            _ => a.write_embedded(&dir, &format!("t-{case}.gltf"), "application/octet-stream"),
+        };
+        let d = open(&path);
+        assert!(d.warnings.is_empty(), "{case}: {:?}", d.warnings);
+        let m = named(&d, "materials[0]");
+        let b = bitmap(&m.textures.reflectance);
+        let o = b.options();
+        assert_eq!(o.wrap, WrapMode::Clamp, "{case}");
+        assert_eq!(
+            (o.uv.scale, o.uv.offset),
+            (Vec2::new(2.0, 4.0), Vec2::new(0.5, 0.25))
+        );
+        assert_eq!(
+            o.scale,
+            Vec3::new(0.5, 1.0, 1.0),
+            "{case}: the base colour factor"
+        );
+        assert!(!b.raw, "{case}: base colour is sRGB");
+        let expected: Vec<Vec3> = texels
+            .iter()
+            .map(|t| Vec3::from_array(t.map(|c| srgb_to_linear(c as f64 / 255.0) as f32)))
+            .collect();
+        assert_eq!(b.image().data, expected, "{case}");
+        let file = b.file.file_name().unwrap().to_string_lossy().into_owned();
+        match case {
+            "file" => assert_eq!(file, "tex a.png", "an external image keeps its path"),
+            _ => assert!(file.ends_with("#images[0]"), "{case}: {file}"),
+        }
+        Scene::from_desc(&d).unwrap_or_else(|e| panic!("{case}: {e}"));
+        files.push(b.image().clone());
+    }
+    assert!(files.windows(2).all(|w| w[0] == w[1]));
+}
+
+/// metallicRoughnessTexture: metallic (B) × factor as the mix weight, roughness (G) × factor
+/// squared per texel as α, both read linearly.
+#[test]
+fn the_metallic_roughness_texture_gives_the_weight_and_alpha() {
+    let dir = Dir::new("mat-mr");
+    let mut a = quads(json!([{"pbrMetallicRoughness": {
+        "metallicFactor": 0.5, "roughnessFactor": 0.5,
+        "metallicRoughnessTexture": {"index": 0}}}]));
+    let view = a.view(&png(2, 1, vec![0, 128, 255, 7, 255, 0]));
+    a.root.insert(
+        "images".into(),
+        json!([{"bufferView": view, "mimeType": "image/png"}]),
+    );
+    a.root.insert("textures".into(), json!([{"source": 0}]));
+    let d = open(&a.write_glb(&dir, "mr.glb"));
+    let mix = named(&d, "materials[0]").mix.as_ref().unwrap();
+    let w = match mix.weight_texture.as_ref().map(|t| &t.texture) {
+        Some(Texture::Bitmap(b)) => b,
+        other => panic!("{other:?}"),
+    };
+    assert!(w.raw && w.options().channel == Channel::B);
+    assert_eq!(w.options().scale, Vec3::splat(0.5));
+    assert_eq!(w.options().wrap, WrapMode::Repeat, "no sampler: repeat");
+    assert_eq!(w.image().data[0], Vec3::new(0.0, 128.0 / 255.0, 1.0));
+    // At the texel centres (u = 0.25 and 0.75): B × 0.5.
+    let weight = Texture::Bitmap(w.clone());
+    assert_eq!(weight.eval_scalar(Vec2::new(0.25, 0.5)), 0.5);
+    assert_eq!(weight.eval_scalar(Vec2::new(0.75, 0.5)), 0.0);
+    assert!(
+        (mix.weight - 0.25).abs() < 1e-6,
+        "the weight's mean: {}",
+        mix.weight
+    );
+    let metal = named(&d, "materials[0] (metal)");
+    let alpha = bitmap(&metal.textures.alpha);
+    assert_eq!(alpha.image().data.len(), 2);
+    for (t, mr) in alpha.image().data.iter().zip(&w.image().data) {
+        assert_eq!(
+            *t,
+            Vec3::splat((0.5 * mr.y).powi(2)),
+            "α = (factor × G)², per texel"
+        );
+    }
+    assert_eq!(alpha.image().data[1], Vec3::splat(0.25));
+    assert_eq!(alpha.options().scale, Vec3::ONE);
+    assert!(
+        bitmap(&named(&d, "materials[0] (plastic)").textures.alpha)
+            .image()
+            .data
+            == alpha.image().data
+    );
+}
+
+#[test]
+fn emission_is_the_factor_times_the_strength_and_the_texture() {
+    let dir = Dir::new("mat-emission");
+    let mut a = quads(json!([
+        {"emissiveFactor": [1, 0.5, 0.25],
+         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4}}},
+        {"emissiveFactor": [0.5, 0.5, 0.5], "emissiveTexture": {"index": 0}},
+        {"emissiveTexture": {"index": 0}},
+    ]));
+    let view = a.view(&test_png().0);
+    a.root.insert(
+        "images".into(),
+        json!([{"bufferView": view, "mimeType": "image/png"}]),
+    );
+    a.root.insert("textures".into(), json!([{"source": 0}]));
+    let d = open(&a.write_glb(&dir, "e.glb"));
+    assert_eq!(d.shapes[0].emission, DVec3::new(4.0, 2.0, 1.0));
+    assert!(d.shapes[0].emission_texture.is_none());
+    let t = bitmap(&d.shapes[1].emission_texture);
+    assert_eq!(t.options().scale, Vec3::splat(0.5));
+    assert!(!t.raw, "emission is sRGB");
+    assert_eq!(
+        d.shapes[2].emission,
+        DVec3::ZERO,
+        "the factor defaults to black"
+    );
+    assert!(d.shapes[2].emission_texture.is_none());
+    assert_eq!(
+        d.background,
+        BackgroundDesc::Constant(DVec3::ZERO),
+        "an emitting model gets no environment"
+    );
+}
+
+#[test]
+fn transmission_is_a_dielectric_or_a_mix_with_one() {
+    let dir = Dir::new("mat-transmission");
+    let ior = json!({"ior": 1.33});
+    let a = quads(json!([
+        {"pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.5},
+         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
+                        "KHR_materials_ior": ior, "KHR_materials_volume": {}}},
+        {"pbrMetallicRoughness": {"metallicFactor": 0, "baseColorFactor": [0.5, 1, 1, 1]},
+         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.25}}},
+        {"pbrMetallicRoughness": {"metallicFactor": 0.5, "roughnessFactor": 0},
+         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.5}}},
+    ]));
+    let d = open(&a.write_glb(&dir, "t.glb"));
+    assert_eq!(
+        named(&d, "materials[0]").material,
+        MaterialDesc::Dielectric {
+            ior: 1.33,
+            alpha: 0.25
+        },
+        "KHR_materials_ior as written (raw JSON, not rounded to f32)"
+    );
+    let m1 = named(&d, "materials[1]").mix.as_ref().unwrap();
+    assert_eq!(m1.weight, f(0.25));
+    let names = m1.materials.map(|i| d.materials[i].name.as_str());
+    assert_eq!(names, ["materials[1] (plastic)", "materials[1] (glass)"]);
+    // Metallic over a partly transmitting dielectric: two mixes.
+    let m2 = named(&d, "materials[2]").mix.as_ref().unwrap();
+    let names = m2.materials.map(|i| d.materials[i].name.as_str());
+    assert_eq!(names, ["materials[2] (dielectric)", "materials[2] (metal)"]);
+    let inner = d.materials[m2.materials[0]].mix.as_ref().unwrap();
+    assert_eq!(inner.weight, 0.5);
+    assert_eq!(
+        d.materials[inner.materials[1]].material,
+        MaterialDesc::Dielectric {
+            ior: 1.5,
+            alpha: 0.0
+        }
+    );
+    assert_eq!(d.warnings.len(), 1);
+    let w = &d.warnings[0];
+    assert!(w.contains("materials[1]: the base colour's tint"), "{w}");
+    assert!(
+        w.contains("materials[1]: thin-walled KHR_materials_transmission"),
+        "{w}"
+    );
+    assert!(!w.contains("materials[0]: thin-walled"), "{w}");
+    assert!(
+        w.contains("materials[0].extensions.KHR_materials_volume"),
+        "{w}"
+    );
+    let scene = Scene::from_desc(&d).unwrap();
+    assert!(scene.has_transmission());
+}
+
+/// Everything lumis does not render is named in one warning.
+#[test]
+fn one_warning_names_every_feature_that_is_not_rendered() {
+    let dir = Dir::new("mat-warning");
+    let mut a = quads(json!([{
+        "normalTexture": {"index": 0}, "occlusionTexture": {"index": 0},
+        "alphaMode": "MASK", "alphaCutoff": 0.3,
+        "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1}},
+        "pbrMetallicRoughness": {"baseColorTexture": {"index": 1, "texCoord": 1,
+            "extensions": {"KHR_texture_transform": {"rotation": 0.5}}}},
+    }]));
+    let colors = a.vec3(&[[1.0, 0.0, 0.0]; 4]);
+    a.meshes[0]["primitives"][0]["attributes"]["COLOR_0"] = json!(colors);
+    // A second primitive, without texture coordinates, in the same (textured) material.
+    let pos = a.vec3(&QUAD.map(|p| [p[0], p[1], p[2] - 3.0]));
+    let idx = a.indices(&QUAD_TRIS, U16);
+    let mut p = primitive(pos, None, None, Some(idx));
+    p["material"] = json!(0);
+    let mesh = a.mesh(vec![p]);
+    a.node(json!({ "mesh": mesh }));
+    let view = a.view(&test_png().0);
+    a.root.insert(
+        "images".into(),
+        json!([{"bufferView": view, "mimeType": "image/png"}]),
+    );
+    a.root.insert(
+        "samplers".into(),
+        json!([{"wrapS": 33071, "wrapT": 10497, "magFilter": 9728}]),
+    );
+    a.root.insert(
+        "textures".into(),
+        json!([{"source": 0}, {"source": 0, "sampler": 0}]),
+    );
+    a.root.insert(
+        "extensionsUsed".into(),
+        json!([
+            "KHR_lights_punctual",
+            "KHR_materials_clearcoat",
+            "KHR_texture_transform"
+        ]),
+    );
+    let d = open(&a.write_glb(&dir, "w.glb"));
+    assert_eq!(d.warnings.len(), 1, "{:?}", d.warnings);
+    let w = &d.warnings[0];
+    assert!(
+        w.contains("w.glb: glTF features lumis does not render: "),
+        "{w}"
+    );
+    for name in [
+        "materials[0].normalTexture",
+        "materials[0].occlusionTexture",
+        "materials[0].alphaMode MASK",
+        "materials[0].alphaCutoff",
+        "materials[0].extensions.KHR_materials_clearcoat",
+        "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.rotation",
+        "materials[0].pbrMetallicRoughness.baseColorTexture TEXCOORD_1",
+        "samplers[0].wrapT",
+        "samplers[0].magFilter NEAREST",
+        "extension KHR_lights_punctual",
+        "extension KHR_materials_clearcoat",
+        "nodes[0] meshes[0].primitives[0] COLOR_0",
+        "nodes[1] meshes[1].primitives[0]: the textures of its material (it has no TEXCOORD_0)",
+    ] {
+        assert!(w.contains(name), "{name} is not in: {w}");
+    }
+    assert!(!w.contains("extension KHR_texture_transform"), "{w}");
+    assert_eq!(
+        w.matches("materials[0].normalTexture").count(),
+        1,
+        "each named once: {w}"
+    );
+}
+
+/// Bad input: one error naming the file and the glTF path.
+#[test]
+fn bad_materials_textures_and_images_are_named_by_their_gltf_path() {
+    let dir = Dir::new("mat-errors");
+    let plain = json!({"pbrMetallicRoughness": {"metallicFactor": 0}});
+    let with_third = |third: Value| quads(json!([plain, plain, third]));
+    let error = |a: &Asset, name: &str| -> String {
+        let path = a.write_glb(&dir, name);
+        let e = model_scene(&path)
+            .expect_err("must be rejected")
+            .to_string();
+        assert!(
+            e.starts_with(&path.display().to_string()),
+            "names the file: {e}"
+        );
+        assert!(!e.contains('\n'), "one line: {e}");
+        e
+    };
+    let mut a = with_third(plain.clone());
+    a.meshes[1]["primitives"][0]["material"] = json!(5);
+    let e = error(&a, "material.glb");
+    assert!(e.contains("meshes[1].primitives[0].material"), "{e}");
+
+    let tex =
+        |index: usize| json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": index}}});
+    let mut a = with_third(tex(7));
+    a.root.insert("images".into(), json!([{"uri": "wood.png"}]));
+    a.root.insert("textures".into(), json!([{"source": 0}]));
+    let e = error(&a, "texture.glb");
+    assert!(
+        e.contains("materials[2].pbrMetallicRoughness.baseColorTexture.index"),
+        "{e}"
+    );
+
+    let mut a = with_third(tex(0));
+    a.root.insert("images".into(), json!([{"uri": "wood.png"}]));
+    a.root.insert("textures".into(), json!([{"source": 0}]));
+    let e = error(&a, "image.glb");
+    assert!(
+        e.contains("materials[2].pbrMetallicRoughness.baseColorTexture: images[0] ('wood.png'): cannot read 'wood.png'"),
+        "{e}"
+    );
+    std::fs::write(dir.file("wood.png"), b"not a png").unwrap();
+    let e = error(&a, "image2.glb");
+    assert!(
+        e.contains("materials[2].pbrMetallicRoughness.baseColorTexture: images[0]"),
+        "{e}"
+    );
+    assert!(e.contains("wood.png"), "{e}");
+
+    let e = error(
+        &with_third(json!({"pbrMetallicRoughness": {"baseColorFactor": [1, 1.5, 1, 1]}})),
+        "factor.glb",
+    );
+    assert!(
+        e.contains("materials[2].pbrMetallicRoughness.baseColorFactor[1]: 1.5 is outside [0, 1]"),
+        "{e}"
+    );
+    let e = error(
+        &with_third(json!({"extensions": {"KHR_materials_transmission": {
+            "transmissionFactor": 1, "transmissionTexture": {"index": 3}}}})),
+        "transmission.glb",
+    );
+    assert!(
+        e.contains("materials[2].extensions.KHR_materials_transmission.transmissionTexture.index"),
+        "{e}"
+    );
+    let e = error(
+        &with_third(json!({"extensions": {"KHR_materials_ior": {"ior": 0.5}}})),
+        "ior.glb",
+    );
+    assert!(
+        e.contains("materials[2].extensions.KHR_materials_ior.ior: 0.5 must be at least 1"),
+        "{e}"
+    );
+}
+
+/// A required extension that lumis maps does not stop the file; another still does.
+#[test]
+fn required_material_extensions_that_lumis_reads_are_accepted() {
+    let dir = Dir::new("mat-required");
+    let mut a = quads(json!([{"pbrMetallicRoughness": {"metallicFactor": 0}}]));
+    a.root.insert(
+        "extensionsRequired".into(),
+        json!(["KHR_texture_transform", "KHR_materials_ior"]),
+    );
+    let d = open(&a.write_glb(&dir, "ok.glb"));
+    assert_eq!(d.shapes.len(), 1);
+    a.root.insert(
+        "extensionsRequired".into(),
+        json!(["KHR_texture_transform", "KHR_materials_clearcoat"]),
+    );
+    let e = model_scene(&a.write_glb(&dir, "no.glb"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("requires glTF extension KHR_materials_clearcoat, which lumis does not support"),
+        "{e}"
+    );
+}
