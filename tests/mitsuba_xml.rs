@@ -711,7 +711,10 @@ fn cube_faces_outward() {
 }
 
 /// Writes a version-4 `.serialized` file holding `meshes` (positions, triangles, normals).
-fn write_serialized(path: &std::path::Path, meshes: &[(Vec<[f32; 3]>, Vec<[u32; 3]>, bool)]) {
+/// One mesh of a `.serialized` file: positions, triangles, and whether to compress it.
+type SerializedMesh = (Vec<[f32; 3]>, Vec<[u32; 3]>, bool);
+
+fn write_serialized(path: &std::path::Path, meshes: &[SerializedMesh]) {
     use std::io::Write;
     let mut out = Vec::new();
     let mut offsets = Vec::new();

@@ -13,7 +13,7 @@ pub(super) const MIN_NM: f64 = 360.0;
 /// Wavelength of the last sample, nm.
 pub(super) const MAX_NM: f64 = 830.0;
 /// Scale that makes a unit spectrum integrate to a luminance (Y) of 1.
-pub(super) const Y_NORMALIZATION: f64 = 1.0 / 106.7502593994140625;
+pub(super) const Y_NORMALIZATION: f64 = 1.0 / 106.750_259_399_414_06;
 /// Scale that makes the D65 table integrate to a luminance of 1.
 pub(super) const D65_NORMALIZATION: f64 = 1.0 / 98.99741751876255;
 

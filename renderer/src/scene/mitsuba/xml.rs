@@ -133,16 +133,16 @@ impl Document {
         let mut stack = vec![&self.root];
         while let Some(el) = stack.pop() {
             // Objects have ids; a <ref>'s `id` names one.
-            if let Some(id) = el.attr("id").filter(|_| el.tag != "ref") {
-                if let Some(prev) = ids.insert(id.value.as_str(), el) {
-                    // Report the later one in document order: the stack pops in reverse.
-                    let (first, second) = order(prev, el);
-                    return Err(second.pos_of("id").error(format!(
-                        "duplicate id `{}` (first defined at {})",
-                        id.value,
-                        first.pos.describe()
-                    )));
-                }
+            if let Some(id) = el.attr("id").filter(|_| el.tag != "ref")
+                && let Some(prev) = ids.insert(id.value.as_str(), el)
+            {
+                // Report the later one in document order: the stack pops in reverse.
+                let (first, second) = order(prev, el);
+                return Err(second.pos_of("id").error(format!(
+                    "duplicate id `{}` (first defined at {})",
+                    id.value,
+                    first.pos.describe()
+                )));
             }
             stack.extend(el.children.iter().rev());
         }
