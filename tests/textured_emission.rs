@@ -2,25 +2,34 @@
 //! texture coordinates, sphere, disk, polygon) with a checkerboard or bitmap `emission`.
 //!
 //! * `light_samples_and_hits_agree_on_texture_coordinates`: for points sampled on every
-//!   textured light (both methods), the ray towards the sample hits the same light, and the
-//!   texture coordinates the scene gives the hit equal those it gives the light sample (to 1e-3,
-//!   periodic). Deterministic; catches any disagreement between the two lookups (a wrong
-//!   triangle or barycentrics for a quad's or mesh triangle's sample, swapped barycentrics).
+//!   textured light (both methods, 64 stratified samples from each of 144 points), the ray
+//!   towards the sample hits the same light, and the texture coordinates the scene gives the hit
+//!   equal those it gives the light sample (to 1e-3, periodic). Deterministic; catches any
+//!   disagreement between the two lookups, including ones no image test sees (swapped
+//!   barycentrics permute the texture within each triangle and keep every triangle's power).
 //! * `strategies_agree_on_textured_emitters`: light, BSDF, mixture and MIS (both light-sampling
-//!   methods) against a converged MIS render made here (block z-test, 8 × 8 blocks, family-wise
-//!   α = 0.01 over all cases, Šidák; seeds fixed below). Light sampling sees the texture at
-//!   sampled points, BSDF sampling at hits: a wrong texture value on either side (wrong uv, the
-//!   mean instead of the texture) makes them disagree.
+//!   methods; seeds 10–15) against a converged MIS render made here (1024 spp, seed 1), by the
+//!   block z-test with both images' variances (8 × 8 blocks, family-wise α = 0.01 over all
+//!   cases, blocks and channels, Šidák). Light sampling sees the texture at sampled points, BSDF
+//!   sampling at hits: a wrong texture value on either side makes them disagree. `max_depth` 2
+//!   keeps light-only sampling free of the heavy tails of caustics.
 //! * `camera_sees_the_texture_exactly`: a textured quad, sphere and mesh seen directly
-//!   (`max_depth` 1): pixels whose corners and centre fall on one checkerboard square of one
-//!   emitter (texture coordinates computed here in f64 from the geometry and the file's UVs)
-//!   average exactly that square's colour (z-test with the pixels' variance, which is zero for
-//!   such pixels, plus 1e-5 relative slack; family-wise α = 0.01 over 18 comparisons).
+//!   (`max_depth` 1, seed 7): pixels whose corners and centre fall on one checkerboard square of
+//!   one emitter (texture coordinates computed here in f64 from the geometry and the file's UVs)
+//!   average exactly that square's colour (z-test with the pixels' variance, zero for such
+//!   pixels, plus 1e-5 relative slack; family-wise α = 0.01 over 18 comparisons).
 //! * `constant_texture_renders_like_constant_radiance`: every emitter textured with a
 //!   checkerboard of one colour renders bit for bit like the same emitter with that constant
-//!   radiance, in every strategy and method (same seeds): the selection weights, the sampled
-//!   radiance and the hit radiance are exactly the untextured ones.
+//!   radiance, in every strategy and method (same seeds, full depth): the selection weights, the
+//!   sampled radiance and the hit radiance are exactly the untextured ones.
 //! * `the_gpu_refuses_textured_emission`: by the shape's JSON path.
+//!
+//! Deliberate bugs, each run against this file (measured once, not part of the suite):
+//! light-sample uv with `v` flipped: agreement fails (Light |z| 31); triangle-light samples with
+//! `b1`, `b2` swapped: only the uv test fails (63920 disagreements); a quad's samples always
+//! looked up in its first triangle: uv test (9272) and agreement (Light |z| 10); hits emitting
+//! the texture's mean: exact test (18 of 18) and agreement (|z| 23); light samples emitting the
+//! mean: agreement (|z| 16); hit uv with `v` flipped: exact test and agreement (|z| 34).
 
 mod common;
 
@@ -133,12 +142,17 @@ impl Panel {
 }
 
 fn write_pfm(path: &Path) {
-    // 5 × 4 texels of varied colours (linear), so the bilinear value changes across the panel.
-    let (w, h) = (5, 4);
+    // 4 × 4 texels of strongly varying colours (linear), so that the bilinear value, and the
+    // light the panel casts, change a lot across the panel.
+    let (w, h) = (4, 4);
     let data = (0..w * h)
         .map(|i| {
-            let (x, y) = ((i % w) as f32, (i / w) as f32);
-            Vec3::new(0.2 + 0.2 * x, 1.0 - 0.2 * y, 0.1 + 0.3 * ((x + y) % 3.0))
+            let (x, y) = (i % w, i / w);
+            Vec3::new(
+                if (x + y) % 2 == 0 { 4.0 } else { 0.2 },
+                if x < 2 { 3.0 } else { 0.3 },
+                0.5 + y as f32,
+            )
         })
         .collect();
     Image {
@@ -156,7 +170,7 @@ fn checker(c0: [f32; 3], c1: [f32; 3], scale: [f32; 2]) -> String {
     )
 }
 
-/// The emitters of the agreement scene, in shape order after the floor and the metal wall:
+/// The emitters of the agreement scene, in shape order after the floor and the wall:
 /// quad, mesh, sphere, disk, polygon.
 const EMITTERS: usize = 5;
 
@@ -173,49 +187,60 @@ fn agreement_textures() -> [String; EMITTERS] {
     ]
 }
 
-/// A floor and a rough metal wall lit by five textured emitters of every shape; `emission[k]`
-/// is the `emission` JSON of emitter `k`. Written to a fresh folder with the mesh and bitmap.
+/// A floor, half rough metal and half diffuse, and a diffuse back wall, lit by five textured
+/// emitters of every shape (and a dim sky). The flat emitters lean over the floor, close to it,
+/// facing down and towards the camera, which sees their emitting sides, the light they cast and
+/// their reflections. `emission[k]` is the `emission` JSON of emitter `k`. Written to a fresh
+/// folder with the mesh and bitmap.
 fn agreement_scene(name: &str, size: u32, emission: &[String; EMITTERS]) -> Arc<Scene> {
     let dir = temp_dir(name);
+    // The flat emitters face (0, −1, −1)/√2; their planes are y + z = const.
+    let facing = DVec3::new(0.0, -1.0, -1.0).normalize();
     let panel = Panel {
         corners: [
-            DVec3::new(2.2, 0.2, -0.5),
-            DVec3::new(2.2, 0.2, 1.5),
-            DVec3::new(2.2, 1.6, 1.5),
-            DVec3::new(2.2, 1.6, -0.5),
+            DVec3::new(-0.8, 0.15, 2.5),
+            DVec3::new(0.6, 0.15, 2.5),
+            DVec3::new(0.6, 1.15, 1.5),
+            DVec3::new(-0.8, 1.15, 1.5),
         ],
-        centre: DVec3::new(2.2, 0.8, 0.6),
-        facing: DVec3::NEG_X,
+        centre: DVec3::new(-0.2, 0.55, 2.1),
+        facing,
     };
     std::fs::write(dir.join("panel.obj"), panel.obj()).unwrap();
     write_pfm(&dir.join("panel.pfm"));
-    // An irregular pentagon facing down (vertex order +x towards +z: normal −y).
+    // An irregular pentagon in the same orientation: x = +x, y = (0, −1, 1)/√2, x × y = facing.
+    let (px, py) = (DVec3::X, DVec3::new(0.0, -1.0, 1.0).normalize());
     let pentagon: Vec<String> = [0.0f64, 1.3, 2.4, 3.7, 5.0]
         .iter()
         .zip([0.5, 0.6, 0.45, 0.55, 0.5])
-        .map(|(a, r)| format!("[{}, 1.5, {}]", 1.0 + r * a.cos(), r * a.sin()))
+        .map(|(a, r)| {
+            let v = DVec3::new(1.6, 0.7, 1.6) + r * a.cos() * px + r * a.sin() * py;
+            format!("[{}, {}, {}]", v.x, v.y, v.z)
+        })
         .collect();
     let [quad, mesh, sphere, disk, polygon] = emission;
     let json = format!(
         r#"{{
-  "camera": {{"from": [0, 2.4, -4.2], "to": [0.2, 0.7, 0.8], "up": [0, 1, 0], "vfov_deg": 55,
+  "camera": {{"from": [0, 1.6, -3.2], "to": [0, 0.4, 1.8], "up": [0, 1, 0], "vfov_deg": 60,
              "width": {size}, "height": {size}}},
   "max_depth": 2,
   "background": [0.05, 0.05, 0.05],
   "materials": {{
-    "floor": {{"type": "diffuse", "albedo": [0.7, 0.7, 0.7]}},
-    "metal": {{"type": "conductor", "alpha": 0.2, "reflectance": [0.9, 0.8, 0.6]}}
+    "diffuse": {{"type": "diffuse", "albedo": [0.7, 0.7, 0.7]}},
+    "metal": {{"type": "conductor", "alpha": 0.1, "reflectance": [0.9, 0.8, 0.6]}}
   }},
   "shapes": [
-    {{"type": "quad", "corner": [-3, 0, -3], "edge_u": [0, 0, 6], "edge_v": [6, 0, 0],
-      "material": "floor"}},
-    {{"type": "quad", "corner": [-3, 0, 2.5], "edge_u": [0, 3, 0], "edge_v": [6, 0, 0],
+    {{"type": "quad", "corner": [-3, 0, -3], "edge_u": [0, 0, 7], "edge_v": [3, 0, 0],
       "material": "metal"}},
-    {{"type": "quad", "corner": [-1.2, 1.3, -0.6], "edge_u": [1.6, 0, 0], "edge_v": [0, 0, 1.4],
+    {{"type": "quad", "corner": [0, 0, -3], "edge_u": [0, 0, 7], "edge_v": [3, 0, 0],
+      "material": "diffuse"}},
+    {{"type": "quad", "corner": [-3, 0, 4], "edge_u": [0, 3, 0], "edge_v": [6, 0, 0],
+      "material": "diffuse"}},
+    {{"type": "quad", "corner": [-2.4, 0.15, 1.5], "edge_u": [0, 1, -1], "edge_v": [1.4, 0, 0],
       "emission": {quad}}},
     {{"type": "mesh", "file": "panel.obj", "emission": {mesh}}},
-    {{"type": "sphere", "center": [-1.7, 0.5, 1.2], "radius": 0.4, "emission": {sphere}}},
-    {{"type": "disk", "center": [0.6, 1.9, 1.6], "normal": [-0.2, -1, -0.4], "radius": 0.5,
+    {{"type": "sphere", "center": [1.0, 0.4, 3.2], "radius": 0.35, "emission": {sphere}}},
+    {{"type": "disk", "center": [-1.0, 0.8, 3.3], "normal": [0.1, -1, -1], "radius": 0.5,
       "emission": {disk}}},
     {{"type": "polygon", "vertices": [{}], "emission": {polygon}}}
   ]
@@ -261,10 +286,11 @@ fn light_samples_and_hits_agree_on_texture_coordinates() {
     for ix in 0..6 {
         for iy in 0..4 {
             for iz in 0..6 {
+                // In front of the emitters' emitting sides.
                 let p = Vec3::new(
-                    -2.5 + 0.9 * ix as f32,
-                    0.05 + 0.35 * iy as f32,
-                    -2.0 + 0.8 * iz as f32,
+                    -2.5 + 1.0 * ix as f32,
+                    0.05 + 0.3 * iy as f32,
+                    -2.0 + 0.65 * iz as f32,
                 );
                 for &l in &textured {
                     let light = &scene.lights[l];

@@ -53,3 +53,30 @@ impl LightSampler {
         self.dist.pmf(i)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::textures::{Checkerboard, UvTransform};
+    use glam::Vec2;
+
+    /// The mean where it has luminance, the maximum where the unit square is black.
+    #[test]
+    fn selection_radiance_is_the_mean_or_else_the_maximum() {
+        let c0 = Vec3::new(3.0, 1.0, 0.0);
+        let checker = |scale: Vec2, offset: Vec2| {
+            Texture::Checkerboard(Checkerboard {
+                color0: c0,
+                color1: Vec3::ZERO,
+                uv: UvTransform { scale, offset },
+            })
+        };
+        let half = checker(Vec2::ONE, Vec2::ZERO);
+        assert_eq!(selection_radiance(&half), half.mean());
+        assert_eq!(half.mean(), 0.5 * c0);
+        // uv' = (0.75, 0.25) everywhere: color1 (black) over the whole unit square.
+        let black = checker(Vec2::ZERO, Vec2::new(0.75, 0.25));
+        assert_eq!(black.mean(), Vec3::ZERO);
+        assert_eq!(selection_radiance(&black), c0);
+    }
+}
