@@ -143,7 +143,7 @@ pub fn parse_spd(text: &str) -> Result<(Vec<f64>, Vec<f64>), (usize, String)> {
 /// Linear Rec. 709 RGB from CIE XYZ, with Mitsuba's single-precision matrix (`xyz_to_srgb`).
 pub fn xyz_to_srgb(xyz: DVec3) -> DVec3 {
     const M: [[f32; 3]; 3] = [
-        [3.240479, -1.537150, -0.498535],
+        [3.240479, -1.53715, -0.498535],
         [-0.969256, 1.875991, 0.041556],
         [0.055648, -0.204043, 1.057311],
     ];

@@ -133,16 +133,16 @@ impl Document {
         let mut stack = vec![&self.root];
         while let Some(el) = stack.pop() {
             // Objects have ids; a <ref>'s `id` names one.
-            if let Some(id) = el.attr("id").filter(|_| el.tag != "ref") {
-                if let Some(prev) = ids.insert(id.value.as_str(), el) {
-                    // Report the later one in document order: the stack pops in reverse.
-                    let (first, second) = order(prev, el);
-                    return Err(second.pos_of("id").error(format!(
-                        "duplicate id `{}` (first defined at {})",
-                        id.value,
-                        first.pos.describe()
-                    )));
-                }
+            if let Some(id) = el.attr("id").filter(|_| el.tag != "ref")
+                && let Some(prev) = ids.insert(id.value.as_str(), el)
+            {
+                // Report the later one in document order: the stack pops in reverse.
+                let (first, second) = order(prev, el);
+                return Err(second.pos_of("id").error(format!(
+                    "duplicate id `{}` (first defined at {})",
+                    id.value,
+                    first.pos.describe()
+                )));
             }
             stack.extend(el.children.iter().rev());
         }
@@ -186,11 +186,12 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Document, Scene
         }
         loader.add_param(name, value, false);
     }
-    let mut roots = loader.load_file(path, None)?;
-    let root = match roots.len() {
-        1 => roots.remove(0),
-        _ => unreachable!("the top file gives one root"),
-    };
+    // The top file gives its root element (only included scenes contribute children).
+    let root = loader
+        .load_file(path, None)?
+        .into_iter()
+        .next()
+        .ok_or_else(|| SceneError::new("", "the file has no root element").in_file(path))?;
     if root.tag != "scene" {
         return Err(root.pos.error(format!(
             "the root element must be <scene>, found <{}>",
