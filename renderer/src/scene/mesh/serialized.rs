@@ -232,3 +232,131 @@ fn decode(compressed: &[u8], version: u16) -> Result<MeshData, String> {
         uvs,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::io::Write;
+
+    /// One mesh record of `version` (3 or 4) with `flags`, holding `v` vertices of `values`
+    /// (already laid out as the flags say) and `tris`.
+    fn record(version: u16, flags: u32, v: u64, values: &[u8], tris: &[[u32; 3]]) -> Vec<u8> {
+        let mut raw = flags.to_le_bytes().to_vec();
+        if version == 4 {
+            raw.extend(b"name\0");
+        }
+        raw.extend(v.to_le_bytes());
+        raw.extend((tris.len() as u64).to_le_bytes());
+        raw.extend(values);
+        tris.iter()
+            .flatten()
+            .for_each(|i| raw.extend(i.to_le_bytes()));
+        let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::fast());
+        z.write_all(&raw).unwrap();
+        let mut out = MAGIC.to_le_bytes().to_vec();
+        out.extend(version.to_le_bytes());
+        out.extend(z.finish().unwrap());
+        out
+    }
+
+    /// A file of `records` with the end table of `version`.
+    fn file(version: u16, records: &[Vec<u8>]) -> Vec<u8> {
+        let mut out = Vec::new();
+        let mut offsets = Vec::new();
+        for r in records {
+            offsets.push(out.len() as u64);
+            out.extend(r);
+        }
+        for o in offsets {
+            if version == 4 {
+                out.extend(o.to_le_bytes());
+            } else {
+                out.extend((o as u32).to_le_bytes());
+            }
+        }
+        out.extend((records.len() as u32).to_le_bytes());
+        out
+    }
+
+    fn f32s(v: &[f32]) -> Vec<u8> {
+        v.iter().flat_map(|x| x.to_le_bytes()).collect()
+    }
+
+    const TRI: [f32; 9] = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+
+    /// Both versions, every attribute, double precision, and shape_index through the table.
+    #[test]
+    fn reads_versions_attributes_and_indices() {
+        let path = Path::new("m.serialized");
+        for version in [3u16, 4] {
+            let plain = record(version, 0x1000, 3, &f32s(&TRI), &[[0, 1, 2]]);
+            let mut all = f32s(&TRI);
+            all.extend(f32s(&[0.0, 0.0, 1.0].repeat(3)));
+            all.extend(f32s(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0]));
+            all.extend(f32s(&[1.0; 9])); // colours, skipped
+            let full = record(version, 0x1000 | 0xB, 3, &all, &[[2, 1, 0]]);
+            let doubles: Vec<u8> = TRI
+                .iter()
+                .flat_map(|&x| (x as f64 * 2.0).to_le_bytes())
+                .collect();
+            let double = record(version, 0x2000, 3, &doubles, &[[0, 1, 2]]);
+            let bytes = file(version, &[plain, full, double]);
+            let m0 = load_bytes(path, &bytes, 0).unwrap();
+            assert_eq!(
+                (m0.positions.len(), m0.indices, m0.normals, m0.uvs),
+                (3, vec![[0, 1, 2]], None, None)
+            );
+            let m1 = load_bytes(path, &bytes, 1).unwrap();
+            assert_eq!(m1.indices, vec![[2, 1, 0]]);
+            assert_eq!(m1.normals.as_ref().unwrap()[2], Vec3::Z);
+            assert_eq!(m1.uvs.as_ref().unwrap()[2], Vec2::new(0.0, 1.0));
+            let m2 = load_bytes(path, &bytes, 2).unwrap();
+            assert_eq!(m2.positions[1], Vec3::new(2.0, 0.0, 0.0));
+            let e = load_bytes(path, &bytes, 3).unwrap_err().to_string();
+            assert!(
+                e.contains("shape 3") && e.contains("the file holds 3 meshes"),
+                "{e}"
+            );
+        }
+    }
+
+    /// Each malformed input is one error naming the file and the mesh.
+    #[test]
+    fn malformed_files_are_named_errors() {
+        let path = Path::new("bad.serialized");
+        let good = file(4, &[record(4, 0x1000, 3, &f32s(&TRI), &[[0, 1, 2]])]);
+        let cases: Vec<(Vec<u8>, u32, &str)> = vec![
+            (vec![1, 2], 0, "too short"),
+            ([&[0u8, 0], &good[2..]].concat(), 0, "magic 0x0000"),
+            (
+                [&good[..2], &[5u8, 0], &good[4..]].concat(),
+                0,
+                "version 5 is not supported",
+            ),
+            (good[..good.len() - 30].to_vec(), 0, "mesh data"),
+            (
+                file(4, &[record(4, 0x1000, 3, &f32s(&TRI[..6]), &[])]),
+                0,
+                "ends early",
+            ),
+            (
+                file(4, &[record(4, 0x1000, 3, &f32s(&TRI), &[[0, 1, 7]])]),
+                0,
+                "out of range",
+            ),
+            (
+                file(4, &[record(4, 0x1000, 1 << 40, &f32s(&TRI), &[])]),
+                0,
+                "cannot fit",
+            ),
+            (good.clone(), 1, "shape_index 1 is out of range"),
+        ];
+        for (bytes, index, fragment) in cases {
+            let e = load_bytes(path, &bytes, index).unwrap_err().to_string();
+            assert!(
+                e.starts_with("bad.serialized") && e.contains(fragment),
+                "{fragment}: {e}"
+            );
+        }
+    }
+}

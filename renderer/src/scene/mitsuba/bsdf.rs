@@ -9,11 +9,11 @@
 //! lumis'), and an index pair becomes lumis' relative `ior` = int_ior / ext_ior (the Fresnel
 //! terms and the (η_i/η_t)² radiance scaling depend on the ratio only).
 
-use super::Ctx;
 use super::presets::conductor_preset;
 use super::texture::{color_param, is_texture, scalar_param};
-use super::values::{Slot, constant_color, ior};
+use super::values::{Slot, constant_color, constant_scalar, ior};
 use super::xml::Element;
+use super::{Ctx, target};
 use crate::scene::error::SceneError;
 use glam::DVec3;
 use serde_json::{Value as Json, json};
@@ -34,7 +34,7 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
         let first = match nested.as_slice() {
             [] => return Err(plugin.error("a twosided BSDF needs a nested <bsdf>")),
             [one] => one,
-            [a, b] if std::ptr::eq(a.object().unwrap_or(a.el), b.object().unwrap_or(b.el)) => a,
+            [a, b] if std::ptr::eq(target(a), target(b)) => a,
             [_, b, ..] => {
                 return Err(b.el.pos.error(
                     "a twosided BSDF with different front and back BSDFs is not supported \
@@ -43,7 +43,7 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
             }
         };
         plugin.finish("one or two (identical) nested <bsdf>")?;
-        (first.object().unwrap_or(first.el), true)
+        (target(first), true)
     } else {
         (el, false)
     };
@@ -242,17 +242,16 @@ fn rough_alpha(
     let key = match (b.has("alpha"), b.has("alpha_u"), b.has("alpha_v")) {
         (_, false, false) => "alpha",
         (false, true, true) => {
-            let (u, v) = (b.get("alpha_u"), b.get("alpha_v"));
-            let same = match (u.map(|p| &p.value), v.map(|p| &p.value)) {
-                (Some(a), Some(c)) => format!("{a:?}") == format!("{c:?}"),
-                _ => false,
-            };
-            if !same {
-                return Err(b.error(
-                    "different alpha_u and alpha_v (anisotropic roughness) are not supported",
-                ));
+            let value = |k: &str| b.get(k).map(constant_scalar).transpose();
+            match (value("alpha_u")?.flatten(), value("alpha_v")?.flatten()) {
+                (Some(u), Some(v)) if u == v => "alpha_u",
+                _ => {
+                    return Err(b.error(
+                        "alpha_u and alpha_v must be equal numbers: anisotropic or textured \
+                         alpha_u/alpha_v are not supported (use alpha)",
+                    ));
+                }
             }
-            "alpha_u"
         }
         _ => {
             return Err(b.error("give either alpha or both alpha_u and alpha_v"));

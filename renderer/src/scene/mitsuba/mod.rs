@@ -169,7 +169,7 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Imported, Scene
 }
 
 /// The element a child property names (itself, or a `<ref>`'s target).
-fn target<'a>(p: &plugin::Prop<'a>) -> &'a Element {
+pub(crate) fn target<'a>(p: &plugin::Prop<'a>) -> &'a Element {
     p.object().unwrap_or(p.el)
 }
 

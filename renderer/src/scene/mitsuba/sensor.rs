@@ -8,8 +8,8 @@
 //! view follows Mitsuba's `parse_fov` (`fov` on `fov_axis` x, y, diagonal, smaller or larger,
 //! or a 35 mm `focal_length`, default 50 mm) and becomes lumis' vertical one.
 
-use super::Ctx;
 use super::plugin::Plugin;
+use super::{Ctx, target};
 use crate::scene::error::SceneError;
 use glam::{DMat3, DVec3};
 use serde_json::{Value, json};
@@ -36,7 +36,7 @@ pub fn sensor(ctx: &mut Ctx, sensor: &Plugin) -> Result<SensorOut, SceneError> {
         )));
     }
     let film = match sensor.object("film")? {
-        Some(p) => ctx.plugin(p.object().unwrap_or(p.el))?,
+        Some(p) => ctx.plugin(target(p))?,
         None => {
             return Err(sensor.error(
                 "the sensor has no <film>: Mitsuba's default film is 768 × 576 with a \
@@ -88,7 +88,7 @@ pub fn sensor(ctx: &mut Ctx, sensor: &Plugin) -> Result<SensorOut, SceneError> {
         "shutter_close",
     ]);
     let spp = match sensor.object("sampler")? {
-        Some(p) => sampler(ctx, &ctx.plugin(p.object().unwrap_or(p.el))?)?,
+        Some(p) => sampler(&ctx.plugin(target(p))?)?,
         None => 4,
     };
     sensor.finish(
@@ -230,7 +230,7 @@ fn film_size(ctx: &Ctx, film: &Plugin) -> Result<(i64, i64), SceneError> {
             ));
         }
         Some(p) => {
-            let f = ctx.plugin(p.object().unwrap_or(p.el))?;
+            let f = ctx.plugin(target(p))?;
             if f.ty != "box" {
                 return Err(f.error(format!(
                     "reconstruction filter `{}` is not supported: lumis has only the box \
@@ -249,7 +249,7 @@ fn film_size(ctx: &Ctx, film: &Plugin) -> Result<(i64, i64), SceneError> {
 }
 
 /// A sampler's `sample_count`; every Mitsuba sampler converges to the same image.
-fn sampler(_ctx: &Ctx, s: &Plugin) -> Result<u32, SceneError> {
+fn sampler(s: &Plugin) -> Result<u32, SceneError> {
     if !matches!(
         s.ty,
         "independent" | "stratified" | "multijitter" | "orthogonal" | "ldsampler"

@@ -10,11 +10,11 @@
 //! A shape without a BSDF gets Mitsuba's default, a one-sided diffuse of reflectance 0.5 (0 if
 //! it emits); a `null` BSDF without an emitter is invisible and is left out.
 
-use super::Ctx;
 use super::bsdf::material;
 use super::emitter::area;
 use super::plugin::Plugin;
 use super::transform::rows_json;
+use super::{Ctx, target};
 use crate::scene::error::SceneError;
 use glam::{DMat3, DMat4, DVec3};
 use serde_json::{Value as Json, json};
@@ -40,14 +40,14 @@ pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, Sc
     }
     let emission = match s.object("emitter")? {
         Some(p) => {
-            let e = ctx.plugin(p.object().unwrap_or(p.el))?;
+            let e = ctx.plugin(target(p))?;
             Some(area(ctx, &e, &format!("{path}.emission"))?)
         }
         None => None,
     };
     let mat = match s.object("bsdf")? {
         Some(p) => {
-            let el = p.object().unwrap_or(p.el);
+            let el = target(p);
             ctx.origin(&format!("{path}.material"), &p.el.pos);
             match material(ctx, el)? {
                 Some(name) => Some(name),

@@ -70,7 +70,7 @@ pub fn is_texture(prop: &Prop) -> bool {
 
 /// The texture object a property names, in the scene format.
 fn texture(ctx: &mut Ctx, prop: &Prop, reads: Reads, json_path: &str) -> Result<Json, SceneError> {
-    let el: &Element = prop.object().unwrap_or(prop.el);
+    let el: &Element = super::target(prop);
     if el.tag != "texture" {
         return Err(el.pos.error(format!(
             "<{}> is not a texture (expected <texture>, <rgb>, <float> or <spectrum>)",
@@ -112,13 +112,10 @@ fn texture(ctx: &mut Ctx, prop: &Prop, reads: Reads, json_path: &str) -> Result<
         "checkerboard" => {
             let mut colors = Vec::new();
             for (key, default) in [("color0", 0.4), ("color1", 0.2)] {
-                let c = match t.get(key) {
-                    None => json!(default),
+                colors.push(match t.get(key) {
+                    None => (json!(default), None),
                     Some(p) => match constant_color(p, Slot::Reflectance, &mut ctx.warnings)? {
-                        Some(c) => {
-                            ctx.origin(&format!("{json_path}.{key}"), p.pos());
-                            json!([c.x, c.y, c.z])
-                        }
+                        Some(c) => (json!([c.x, c.y, c.z]), Some(p.pos().clone())),
                         None => {
                             return Err(p.error(format!(
                                 "a textured `{key}` is not supported: lumis' checkerboard \
@@ -126,21 +123,19 @@ fn texture(ctx: &mut Ctx, prop: &Prop, reads: Reads, json_path: &str) -> Result<
                             )));
                         }
                     },
-                };
-                colors.push(c);
+                });
             }
             // Mitsuba's eval_1 of a checkerboard returns the other colour (docs/scene-format.md).
             if reads == Reads::Scalar {
                 colors.swap(0, 1);
-                if let Some(i) = ctx
-                    .origins
-                    .iter()
-                    .position(|(k, _)| k == &format!("{json_path}.color0"))
-                {
-                    ctx.origins[i].0 = format!("{json_path}.color1");
+            }
+            for (key, (_, pos)) in ["color0", "color1"].iter().zip(&colors) {
+                if let Some(pos) = pos {
+                    ctx.origin(&format!("{json_path}.{key}"), pos);
                 }
             }
-            let mut obj = json!({"type": "checkerboard", "color0": colors[0], "color1": colors[1]});
+            let mut obj =
+                json!({"type": "checkerboard", "color0": colors[0].0, "color1": colors[1].0});
             uv_transform(&t, &mut obj)?;
             t.finish("color0, color1, to_uv")?;
             obj

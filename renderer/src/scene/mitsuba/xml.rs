@@ -186,11 +186,12 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Document, Scene
         }
         loader.add_param(name, value, false);
     }
-    let mut roots = loader.load_file(path, None)?;
-    let root = match roots.len() {
-        1 => roots.remove(0),
-        _ => unreachable!("the top file gives one root"),
-    };
+    // The top file gives its root element (only included scenes contribute children).
+    let root = loader
+        .load_file(path, None)?
+        .into_iter()
+        .next()
+        .ok_or_else(|| SceneError::new("", "the file has no root element").in_file(path))?;
     if root.tag != "scene" {
         return Err(root.pos.error(format!(
             "the root element must be <scene>, found <{}>",
