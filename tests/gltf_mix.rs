@@ -179,3 +179,22 @@ fn metallic_half_converges_to_the_average_of_metal_and_plastic() {
         "the test cannot tell a 0.1 error in the weight"
     );
 }
+
+/// The GPU backend does not resolve mixes yet: it refuses one by name instead of rendering the
+/// material its mean weight favours.
+#[test]
+fn the_gpu_refuses_a_mix() {
+    let scene = scene(0.5);
+    // The GPU tests' policy (tests/gpu_common): no adapter fails unless skipping is asked for.
+    if std::env::var_os("LUMIS_SKIP_GPU_TESTS").is_some() {
+        return;
+    }
+    let ctx = lumis::gpu::GpuContext::new().unwrap_or_else(|e| panic!("{e}"));
+    let err = lumis::gpu::GpuScene::new(ctx, scene)
+        .err()
+        .expect("a scene with a mix must be refused");
+    assert!(
+        err.to_string().contains("\"materials[0]\" is a mix"),
+        "{err}"
+    );
+}

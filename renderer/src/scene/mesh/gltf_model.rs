@@ -51,8 +51,9 @@ pub struct CameraNode {
     pub perspective: Option<(f32, Option<f32>)>,
 }
 
-/// Reads `path` as [`super::load`] does, as a [`Model`]: the same checks and errors, and also those of
-/// the materials' textures and images (`materials[2].pbrMetallicRoughness.baseColorTexture`).
+/// Reads `path` as [`super::load`] does, as a [`Model`]: the same checks and errors, and also
+/// those of the materials' textures and images
+/// (`materials[2].pbrMetallicRoughness.baseColorTexture`).
 pub fn load_model(path: &Path) -> Result<Model, MeshError> {
     let bytes = std::fs::read(path).map_err(|e| MeshError::at(path, "", e))?;
     let glb = bytes.starts_with(b"glTF");
