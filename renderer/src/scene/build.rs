@@ -165,6 +165,8 @@ pub fn box_faces(min: DVec3, max: DVec3, rot_deg: f64, translate: DVec3) -> [[DV
     faces
 }
 
+/// A quad's two primitives. [`QuadLight::triangle_point`] finds a textured quad light's sampled
+/// points in this split; the two change together (`tests/textured_emission.rs` checks them).
 fn quad_triangles(corner: Vec3, eu: Vec3, ev: Vec3) -> [[Vec3; 3]; 2] {
     [
         [corner, corner + eu, corner + eu + ev],
@@ -314,7 +316,8 @@ impl Scene {
                     err("emitter has zero area, or an area too large, in single precision")
                 })?;
                 if texture != NONE {
-                    light.set_texture(texture);
+                    let textured = light.set_texture(texture);
+                    debug_assert!(textured, "only area lights come from shapes");
                 }
                 lights.push(light);
                 Ok(lights.len() as u32 - 1)
