@@ -23,7 +23,6 @@ use common::{build, check_unbiased, render};
 use lumis::engine::Progressive;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSampling;
-use lumis::metrics::{ImageWithVariance, block_z_test};
 
 /// The checkerboard's two roughnesses.
 const ALPHAS: [f32; 2] = [0.02, 0.4];
@@ -63,22 +62,7 @@ fn checker_alpha() -> String {
 /// The block z-test of `r` against `reference`, 8 × 8 blocks, α = 0.01.
 fn compare(what: &str, r: &Progressive, reference: &Progressive) -> Result<(), String> {
     assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
-    let (mean, var) = (r.film().mean(), r.film().variance_of_mean());
-    let (ref_mean, ref_var) = (reference.film().mean(), reference.film().variance_of_mean());
-    let t = block_z_test(
-        SIZE,
-        SIZE,
-        &ImageWithVariance {
-            mean: &mean,
-            var: &var,
-        },
-        &ImageWithVariance {
-            mean: &ref_mean,
-            var: &ref_var,
-        },
-        8,
-        0.01,
-    );
+    let t = common::renders_z_test(r, reference, 8, 0.01);
     check_unbiased(what, &t)
 }
 

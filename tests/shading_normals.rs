@@ -36,9 +36,7 @@ use common::{METHODS, STRATEGIES, Tally, render};
 use lumis::engine::Progressive;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSampling;
-use lumis::metrics::{
-    BlockTest, ImageWithVariance, block_z_test, normal_two_sided_critical, sidak,
-};
+use lumis::metrics::{BlockTest, normal_two_sided_critical, sidak};
 use lumis::scene::mesh::MeshData;
 use lumis::scene::mesh::ply::{self, Encoding};
 use lumis::scene::mesh::uv_sphere::UvSphere;
@@ -86,23 +84,7 @@ fn sphere_scene(folder: &Path, sphere: &str) -> Arc<Scene> {
 }
 
 fn compare(a: &Progressive, b: &Progressive, alpha: f64) -> BlockTest {
-    let (fa, fb) = (a.film(), b.film());
-    let (ma, mb) = (fa.mean(), fb.mean());
-    let (va, vb) = (fa.variance_of_mean(), fb.variance_of_mean());
-    block_z_test(
-        fa.width,
-        fa.height,
-        &ImageWithVariance {
-            mean: &ma,
-            var: &va,
-        },
-        &ImageWithVariance {
-            mean: &mb,
-            var: &vb,
-        },
-        8,
-        alpha,
-    )
+    common::renders_z_test(a, b, 8, alpha)
 }
 
 fn mis() -> Settings {

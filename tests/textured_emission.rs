@@ -40,7 +40,7 @@ use lumis::geometry::primitive::NONE;
 use lumis::image_io::Image;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::{Light, LightSampling};
-use lumis::metrics::{ImageWithVariance, block_z_test, normal_two_sided_critical, sidak};
+use lumis::metrics::{normal_two_sided_critical, sidak};
 use lumis::scene::{Scene, parse_scene_in};
 use lumis::textures::Texture;
 use std::path::{Path, PathBuf};
@@ -368,7 +368,6 @@ fn strategies_agree_on_textured_emitters() {
         ),
     ];
     let alpha = sidak(0.01, cases.len());
-    let (ref_mean, ref_var) = (reference.film().mean(), reference.film().variance_of_mean());
     let mut failures = Vec::new();
     for (i, (strategy, light_sampling, spp)) in cases.into_iter().enumerate() {
         let settings = Settings {
@@ -378,21 +377,7 @@ fn strategies_agree_on_textured_emitters() {
         };
         let r = render(&scene, settings, spp, 10 + i as u32);
         assert_eq!(r.film().nonfinite, 0);
-        let (mean, var) = (r.film().mean(), r.film().variance_of_mean());
-        let t = block_z_test(
-            SIZE,
-            SIZE,
-            &ImageWithVariance {
-                mean: &mean,
-                var: &var,
-            },
-            &ImageWithVariance {
-                mean: &ref_mean,
-                var: &ref_var,
-            },
-            8,
-            alpha,
-        );
+        let t = common::renders_z_test(&r, &reference, 8, alpha);
         let what = format!("textured emitters {strategy:?} {light_sampling:?}");
         if let Err(msg) = check_unbiased(&what, &t) {
             failures.push(msg);
