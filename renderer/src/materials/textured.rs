@@ -5,6 +5,8 @@
 //! Which parameters: `albedo` (diffuse, plastic), `reflectance` (a conductor's tint), `alpha`
 //! (conductor, dielectric). A plastic's `alpha` is not texturable: its coat-albedo table is built
 //! per roughness (≈ 1 ms), far too slow per hit; the scene builder rejects it with a message.
+//!
+//! WGSL twin: `material.wgsl` (`material_at`).
 
 use super::{ConductorFresnel, Material};
 use crate::textures::Texture;
