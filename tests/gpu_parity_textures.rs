@@ -231,7 +231,7 @@ const LOOKUP_BODY: &str = "let a = inp(0u);
     outp(0u, vec4f(texture_eval(bitcast<u32>(m.a.w), uv), texture_eval_scalar(bitcast<u32>(m.c.w), uv)));";
 
 /// `texture_eval` and `texture_eval_scalar` against `Texture::eval` and `eval_scalar` for every
-/// texture of [`textures_under_test`] at its [`lookup_points`] (about 19k lookups), to the
+/// texture of [`textures_under_test`] at its [`lookup_points`] (41936 lookups), to the
 /// tolerances of the module doc; seed 17/70.
 #[test]
 fn texture_lookups_match_the_cpu() {
