@@ -100,28 +100,3 @@ fn checkerboard_albedo_matches_its_closed_form_in_every_strategy() {
     }
     tally.finish("checkerboard_albedo", comparisons);
 }
-
-/// The GPU backend does not evaluate textures yet: it refuses a textured scene by name instead
-/// of rendering it untextured.
-#[test]
-fn the_gpu_refuses_textured_materials() {
-    let json = r#"{
-  "camera": {"from": [0, 3, -1], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 60,
-             "width": 8, "height": 8},
-  "background": [1, 1, 1],
-  "materials": {"floor": {"type": "diffuse", "albedo": {"type": "checkerboard",
-      "color0": [0.2, 0.2, 0.2], "color1": [0.8, 0.8, 0.8]}}},
-  "shapes": [{"type": "quad", "corner": [-2, 0, -2], "edge_u": [0, 0, 4], "edge_v": [4, 0, 0],
-              "material": "floor"}]
-}"#;
-    let scene = build(json);
-    // The GPU tests' policy (tests/gpu_common): no adapter fails unless skipping is asked for.
-    if std::env::var_os("LUMIS_SKIP_GPU_TESTS").is_some() {
-        return;
-    }
-    let ctx = lumis::gpu::GpuContext::new().unwrap_or_else(|e| panic!("{e}"));
-    let err = lumis::gpu::GpuScene::new(ctx, scene)
-        .err()
-        .expect("a textured scene must be refused");
-    assert!(err.to_string().contains("\"floor\" is textured"), "{err}");
-}

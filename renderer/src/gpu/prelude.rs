@@ -11,13 +11,14 @@
 //! WGSL twin: `tags.wgsl`.
 
 use super::scene::{
-    BVH2_STACK_SIZE, CWBVH_STACK_SIZE, FresnelTag, HeuristicTag, LightSamplingTag, LightTag,
-    MaterialTag, ShapeTag, StrategyTag,
+    BVH2_STACK_SIZE, CWBVH_STACK_SIZE, ChannelTag, FresnelTag, HeuristicTag, LightSamplingTag,
+    LightTag, MaterialTag, ShapeTag, StrategyTag, TextureTag, WrapTag, textures,
 };
 use crate::geometry::{mesh_attributes, primitive, ray, wide_bvh};
 use crate::lights::{polygon, sphere};
 use crate::materials::{coat_albedo, ggx};
 use crate::sampling::{self, spherical_rectangle};
+use crate::textures::LUMINANCE_WEIGHTS;
 
 /// A constant's value, with its WGSL type.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -154,6 +155,11 @@ pub fn constants() -> Vec<Constant> {
         // Mesh vertex attributes.
         u32c("ATTR_HAS_NORMALS", mesh_attributes::HAS_NORMALS),
         u32c("ATTR_HAS_UVS", mesh_attributes::HAS_UVS),
+        // Textures.
+        u32c("RECORD_VEC4S", textures::RECORD_VEC4S),
+        f32c("LUMINANCE_R", LUMINANCE_WEIGHTS[0]),
+        f32c("LUMINANCE_G", LUMINANCE_WEIGHTS[1]),
+        f32c("LUMINANCE_B", LUMINANCE_WEIGHTS[2]),
     ];
     c.extend(tags(MaterialTag::ALL));
     c.extend(tags(FresnelTag::ALL));
@@ -162,6 +168,9 @@ pub fn constants() -> Vec<Constant> {
     c.extend(tags(StrategyTag::ALL));
     c.extend(tags(HeuristicTag::ALL));
     c.extend(tags(LightSamplingTag::ALL));
+    c.extend(tags(TextureTag::ALL));
+    c.extend(tags(WrapTag::ALL));
+    c.extend(tags(ChannelTag::ALL));
     #[cfg(feature = "mutants")]
     c.extend(mutant_constants(crate::mutants::active()));
     c
@@ -292,6 +301,11 @@ mod tests {
             ("HEURISTIC_POWER", Value::U32(1)),
             ("LIGHT_SAMPLING_SOLID_ANGLE", Value::U32(1)),
             ("FRESNEL_TINT", Value::U32(1)),
+            ("TEXTURE_CHECKERBOARD", Value::U32(2)),
+            ("WRAP_CLAMP", Value::U32(2)),
+            ("CHANNEL_B", Value::U32(3)),
+            ("RECORD_VEC4S", Value::U32(4)),
+            ("LUMINANCE_G", Value::F32(0.715_160)),
         ] {
             assert_eq!(value(name), want, "{name}");
         }
@@ -311,5 +325,8 @@ mod tests {
         check(StrategyTag::ALL);
         check(HeuristicTag::ALL);
         check(LightSamplingTag::ALL);
+        check(TextureTag::ALL);
+        check(WrapTag::ALL);
+        check(ChannelTag::ALL);
     }
 }

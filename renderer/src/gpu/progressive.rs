@@ -388,7 +388,15 @@ mod tests {
 
     /// Non-finite samples of a 2 spp render of `scene()` with `corrupt` applied to its records.
     fn nonfinite(ctx: &Arc<GpuContext>, corrupt: impl FnOnce(&mut Records)) -> u64 {
-        let scene = scene();
+        nonfinite_of(scene(), ctx, corrupt)
+    }
+
+    /// [`nonfinite`] for `scene`.
+    fn nonfinite_of(
+        scene: Arc<Scene>,
+        ctx: &Arc<GpuContext>,
+        corrupt: impl FnOnce(&mut Records),
+    ) -> u64 {
         let mut records = Records::of(&scene);
         corrupt(&mut records);
         let gpu = GpuScene::upload(ctx.clone(), scene, false, records).unwrap();
@@ -418,5 +426,62 @@ mod tests {
         // The floor's first triangle.
         let n = nonfinite(&ctx, |r| r.prims[0].a[3] = bad_shape);
         assert!(n > 0, "shape: {n}");
+    }
+
+    /// The same for texture records: an unknown kind, wrap mode or channel in the textures of a
+    /// conductor's reflectance and α (a 2×2 bitmap) makes the samples that read them NaN.
+    #[test]
+    fn unknown_texture_tags_are_counted_as_nonfinite_samples() {
+        use crate::gpu::scene::{ChannelTag, TextureTag, WrapTag};
+        use crate::materials::textured::MaterialTextures;
+        use crate::textures::{BitmapOptions, BitmapTexture, Channel, Texture, WrapMode};
+        let Some(ctx) = GpuContext::for_tests() else {
+            return;
+        };
+        let json = r#"{
+          "camera": {"from": [0, 1, -3], "to": [0, 1, 0], "up": [0, 1, 0], "vfov_deg": 60, "width": 8, "height": 8},
+          "materials": {"m": {"type": "conductor", "reflectance": [0.6, 0.6, 0.6], "alpha": 0.3}},
+          "shapes": [
+            {"type": "quad", "corner": [-2, 0, -2], "edge_u": [0, 0, 4], "edge_v": [4, 0, 0], "material": "m"},
+            {"type": "quad", "corner": [-2, 0, 2], "edge_u": [4, 0, 0], "edge_v": [0, 3, 0], "material": "m"},
+            {"type": "quad", "corner": [-0.5, 2.5, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "emission": [5, 5, 5]}
+          ]
+        }"#;
+        let mut scene = Scene::from_desc(&parse_scene(json).unwrap()).unwrap();
+        let image = Arc::new(crate::image_io::Image {
+            width: 2,
+            height: 2,
+            data: vec![glam::Vec3::new(0.2, 0.4, 0.6); 4],
+        });
+        let bitmap = |channel| {
+            let options = BitmapOptions {
+                wrap: WrapMode::Mirror,
+                channel,
+                ..BitmapOptions::default()
+            };
+            Some(Texture::Bitmap(BitmapTexture::new(image.clone(), options)))
+        };
+        scene.material_textures[0] = Some(MaterialTextures {
+            reflectance: bitmap(Channel::Luminance),
+            alpha: bitmap(Channel::G),
+            ..Default::default()
+        });
+        let scene = Arc::new(scene);
+        let pixels = 64;
+        assert_eq!(nonfinite_of(scene.clone(), &ctx, |_| {}), 0);
+        // Record 0 is the reflectance's, record 1 the α's (4 vec4 each from `textures`).
+        let bad = |n: usize| f32::from_bits(n as u32);
+        let at = |r: &Records, record: usize, k: usize| (r.textures as usize + 4 * record, k);
+        for (what, record, k, tag) in [
+            ("kind", 0, 0, bad(TextureTag::ALL.len())),
+            ("wrap", 0, 1, bad(WrapTag::ALL.len())),
+            ("channel", 1, 2, bad(ChannelTag::ALL.len())),
+        ] {
+            let n = nonfinite_of(scene.clone(), &ctx, |r| {
+                let (i, k) = at(r, record, k);
+                r.vertex_data[i][k] = tag;
+            });
+            assert!(n > pixels, "texture {what}: {n}");
+        }
     }
 }

@@ -6,6 +6,8 @@
 //! (conductor, plastic, dielectric). A plastic's coat-albedo table depends on its α and takes
 //! ≈ 1 ms to build, far too slow per hit: [`MaterialTextures::new`] builds the plastic's tables
 //! on a grid of α once, and a hit blends the two around its α ([`super::plastic_textured`]).
+//!
+//! WGSL twin: `material.wgsl` (`material_at`); the GPU refuses a plastic's textured α.
 
 use super::plastic_textured::CoatGrid;
 use super::{ConductorFresnel, Material, Plastic};
@@ -22,7 +24,7 @@ pub struct MaterialTextures {
     /// GGX α of a conductor, plastic or dielectric (the texture's scalar).
     pub alpha: Option<Texture>,
     /// A plastic with a textured α: its coat tables on the α grid, for its F0.
-    coat_grid: Option<CoatGrid>,
+    pub(crate) coat_grid: Option<CoatGrid>,
 }
 
 impl MaterialTextures {

@@ -2,6 +2,8 @@
 //! `bitmap` plugin with `filter_type = bilinear` (Dr.Jit's `Texture2f::eval`): continuous texel
 //! coordinate `u'·W − ½`, the two neighbouring integer texels wrapped by the [`WrapMode`], weights
 //! `1 − {x}` and `{x}`; the conventions are in the module doc of [`crate::textures`].
+//!
+//! WGSL twin: `texture.wgsl`.
 
 use super::{Channel, UvTransform};
 use crate::image_io::Image;

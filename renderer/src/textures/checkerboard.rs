@@ -6,6 +6,8 @@
 //! colours (`mask.x != mask.y` selects `color0` there, `==` in `eval`); lumis has one rule for
 //! both, so a converter writing a checkerboard into a Mitsuba *scalar* slot swaps `color0` and
 //! `color1` to get the same image.
+//!
+//! WGSL twin: `texture.wgsl`.
 
 use super::UvTransform;
 use glam::{Vec2, Vec3};

@@ -29,6 +29,8 @@
 //!   or one chosen channel ([`Channel`]; glTF keeps roughness in G and metallic in B).
 //!
 //! A texture never changes after it is built; bitmaps share their texels through an `Arc`.
+//!
+//! WGSL twin: `texture.wgsl` (uploaded by `gpu/scene/textures.rs`).
 
 pub mod bitmap;
 pub mod checkerboard;
@@ -195,6 +197,9 @@ impl Channel {
     }
 }
 
+/// Mitsuba 3's luminance coefficients for R, G and B ([`luminance`]; the GPU's prelude too).
+pub const LUMINANCE_WEIGHTS: [f32; 3] = [0.212_671, 0.715_160, 0.072_169];
+
 /// Luminance with Mitsuba 3's coefficients (`0.212671, 0.715160, 0.072169`, its
 /// `luminance()`), so that a scalar slot reads what Mitsuba's `eval_1` reads; a grey value is
 /// returned exactly (Mitsuba keeps a grey image as one channel and reads it unchanged).
@@ -204,7 +209,8 @@ pub fn luminance(c: Vec3) -> f32 {
     if c.x == c.y && c.y == c.z {
         c.x
     } else {
-        c.x * 0.212_671 + c.y * 0.715_160 + c.z * 0.072_169
+        let [r, g, b] = LUMINANCE_WEIGHTS;
+        c.x * r + c.y * g + c.z * b
     }
 }
 

@@ -1,14 +1,16 @@
 //! Material records (`Material` in `material.wgsl`), one per [`Material`], and their kind tags.
 //! WGSL twin: `material.wgsl` (the record layout and the `switch` on [`MaterialTag`]).
 
-use super::v4;
+use super::{bits, v4};
 use crate::gpu::prelude::gpu_tags;
 use crate::materials::{ConductorFresnel, Material};
 use crate::scene::Scene;
 use bytemuck::{Pod, Zeroable};
 
 /// A material record (`Material` in `material.wgsl`): `h` = (kind, two-sided, aux, has a smooth
-/// part), then three vec4 of parameters per kind (see the comment at the top of `material.wgsl`).
+/// part), then three vec4 of parameters per kind (see the comment at the top of `material.wgsl`);
+/// `a.w` and `c.w` hold the bits of its colour and roughness textures' ids, `NONE` where constant
+/// ([`super::textures`]).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuMaterial {
@@ -55,17 +57,18 @@ gpu_tags! {
 }
 
 /// The records of `scene`'s materials; a plastic's coat table is appended to `tables` and its
-/// record holds the offset.
-pub(super) fn encode(scene: &Scene, tables: &mut Vec<f32>) -> Vec<GpuMaterial> {
+/// record holds the offset; `slots` are each material's texture ids ([`super::textures`]).
+pub(super) fn encode(scene: &Scene, tables: &mut Vec<f32>, slots: &[[u32; 2]]) -> Vec<GpuMaterial> {
     scene
         .materials
         .iter()
         .zip(&scene.two_sided)
-        .map(|(m, &two_sided)| {
+        .zip(slots)
+        .map(|((m, &two_sided), &[colour, alpha])| {
             let kind = MaterialTag::of(m).gpu_tag();
             let smooth = m.has_smooth_part() as u32;
             let z = [0.0; 4];
-            match m {
+            let mut r = match m {
                 Material::Diffuse(d) => GpuMaterial {
                     h: [kind, two_sided as u32, 0, smooth],
                     a: v4(d.albedo, 0.0),
@@ -109,7 +112,10 @@ pub(super) fn encode(scene: &Scene, tables: &mut Vec<f32>) -> Vec<GpuMaterial> {
                     b: z,
                     c: z,
                 },
-            }
+            };
+            r.a[3] = bits(colour);
+            r.c[3] = bits(alpha);
+            r
         })
         .collect()
 }

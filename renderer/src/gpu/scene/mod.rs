@@ -1,8 +1,9 @@
 //! [`GpuScene`]: the scene flattened into GPU storage buffers, one record encoder per kind
-//! ([`materials`], [`lights`], [`shapes`], [`attributes`], [`bvh`]) whose layouts the WGSL
-//! records mirror, the environment map as a texture ([`envmap`]), and the per-dispatch uniform
-//! ([`params`]). Each kind's tags are a `#[repr(u32)]` enum next to its encoder, which the
-//! generated WGSL prelude (`gpu/prelude.rs`) names for the shaders.
+//! ([`materials`], [`lights`], [`shapes`], [`attributes`], [`textures`], [`bvh`]) whose layouts
+//! the WGSL records mirror, the environment map and the bitmaps' texels as textures ([`envmap`],
+//! [`textures`]), and the per-dispatch uniform ([`params`]). Each kind's tags are a
+//! `#[repr(u32)]` enum next to its encoder, which the generated WGSL prelude (`gpu/prelude.rs`)
+//! names for the shaders.
 //! WGSL twin: `bindings.wgsl` (the bind group this module creates).
 //!
 //! Primitives are uploaded in the BVH's leaf order, which is the order of
@@ -18,6 +19,7 @@ pub mod lights;
 pub mod materials;
 pub mod params;
 pub mod shapes;
+pub mod textures;
 
 pub use attributes::AttrOffsets;
 pub use bvh::{BVH2_STACK_SIZE, CWBVH_STACK_SIZE};
@@ -25,6 +27,7 @@ pub use lights::{GpuLight, LightTag};
 pub use materials::{FresnelTag, GpuMaterial, MaterialTag};
 pub use params::{GpuParams, HeuristicTag, LightSamplingTag, PARAMS_STRIDE, StrategyTag};
 pub use shapes::{GpuPrim, ShapeTag};
+pub use textures::{ChannelTag, TextureTag, WrapTag};
 
 use super::shader::Features;
 use super::{GpuContext, GpuError};
@@ -32,6 +35,7 @@ use crate::lights::Light;
 use crate::scene::Scene;
 use envmap::EnvmapTexels;
 use std::sync::Arc;
+use textures::TextureTexels;
 use wgpu::util::DeviceExt;
 
 /// The scene on the GPU.
@@ -48,9 +52,13 @@ pub struct GpuScene {
     /// The environment map's texels (a 1×1 placeholder without one), kept with its view.
     _envmap: wgpu::Texture,
     envmap_view: wgpu::TextureView,
+    /// The bitmaps' texels (a 1×1 placeholder without any), kept with its view.
+    _texels: wgpu::Texture,
+    texels_view: wgpu::TextureView,
     light_cdf: u32,
     light_pmf: u32,
     attr: AttrOffsets,
+    textures: u32,
     layout: wgpu::BindGroupLayout,
 }
 
@@ -59,7 +67,8 @@ pub(crate) struct Records {
     pub(crate) prims: Vec<GpuPrim>,
     pub(crate) materials: Vec<GpuMaterial>,
     pub(crate) lights: Vec<GpuLight>,
-    /// Polygon lights' triangles, then the mesh vertex attributes at `attr`.
+    /// Polygon lights' triangles, then the mesh vertex attributes at `attr`, then the texture
+    /// records at `textures`.
     pub(crate) vertex_data: Vec<[f32; 4]>,
     /// Coat albedo tables, an environment map's sampling tables, then the light-selection CDF
     /// and pmf.
@@ -68,6 +77,12 @@ pub(crate) struct Records {
     pub(crate) light_pmf: u32,
     /// Where the attribute arrays start in `vertex_data`.
     pub(crate) attr: AttrOffsets,
+    /// Where the texture records start in `vertex_data`.
+    pub(crate) textures: u32,
+    /// The bitmaps' texels.
+    pub(crate) texels: TextureTexels,
+    /// What to call each texture record in an error.
+    pub(crate) texture_names: Vec<String>,
     /// The environment map's texels, if the scene has one (at most one: its background).
     pub(crate) envmap: Option<EnvmapTexels>,
 }
@@ -78,10 +93,13 @@ impl Records {
         let mut tables = Vec::new();
         let mut vertex_data = Vec::new();
         let prims = shapes::encode(scene);
-        let materials = materials::encode(scene, &mut tables);
+        let scene_textures = textures::encode(scene);
+        let materials = materials::encode(scene, &mut tables, &scene_textures.slots);
         let lights = lights::encode(scene, &mut vertex_data, &mut tables);
         let (light_cdf, light_pmf) = lights::selection(scene, &mut tables);
         let attr = attributes::encode(&scene.attributes, &mut vertex_data);
+        let textures = vertex_data.len() as u32;
+        vertex_data.extend_from_slice(&scene_textures.records);
         let mut maps = scene.lights.iter().filter_map(|l| match l {
             Light::Envmap(e) => Some(EnvmapTexels::of(e)),
             _ => None,
@@ -98,6 +116,9 @@ impl Records {
             light_cdf,
             light_pmf,
             attr,
+            textures,
+            texels: scene_textures.texels,
+            texture_names: scene_textures.names,
             envmap,
         }
     }
@@ -127,13 +148,16 @@ pub(crate) fn storage_layout_entry(binding: u32, read_only: bool) -> wgpu::BindG
 }
 
 impl GpuScene {
-    /// Flattens and uploads `scene`, with the CWBVH.
+    /// Flattens and uploads `scene`, with the CWBVH. Every scene the builder makes is mirrored
+    /// (textured materials since issue 17, item 7): the texture slots are destructured in
+    /// `textures::slots`, so a slot added to `MaterialTextures` fails to compile there until the
+    /// GPU has it (or refuses it with [`GpuError::Unsupported`]).
     pub fn new(ctx: Arc<GpuContext>, scene: Arc<Scene>) -> Result<GpuScene, GpuError> {
         GpuScene::with_bvh2(ctx, scene, false)
     }
 
-    /// Refuses scenes the GPU would render differently from the CPU: mixes, textured materials
-    /// and textured emission are CPU-only for now (issue 17, items 3 and 7).
+    /// Refuses scenes the GPU would render differently from the CPU: mixes, textured emission
+    /// and a plastic's textured α are CPU-only for now (issue 17, items 3 and 7).
     fn check_supported(scene: &Scene) -> Result<(), GpuError> {
         // Mixes are resolved on the CPU only (`Scene::resolve_mix`).
         if let Some(i) = scene.mixes.iter().position(Option::is_some) {
@@ -164,13 +188,7 @@ impl GpuScene {
                 scene.material_names[i]
             )));
         }
-        match scene.material_textures.iter().position(Option::is_some) {
-            Some(i) => Err(GpuError::Unsupported(format!(
-                "material \"{}\" is textured",
-                scene.material_names[i]
-            ))),
-            None => Ok(()),
-        }
+        Ok(())
     }
 
     /// Flattens and uploads `scene`; with `bvh2` (and a scene large enough for a BVH) it also
@@ -211,11 +229,12 @@ impl GpuScene {
         };
         let device = &ctx.device;
         let limit = device.limits().max_storage_buffer_binding_size as usize;
+        textures::check_records(&records.texture_names, records.textures as usize, limit)?;
         for (what, size) in [
             ("BVH nodes", nodes.len()),
             ("primitives", records.prims.len() * size_of::<GpuPrim>()),
             (
-                "light triangles and mesh vertex attributes",
+                "light triangles, mesh vertex attributes and texture records",
                 records.vertex_data.len() * size_of::<[f32; 4]>(),
             ),
             (
@@ -244,6 +263,9 @@ impl GpuScene {
         }
         let envmap = texels.upload(device, &ctx.queue);
         let envmap_view = envmap.create_view(&wgpu::TextureViewDescriptor::default());
+        let texel_layout = records.texels.layout(max)?;
+        let texture_texels = records.texels.upload(device, &ctx.queue, texel_layout);
+        let texels_view = texture_texels.create_view(&wgpu::TextureViewDescriptor::default());
         // Bindings may not be empty: pad every buffer to at least one 16-byte element.
         let storage = |label: &str, data: &[u8]| {
             let mut bytes = data.to_vec();
@@ -267,9 +289,12 @@ impl GpuScene {
             tables: storage("lumis tables", bytemuck::cast_slice(&r.tables)),
             _envmap: envmap,
             envmap_view,
+            _texels: texture_texels,
+            texels_view,
             light_cdf: r.light_cdf,
             light_pmf: r.light_pmf,
             attr: r.attr,
+            textures: r.textures,
             layout,
             features,
             scene,
@@ -292,9 +317,10 @@ impl GpuScene {
         entries.extend((1..=6).map(|b| storage(b, true)));
         entries.push(storage(7, false));
         entries.push(storage(8, false));
-        // The environment map (`envmap_texels`): rgba32float, read with textureLoad only.
-        entries.push(wgpu::BindGroupLayoutEntry {
-            binding: 9,
+        // The environment map (`envmap_texels`) and the bitmaps' texels (`texture_texels`):
+        // rgba32float, read with textureLoad only.
+        entries.extend([9, 10].map(|binding| wgpu::BindGroupLayoutEntry {
+            binding,
             visibility: wgpu::ShaderStages::COMPUTE,
             ty: wgpu::BindingType::Texture {
                 sample_type: wgpu::TextureSampleType::Float { filterable: false },
@@ -302,7 +328,7 @@ impl GpuScene {
                 multisampled: false,
             },
             count: None,
-        });
+        }));
         device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("lumis scene"),
             entries: &entries,
@@ -367,6 +393,10 @@ impl GpuScene {
                     wgpu::BindGroupEntry {
                         binding: 9,
                         resource: wgpu::BindingResource::TextureView(&self.envmap_view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 10,
+                        resource: wgpu::BindingResource::TextureView(&self.texels_view),
                     },
                 ],
             })

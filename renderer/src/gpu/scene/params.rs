@@ -42,8 +42,8 @@ pub struct GpuParams {
     pub mix_weight: f32,
     /// Samples of one dispatch (its z layers), from `sample` on; see `GpuProgressive`.
     pub samples_per_dispatch: u32,
-    /// Padding.
-    pub pad: u32,
+    /// Where the texture records start in the vertex data (`gpu/scene/textures.rs`).
+    pub textures: u32,
     /// Camera origin; w = tan of the half horizontal field of view.
     pub cam_origin: [f32; 4],
     /// Camera forward axis; w = tan of the half vertical field of view.
@@ -144,7 +144,7 @@ impl GpuScene {
             light_pmf: self.light_pmf,
             mix_weight,
             samples_per_dispatch: 1,
-            pad: 0,
+            textures: self.textures,
             cam_origin: v4(cam.origin, tan_x),
             cam_forward: v4(forward, tan_y),
             cam_right: v4(right, 0.0),

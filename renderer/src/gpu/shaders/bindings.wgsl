@@ -21,7 +21,8 @@ struct Params {
     mix_weight: f32,
     // Samples of this dispatch (its z layers), from `sample` on (`path.wgsl`, `fold`).
     samples_per_dispatch: u32,
-    pad0: u32,
+    // Where the texture records start in `vertex_data` (`texture.wgsl`).
+    textures: u32,
     // Camera: origin, forward, right, up; tan_x, tan_y in origin.w, forward.w.
     cam_origin: vec4f,
     cam_forward: vec4f,
@@ -66,8 +67,9 @@ fn check_param_tags(p: Params) {
 @group(0) @binding(3) var<storage, read> materials: array<Material>;
 @group(0) @binding(4) var<storage, read> lights: array<Light>;
 // Polygon lights' triangles (`light.wgsl`), then the mesh vertex attributes at `params.attr`
-// (`mesh_attributes.wgsl`): one buffer, as the path tracer already binds the 8 storage buffers
-// wgpu's portable limits allow per stage.
+// (`mesh_attributes.wgsl`), then the texture records at `params.textures` (`texture.wgsl`): one
+// buffer, as the path tracer already binds the 8 storage buffers wgpu's portable limits allow per
+// stage.
 @group(0) @binding(5) var<storage, read> vertex_data: array<vec4f>;
 @group(0) @binding(6) var<storage, read> tables: array<f32>;
 // Accumulation, three planes of width·height vec4: running mean, Welford's M2, mean of the
@@ -80,4 +82,9 @@ fn check_param_tags(p: Params) {
 // binding holds a 1×1 placeholder in scenes without a map, whose programs do not declare it.
 // #if HAS_ENVMAP
 @group(0) @binding(9) var envmap_texels: texture_2d<f32>;
+// #endif
+// The bitmaps' texels (`texture.wgsl`), one rgba32float texture used as a linear array; a 1×1
+// placeholder in scenes without bitmaps, whose programs do not declare it unless textured.
+// #if HAS_TEXTURES
+@group(0) @binding(10) var texture_texels: texture_2d<f32>;
 // #endif

@@ -45,12 +45,6 @@ fn envmap_to_world(l: Light, d: vec3f) -> vec3f {
     return vec3f(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
 }
 
-// acos to a few ulp through `atan2_precise` (the built-in may be as loose as atan's 4096 ulp).
-// 1 − x and 1 + x are exact where they matter (near ±1, Sterbenz), so the poles stay accurate.
-fn envmap_acos(x: f32) -> f32 {
-    return atan2_precise(safe_sqrt((1.0 - x) * (1.0 + x)), x);
-}
-
 // `EnvmapLight::uv`: (u, v) of a direction in the map's frame (not necessarily unit).
 fn envmap_uv(d_in: vec3f) -> vec2f {
     let d = normalize_glam(d_in);
@@ -62,7 +56,7 @@ fn envmap_uv(d_in: vec3f) -> vec2f {
     if u >= 1.0 {
         u = 0.0;
     }
-    return vec2f(u, envmap_acos(clamp(d.y, -1.0, 1.0)) / PI);
+    return vec2f(u, acos_precise(clamp(d.y, -1.0, 1.0)) / PI);
 }
 
 fn envmap_texel(i: u32, j: u32) -> vec3f {

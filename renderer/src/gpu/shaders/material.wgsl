@@ -1,5 +1,7 @@
 // The closed set of materials, the twin of `materials/mod.rs`: one record per material, a `switch`
-// on the same variant order as `Material` (Diffuse, Conductor, Plastic, Dielectric).
+// on the same variant order as `Material` (Diffuse, Conductor, Plastic, Dielectric); and, under
+// HAS_TEXTURES, `material_at`, the twin of `materials/textured.rs`, which evaluates a material's
+// textures at a hit.
 //
 // Record layout (see `gpu/scene/materials.rs`):
 //   h = (kind, two_sided, aux, has_smooth_part); kind = MATERIAL_*; aux = Fresnel kind for
@@ -8,6 +10,9 @@
 //   Conductor:  a.xyz η (or the tint), b.xyz k, c.x α.
 //   Plastic:    a.xyz albedo, b.xyz coat tint, c = (α, F0, 1/(1 − E_avg) or 0, _).
 //   Dielectric: a = (ior, α, _, _); never two-sided (its two sides are its two media).
+//   Every kind: a.w, c.w = bits of the ids of its colour texture (a diffuse's or plastic's albedo,
+//       a conductor's reflectance: replaces a.xyz) and its roughness texture (α: replaces a
+//       conductor's c.x, a dielectric's a.y), NONE where constant (`texture.wgsl`).
 
 struct Material {
     h: vec4<u32>,
@@ -158,3 +163,75 @@ fn material_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample 
 fn material_has_smooth_part(m: Material) -> bool {
     return m.h.w != 0u;
 }
+
+// #if HAS_TEXTURES
+// Whether `m` has a texture (`Scene::material_at` borrows the others as they are).
+fn material_textured(m: Material) -> bool {
+    return bitcast<u32>(m.a.w) != NONE || bitcast<u32>(m.c.w) != NONE;
+}
+
+// `MaterialTextures::at`: `m` with its textures evaluated at `uv`, and its has-a-smooth-part flag
+// recomputed for the values found (`Material::has_smooth_part`). The one place a material's
+// parameters come from textures: further texturable kinds plug in here.
+fn material_at(m_in: Material, uv: vec2f) -> Material {
+    var m = m_in;
+    let colour = bitcast<u32>(m.a.w);
+    let alpha = bitcast<u32>(m.c.w);
+    switch m.h.x {
+        case MATERIAL_DIFFUSE, MATERIAL_PLASTIC: {
+            // `Plastic::set_albedo` sets the albedo only: the coat's table and norm stay.
+            if colour != NONE {
+                m.a = vec4f(texture_eval(colour, uv), m.a.w);
+            }
+        }
+        case MATERIAL_CONDUCTOR: {
+            // A textured reflectance is a tint, whatever the constant's Fresnel.
+            if colour != NONE {
+                m.a = vec4f(texture_eval(colour, uv), m.a.w);
+                m.h.z = FRESNEL_TINT;
+            }
+            if alpha != NONE {
+                m.c.x = texture_eval_scalar(alpha, uv);
+            }
+        }
+        case MATERIAL_DIELECTRIC: {
+            if alpha != NONE {
+                m.a.y = texture_eval_scalar(alpha, uv);
+            }
+        }
+        default: {
+            m.a = vec4f(unknown_tag());
+        }
+    }
+    m.h.w = select(0u, 1u, material_smooth_part(m));
+    return m;
+}
+
+// `Material::has_smooth_part` of a record's current parameters.
+fn material_smooth_part(m: Material) -> bool {
+    switch m.h.x {
+        case MATERIAL_DIFFUSE: {
+            return true;
+        }
+// #if HAS_CONDUCTOR
+        case MATERIAL_CONDUCTOR: {
+            return !conductor_is_delta(m);
+        }
+// #endif
+// #if HAS_PLASTIC
+        case MATERIAL_PLASTIC: {
+            return plastic_has_smooth_part(m);
+        }
+// #endif
+// #if HAS_DIELECTRIC
+        case MATERIAL_DIELECTRIC: {
+            return !dielectric_is_delta(m);
+        }
+// #endif
+        default: {
+            _ = unknown_tag();
+            return false;
+        }
+    }
+}
+// #endif

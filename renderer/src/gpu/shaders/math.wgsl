@@ -188,3 +188,9 @@ fn atan2_precise(y: f32, x: f32) -> f32 {
     }
     return copysign(t, y);
 }
+
+// acos to a few ulp through `atan2_precise` (the built-in may be as loose as atan's 4096 ulp).
+// 1 − x and 1 + x are exact where they matter (near ±1, Sterbenz), so the poles stay accurate.
+fn acos_precise(x: f32) -> f32 {
+    return atan2_precise(safe_sqrt((1.0 - x) * (1.0 + x)), x);
+}

@@ -6,7 +6,8 @@
 //   meshes (params.attr.y): bits of (normal_base, uv_base, flags, 0);
 //   normals (params.attr.z): (x, y, z, 0), unit and in world space;
 //   uvs (params.attr.w): two per vec4, vertex i in .xy of vec4 i/2 if i is even, .zw if odd.
-// Only in programs that need it (scenes with shading normals; textures will add theirs).
+// Only in programs that need it: shading normals under HAS_SHADING_NORMALS, texture coordinates
+// under HAS_TEXTURES.
 
 fn attr_triangle(attr: u32) -> vec4<u32> {
     return bitcast<vec4<u32>>(vertex_data[params.attr.x + attr]);
@@ -16,15 +17,21 @@ fn attr_mesh(mesh: u32) -> vec4<u32> {
     return bitcast<vec4<u32>>(vertex_data[params.attr.y + mesh]);
 }
 
+// #if HAS_SHADING_NORMALS
 fn attr_normal(i: u32) -> vec3f {
     return vertex_data[params.attr.z + i].xyz;
 }
 
+// #endif
+
+// #if HAS_TEXTURES
 fn attr_uv(i: u32) -> vec2f {
     let q = vertex_data[params.attr.w + i / 2u];
     return select(q.xy, q.zw, (i & 1u) == 1u);
 }
+// #endif
 
+// #if HAS_SHADING_NORMALS
 // `MeshAttributes::shading_normal`'s `Option`: `found` false (and n = ng) where the triangle has
 // no vertex normals.
 struct ShadingNormal {
@@ -49,8 +56,10 @@ fn shading_normal(attr: u32, b: vec2f, ng: vec3f) -> ShadingNormal {
     return ShadingNormal(true, interpolate_normal(n0, n1, n2, b, ng));
 }
 
+// #endif
+
+// #if HAS_TEXTURES
 // `MeshAttributes::uv`: interpolated where the triangle has UVs, else b itself (also for NONE).
-// Textured materials will look up their texels at `mesh_uv(prim_attr(prim), hit.b)`.
 fn mesh_uv(attr: u32, b: vec2f) -> vec2f {
     if attr == NONE {
         return b;
@@ -65,6 +74,9 @@ fn mesh_uv(attr: u32, b: vec2f) -> vec2f {
     let t2 = attr_uv(mesh.y + tri.z);
     return (1.0 - b.x - b.y) * t0 + b.x * t1 + b.y * t2;
 }
+// #endif
+
+// #if HAS_SHADING_NORMALS
 
 // `interpolate_normal`: normalize((1−b1−b2)·n0 + b1·n1 + b2·n2), turned to ng's side; ng where
 // that is not a direction (squared length not above 1e-20, or not finite: tested by its bits, as
@@ -81,3 +93,4 @@ fn interpolate_normal(n0: vec3f, n1: vec3f, n2: vec3f, b: vec2f, ng: vec3f) -> v
     }
     return ns;
 }
+// #endif

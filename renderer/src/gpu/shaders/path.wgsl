@@ -1,9 +1,10 @@
 // The unidirectional path tracer, the twin of `integrator/path.rs` (one loop, four direct-light
 // strategies, Mitsuba's max_depth, Russian roulette from rr_depth, transmission through
 // dielectrics under HAS_DIELECTRIC only, so a scene without glass runs the reflection-only
-// program, and shading normals under HAS_SHADING_NORMALS only), and the render kernel: one
-// invocation per pixel draws one sample per dispatch and folds it into the accumulation with
-// Welford's update (stable variance in f32; the film reads back Σx and Σx² from it).
+// program, shading normals under HAS_SHADING_NORMALS only, textured materials under HAS_TEXTURES
+// only), and the render kernel: one invocation per pixel draws one sample per dispatch and folds
+// it into the accumulation with Welford's update (stable variance in f32; the film reads back Σx
+// and Σx² from it).
 
 // `EmissionWeight`: 0 one, 1 zero, 2 MIS, 3 mixture (BSDF branch). Local to this kernel, not in the
 // prelude: the CPU's enum carries its data and no record or parameter holds these.
@@ -154,8 +155,13 @@ fn radiance(camera_ray: Ray) -> vec3f {
             break;
         }
         let mi = prim_material(prim);
-        let m = materials[mi];
-        // (Textured materials will be evaluated here, at `mesh_uv(prim_attr(prim), hit.b)`.)
+        var m = materials[mi];
+// #if HAS_TEXTURES
+        // `Scene::material_at`: the textures evaluated at the hit's texture coordinates.
+        if material_textured(m) {
+            m = material_at(m, surface_uv(prim, hit));
+        }
+// #endif
         let wo_world = -normalize_glam(ray.d);
         // `n`: the geometric normal, which decides sides and ray offsets; the BSDF lives in the
         // frame of the shading normal `ns` (the geometric one where the mesh has none).

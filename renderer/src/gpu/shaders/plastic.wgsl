@@ -32,6 +32,14 @@ fn coat_albedo_eval(m: Material, mu_in: f32) -> f32 {
     return ea + t * (eb - ea);
 }
 
+// #if HAS_TEXTURES
+// `Plastic::has_smooth_part`: a rough coat, or a base that receives light (the encoder's flag;
+// `material_at` asks again for a textured albedo's value at a hit).
+fn plastic_has_smooth_part(m: Material) -> bool {
+    return !(m.c.x < SMOOTH_ALPHA) || (max_component(m.a.xyz) > 0.0 && m.c.z > 0.0);
+}
+// #endif
+
 fn plastic_coat_probability(m: Material, e_o: f32) -> f32 {
     let s = max(luminance(m.b.xyz) * e_o, 0.0);
     var d = 0.0;

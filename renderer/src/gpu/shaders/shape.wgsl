@@ -98,3 +98,47 @@ fn shape_surface_hit(p: Prim, ray: Ray, t: f32, prim: u32) -> SurfaceHit {
         }
     }
 }
+
+// #if HAS_TEXTURES
+// `Scene::uv` (`scene/surface.rs`): the texture coordinates of `hit` on primitive `p`. Triangles
+// interpolate their mesh's UVs, else give their barycentrics (`mesh_uv`; quads and box faces
+// carry UVs along their edges); spheres Mitsuba 3's (u = φ/2π from +x towards +y, v = θ/π from
+// +z); disks (r/radius, φ/2π) in the frame of their normal.
+fn surface_uv(p: Prim, hit: SurfaceHit) -> vec2f {
+    switch prim_kind(p) {
+// #if HAS_SPHERE_SHAPE
+        case SHAPE_SPHERE: {
+            let d = (hit.p - p.a.xyz) / p.d.w;
+            return vec2f(turn_fraction(atan2_precise(d.y, d.x)), acos_precise(clamp(d.z, -1.0, 1.0)) / PI);
+        }
+// #endif
+// #if HAS_DISK_SHAPE
+        case SHAPE_DISK: {
+            let local = to_local(frame_from_normal(p.d.xyz), hit.p - p.a.xyz);
+            let r = min(hypot(local.x, local.y) / p.d.w, 1.0);
+            return vec2f(r, turn_fraction(atan2_precise(local.y, local.x)));
+        }
+// #endif
+        // SHAPE_TRIANGLE (an unknown kind was flagged when it was intersected).
+        default: {
+            return mesh_uv(prim_attr(p), hit.b);
+        }
+    }
+}
+
+// An angle in (−π, π] as a fraction of a turn in [0, 1).
+fn turn_fraction(phi: f32) -> f32 {
+    return select(phi, phi + TAU, phi < 0.0) / TAU;
+}
+
+// `f32::hypot`: √(x² + y²) without overflow or underflow of the squares.
+fn hypot(x: f32, y: f32) -> f32 {
+    let m = max(abs(x), abs(y));
+    if m == 0.0 || !is_finite_f(m) {
+        return m;
+    }
+    let a = x / m;
+    let b = y / m;
+    return m * sqrt(a * a + b * b);
+}
+// #endif
