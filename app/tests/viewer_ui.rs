@@ -14,7 +14,8 @@ use lumis::scene::{GeometryDesc, MaterialDesc};
 use lumis_app::viewer::light_shape::LightShape;
 use lumis_app::viewer::params::StrategyKind;
 use lumis_app::viewer::{ViewerApp, ViewerOptions};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Duration;
 
 const WAIT: Duration = Duration::from_secs(60);
@@ -509,4 +510,181 @@ fn the_backend_menu_switches_to_the_gpu_and_back() {
     );
     assert_restarts(&mut h, "backend cpu", |h| pick_combo(h, "Backend", "CPU"));
     assert_eq!(h.state().params.backend, lumis::engine::Backend::Cpu);
+}
+
+/// A file dropped onto the window, as the windowing backend hands it to egui.
+#[derive(Debug)]
+struct Dropped(PathBuf);
+
+impl egui::DroppedFile for Dropped {
+    fn path(&self) -> &Path {
+        &self.0
+    }
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+/// Drops `path` onto the window and lets the viewer handle it.
+fn drop_file(h: &mut Harness<'static, ViewerApp>, path: &Path) {
+    h.input_mut()
+        .dropped_files
+        .push(Arc::new(Dropped(path.to_path_buf())));
+    h.run_steps(2);
+}
+
+/// Waits until the render thread has built and rendered the current description.
+fn wait_for_current_scene(h: &mut Harness<'static, ViewerApp>, what: &str) {
+    let version = h.state().desc_version;
+    assert!(
+        h.state_mut().wait_for(WAIT, |o| o.desc_version == version
+            && o.scene.is_some()
+            && !o.lanes.is_empty()
+            && o.lanes.iter().all(|l| !l.preview && l.spp >= 8)),
+        "{what}: the render thread did not render the current scene"
+    );
+    h.run_steps(1);
+}
+
+#[test]
+fn dropping_a_model_file_opens_it_and_a_broken_one_shows_its_line() {
+    let dir = scratch("drop");
+    // A unit square in the xz plane, as two triangles.
+    let model = dir.join("square.obj");
+    std::fs::write(
+        &model,
+        "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 2 3\nf 1 3 4\n",
+    )
+    .unwrap();
+    let mut h = harness("seed_cornell.json", 16, dir.clone());
+    wait_for_current_scene(&mut h, "the Cornell box");
+    let cornell_materials = h.state().desc.as_ref().unwrap().materials.len();
+    assert!(cornell_materials > 1);
+
+    drop_file(&mut h, &model);
+    assert_eq!(h.state().error, None);
+    assert_eq!(h.state().scene_path.as_deref(), Some(model.as_path()));
+    let names: Vec<String> = (h.state().desc.as_ref().unwrap().materials.iter())
+        .map(|m| m.name.clone())
+        .collect();
+    assert_eq!(names, ["model"], "the model scene's one material");
+    wait_for_current_scene(&mut h, "the dropped model");
+    let scene = h.state().output().scene.clone().unwrap();
+    assert_eq!(
+        scene.accel.primitives().len(),
+        2,
+        "the model's two triangles"
+    );
+    assert_eq!(scene.material_names[0], "model");
+
+    // A malformed OBJ (a face naming vertex 7 of 3, on line 4): its error, naming the file
+    // and the line, is shown in the window, and the model keeps rendering.
+    let bad = dir.join("broken.obj");
+    std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 1 0 1\nf 1 2 7\n").unwrap();
+    let version = h.state().desc_version;
+    drop_file(&mut h, &bad);
+    let err = h.state().error.clone().expect("the load error is kept");
+    assert!(
+        err.contains("broken.obj") && err.contains("line 4") && !err.contains('\n'),
+        "{err}"
+    );
+    h.get_by_label_contains("broken.obj");
+    assert_eq!(h.state().scene_path.as_deref(), Some(model.as_path()));
+    assert_eq!(h.state().desc_version, version, "the old scene stays");
+    assert_eq!(h.state().desc.as_ref().unwrap().materials[0].name, "model");
+}
+
+#[test]
+fn editing_a_textured_colour_replaces_the_texture_by_that_constant() {
+    // A diffuse floor whose albedo is a checkerboard of two halves (uv_scale [1, 0.4]: one
+    // column of squares, two rows: x < 0 is colour0, x > 0 colour1), seen from straight above
+    // under a constant sky: the image's left and right halves differ by (0.9 − 0.1)·L.
+    let dir = scratch("textured");
+    let file = dir.join("checker.json");
+    std::fs::write(
+        &file,
+        r#"{
+  "camera": {"from": [0, 3, 0], "to": [0, 0, 0], "up": [0, 0, 1], "vfov_deg": 40,
+             "width": 16, "height": 16},
+  "background": [1, 1, 1],
+  "materials": {"floor": {"type": "diffuse", "albedo": {"type": "checkerboard",
+      "color0": [0.1, 0.1, 0.1], "color1": [0.9, 0.9, 0.9], "uv_scale": [1, 0.4]}}},
+  "shapes": [{"type": "quad", "corner": [-2, 0, 2], "edge_u": [4, 0, 0], "edge_v": [0, 0, -4],
+              "material": "floor"}]
+}"#,
+    )
+    .unwrap();
+    // egui's colour picker draws a "📋" (copy) button that egui 0.37's default fonts have no
+    // glyph for: a box in the real window, a panic under the harness's default policy.
+    let app = ViewerApp::new(ViewerOptions {
+        scene: file,
+        width: Some(16),
+        height: Some(16),
+        screenshot_dir: dir,
+        ..ViewerOptions::default()
+    });
+    let mut h = Harness::builder()
+        .with_size([1200.0, 1400.0])
+        .allow_missing_glyphs()
+        .build_ui_state(|ui, app: &mut ViewerApp| app.show(ui), app);
+    h.run_steps(2);
+    // |mean of the left quarter − mean of the right quarter| of the image.
+    let contrast = |h: &Harness<'static, ViewerApp>| {
+        let lane = &h.state().output().lanes[0];
+        let (w, px) = (lane.width as usize, &lane.pixels);
+        let side = |cols: std::ops::Range<usize>| {
+            let v: Vec<f32> = (0..px.len())
+                .filter(|i| cols.contains(&(i % w)))
+                .map(|i| px[i].x)
+                .collect();
+            v.iter().sum::<f32>() / v.len() as f32
+        };
+        (side(0..w / 4) - side(w - w / 4..w)).abs()
+    };
+    wait_for_current_scene(&mut h, "the checkerboard");
+    let before = contrast(&h);
+    assert!(before > 0.5, "the texture shows: contrast {before}");
+
+    h.state_mut().selected_material = Some(0);
+    h.run_steps(2);
+    // Shown as textured: the editor says so and labels the colour as the texture's mean.
+    h.get_by_label_contains("Textured: editing a textured value");
+    h.get_by_label("Colour (texture mean)");
+    let textured = &h.state().desc.as_ref().unwrap().materials[0];
+    assert!(textured.textures.albedo.is_some());
+    let MaterialDesc::Diffuse { albedo: mean } = textured.material else {
+        panic!("the floor is diffuse")
+    };
+    assert!(
+        (mean - DVec3::splat(0.5)).abs().max_element() < 1e-6,
+        "{mean}"
+    );
+
+    // Edit the colour through the picker: open it, set its red channel.
+    assert_restarts(&mut h, "colour", |h| {
+        h.get_by_role(Role::ColorWell).click();
+        h.run_steps(2);
+        h.get_by_role_and_label(Role::SpinButton, "R")
+            .set_value_accesskit(250.0);
+    });
+    let edited = h.state().desc.as_ref().unwrap().materials[0].clone();
+    assert!(edited.textures.albedo.is_none(), "the texture is replaced");
+    let MaterialDesc::Diffuse { albedo } = edited.material else {
+        panic!()
+    };
+    assert!(
+        albedo.x > mean.x + 0.05,
+        "the red channel went up: {albedo}"
+    );
+    assert!((albedo.y - mean.y).abs() < 0.01 && (albedo.z - mean.z).abs() < 0.01);
+    // The render thread renders that constant: no texture in the built scene, and no contrast.
+    wait_for_current_scene(&mut h, "the edited colour");
+    let scene = h.state().output().scene.clone().unwrap();
+    assert!(scene.material_textures[0].is_none());
+    let lumis::materials::Material::Diffuse(d) = &scene.materials[0] else {
+        panic!()
+    };
+    assert_eq!(d.albedo, albedo.as_vec3());
+    let after = contrast(&h);
+    assert!(after < 0.1 * before, "contrast {before} → {after}");
 }

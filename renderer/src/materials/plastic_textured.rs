@@ -57,12 +57,11 @@ pub fn node_alpha(i: usize) -> f32 {
 }
 
 /// The grid interval holding `alpha` (≥ [`ggx::SMOOTH_ALPHA`], ≤ 1) and the blend weight of its
-/// upper node, linear in ln α.
+/// upper node, linear in ln α (the nodes are evenly spaced there, so one logarithm does).
 fn locate(alpha: f32) -> (usize, f32) {
     let x = (alpha.ln() - ln_first()) / -ln_first() * (GRID_SIZE - 1) as f32;
     let i = (x.max(0.0) as usize).min(GRID_SIZE - 2);
-    let (la, lb) = (node_alpha(i).ln(), node_alpha(i + 1).ln());
-    (i, ((alpha.ln() - la) / (lb - la)).clamp(0.0, 1.0))
+    (i, (x - i as f32).clamp(0.0, 1.0))
 }
 
 /// A plastic coat's albedo tables on the α grid, for one F0.
