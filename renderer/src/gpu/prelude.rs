@@ -16,7 +16,7 @@ use super::scene::{
 };
 use crate::geometry::{mesh_attributes, primitive, ray, wide_bvh};
 use crate::lights::{polygon, sphere};
-use crate::materials::{coat_albedo, ggx};
+use crate::materials::{coat_albedo, ggx, mix, plastic_textured};
 use crate::sampling::{self, spherical_rectangle};
 use crate::textures::LUMINANCE_WEIGHTS;
 
@@ -128,6 +128,18 @@ pub fn constants() -> Vec<Constant> {
         // Materials.
         f32c("SMOOTH_ALPHA", ggx::SMOOTH_ALPHA),
         u32c("E_TABLE_SIZE", const { count(coat_albedo::E_TABLE_SIZE) }),
+        u32c(
+            "COAT_GRID_SIZE",
+            const { count(plastic_textured::GRID_SIZE) },
+        ),
+        f32c("COAT_GRID_LN_FIRST", plastic_textured::ln_first()),
+        // Mixes: SplitMix64's constants as (lo, hi) u32 halves.
+        u32c("MIX_GOLDEN_LO", mix::GOLDEN as u32),
+        u32c("MIX_GOLDEN_HI", (mix::GOLDEN >> 32) as u32),
+        u32c("MIX64_M1_LO", mix::MIX64_M1 as u32),
+        u32c("MIX64_M1_HI", (mix::MIX64_M1 >> 32) as u32),
+        u32c("MIX64_M2_LO", mix::MIX64_M2 as u32),
+        u32c("MIX64_M2_HI", (mix::MIX64_M2 >> 32) as u32),
         // Lights and their warps.
         f32c("SMALL_CONE_SIN2", sphere::SMALL_CONE_SIN2),
         f32c("MAX_EDGE_COS", spherical_rectangle::MAX_EDGE_COS),
@@ -266,6 +278,15 @@ mod tests {
         for (name, want) in [
             ("SMOOTH_ALPHA", Value::F32(ggx::SMOOTH_ALPHA)),
             ("E_TABLE_SIZE", Value::U32(coat_albedo::E_TABLE_SIZE as u32)),
+            ("COAT_GRID_SIZE", Value::U32(48)),
+            ("COAT_GRID_LN_FIRST", Value::F32(ggx::SMOOTH_ALPHA.ln())),
+            ("MIX_GOLDEN_LO", Value::U32(0x7f4a_7c15)),
+            ("MIX_GOLDEN_HI", Value::U32(0x9e37_79b9)),
+            ("MIX64_M1_LO", Value::U32(0x1ce4_e5b9)),
+            ("MIX64_M1_HI", Value::U32(0xbf58_476d)),
+            ("MIX64_M2_LO", Value::U32(0x1331_11eb)),
+            ("MIX64_M2_HI", Value::U32(0x94d0_49bb)),
+            ("MATERIAL_MIX", Value::U32(4)),
             ("SMALL_CONE_SIN2", Value::F32(sphere::SMALL_CONE_SIN2)),
             ("SHADOW_EPSILON", Value::F32(ray::SHADOW_EPSILON)),
             (

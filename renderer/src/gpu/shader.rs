@@ -67,6 +67,7 @@ const MODULES: &[Module] = &[
     module!("shape.wgsl"),
     module!("mesh_attributes.wgsl"),
     module!("texture.wgsl"),
+    module!("mix.wgsl"),
     module!("bvh.wgsl"),
     module!("bvh2.wgsl"),
     module!("bindings.wgsl"),
@@ -120,6 +121,9 @@ pub struct Features {
     /// Textured materials: texture lookups at each hit's texture coordinates (`texture.wgsl`,
     /// `material_at` in `material.wgsl`, `surface_uv` in `shape.wgsl`) and the texel binding.
     pub has_textures: bool,
+    /// Mixes of materials, resolved at each hit (`mix.wgsl`; a textured weight also sets
+    /// [`Features::has_textures`]).
+    pub has_mixes: bool,
 }
 
 impl Features {
@@ -145,6 +149,7 @@ impl Features {
             has_sphere_shape: true,
             has_shading_normals: true,
             has_textures: true,
+            has_mixes: true,
         }
     }
 
@@ -160,8 +165,15 @@ impl Features {
             // The CPU's test too (`integrator/path.rs`).
             has_shading_normals: scene.attributes.has_normals(),
             has_textures: scene.material_textures.iter().any(Option::is_some),
+            has_mixes: scene.mixes.iter().any(Option::is_some),
             ..Features::default()
         };
+        // A mix's textured weight is looked up like a material's texture.
+        f.has_textures |= scene
+            .mixes
+            .iter()
+            .flatten()
+            .any(|m| !matches!(m.weight, crate::textures::Texture::Constant(_)));
         // Light kinds matter only for sampling; emission seen by rays needs no per-kind code.
         if f.has_lights {
             for l in &scene.lights {
@@ -213,7 +225,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 21] {
+    fn defines(&self) -> [(&'static str, bool); 22] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -241,6 +253,7 @@ impl Features {
             ("HAS_SPHERE_SHAPE", self.has_sphere_shape),
             ("HAS_SHADING_NORMALS", self.has_shading_normals),
             ("HAS_TEXTURES", self.has_textures),
+            ("HAS_MIXES", self.has_mixes),
             // The mutation points of `crate::mutants` (only with the `mutants` feature).
             ("MUTANTS", cfg!(feature = "mutants")),
         ]
@@ -276,6 +289,7 @@ impl Features {
             // Texture coordinates of mesh triangles too.
             "mesh_attributes.wgsl" => self.has_shading_normals || self.has_textures,
             "texture.wgsl" => self.has_textures,
+            "mix.wgsl" => self.has_mixes,
             _ => true,
         }
     }

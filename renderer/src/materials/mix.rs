@@ -10,6 +10,9 @@
 //! choose independently. The choice is `u < w` with `u` on a grid of 2^-24 in [0, 1): the
 //! probability of the second material is `w` to within 2^-24, exactly 0 at `w ≤ 0` and 1 at
 //! `w ≥ 1`. A mix is resolved before textures, so it holds material indices, not materials.
+//!
+//! WGSL twin: `mix.wgsl` (the hash bit for bit, with u64 emulated in u32 pairs, and the resolve
+//! loop of `Scene::resolve_mix`).
 
 use crate::textures::Texture;
 use glam::{Vec2, Vec3};
@@ -45,10 +48,19 @@ pub fn choice(w: f32, u: f32) -> usize {
     usize::from(u < w)
 }
 
+/// The golden-ratio constant of SplitMix64: the hash's seed and [`mix64`]'s increment (public
+/// for the GPU's twin, `gpu/shaders/mix.wgsl`, whose prelude holds its halves).
+pub const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
+/// [`mix64`]'s first multiplier (public for the GPU's twin).
+pub const MIX64_M1: u64 = 0xbf58_476d_1ce4_e5b9;
+/// [`mix64`]'s second multiplier (public for the GPU's twin).
+pub const MIX64_M2: u64 = 0x94d0_49bb_1331_11eb;
+
 /// A value in [0, 1) on a grid of 2^-24, a hash of the bits of `p`, `t` and `salt`.
+/// WGSL twin: `mix_hash_unit` in `gpu/shaders/mix.wgsl` (u64 emulated in u32 pairs).
 #[inline]
 pub fn hash_unit(p: Vec3, t: f32, salt: u32) -> f32 {
-    let mut h = 0x9e37_79b9_7f4a_7c15u64 ^ salt as u64;
+    let mut h = GOLDEN ^ salt as u64;
     for word in [p.x.to_bits(), p.y.to_bits(), p.z.to_bits(), t.to_bits()] {
         h = mix64(h ^ word as u64);
     }
@@ -59,9 +71,9 @@ pub fn hash_unit(p: Vec3, t: f32, salt: u32) -> f32 {
 /// bit with probability about ½, so neighbouring floats hash to unrelated values.
 #[inline]
 fn mix64(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z = z.wrapping_add(GOLDEN);
+    z = (z ^ (z >> 30)).wrapping_mul(MIX64_M1);
+    z = (z ^ (z >> 27)).wrapping_mul(MIX64_M2);
     z ^ (z >> 31)
 }
 

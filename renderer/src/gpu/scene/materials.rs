@@ -1,8 +1,21 @@
-//! Material records (`Material` in `material.wgsl`), one per [`Material`], and their kind tags.
+//! Material records (`Material` in `material.wgsl`), one per [`Material`], and their kind tags;
+//! a mix's slot holds a mix record instead (`mix.wgsl`), and a plastic with a textured α points
+//! at its coat grid's tables instead of one table.
+//!
+//! A plastic's coat grid in `tables` ([`crate::materials::plastic_textured`]): the
+//! [`GRID_SIZE`] node tables of [`E_TABLE_SIZE`] entries one after another, then the
+//! [`GRID_SIZE`] E_avg values: 48 × 65 × 4 B = 12 480 B per plastic with a textured α (the
+//! CPU's grid is the same size). Its record's `h.z` is the grid's offset and `b.w` 0;
+//! `material_at` turns `h.z` into the offset of the hit's lower node table and sets `b.w` to the
+//! blend weight of the next one (`coat_albedo_eval`; 0 is exactly no blend, which every other
+//! plastic has).
 //! WGSL twin: `material.wgsl` (the record layout and the `switch` on [`MaterialTag`]).
 
 use super::{bits, v4};
+use crate::geometry::primitive::NONE;
 use crate::gpu::prelude::gpu_tags;
+use crate::materials::coat_albedo::E_TABLE_SIZE;
+use crate::materials::plastic_textured::{CoatGrid, GRID_SIZE};
 use crate::materials::{ConductorFresnel, Material};
 use crate::scene::Scene;
 use bytemuck::{Pod, Zeroable};
@@ -31,6 +44,10 @@ gpu_tags! {
         Plastic => "MATERIAL_PLASTIC",
         /// [`Material::Dielectric`].
         Dielectric => "MATERIAL_DIELECTRIC",
+        /// No [`Material`]: a mix's record ([`crate::materials::mix::Mix`]), which `mix.wgsl`
+        /// resolves before any BSDF function sees the material ([`MaterialTag::of`] never
+        /// gives it; the BSDF `switch`es flag it as unknown).
+        Mix => "MATERIAL_MIX",
     }
 }
 
@@ -56,15 +73,58 @@ gpu_tags! {
     }
 }
 
-/// The records of `scene`'s materials; a plastic's coat table is appended to `tables` and its
-/// record holds the offset; `slots` are each material's texture ids ([`super::textures`]).
-pub(super) fn encode(scene: &Scene, tables: &mut Vec<f32>, slots: &[[u32; 2]]) -> Vec<GpuMaterial> {
+/// Appends `grid`'s node tables, then their E_avg, to `tables` (layout in the module doc);
+/// returns its offset.
+pub(crate) fn push_grid(grid: &CoatGrid, tables: &mut Vec<f32>) -> u32 {
+    let offset = tables.len() as u32;
+    for i in 0..GRID_SIZE {
+        tables.extend_from_slice(grid.node(i).table());
+    }
+    tables.extend((0..GRID_SIZE).map(|i| grid.node(i).average()));
+    debug_assert_eq!(
+        tables.len() - offset as usize,
+        GRID_SIZE * (E_TABLE_SIZE + 1)
+    );
+    offset
+}
+
+/// The records of `scene`'s materials; a plastic's coat table (its coat grid, with a textured
+/// α) is appended to `tables` and its record holds the offset; `slots` are each material's
+/// texture ids and `mix_weights` each mix's weight texture id ([`super::textures`]).
+pub(super) fn encode(
+    scene: &Scene,
+    tables: &mut Vec<f32>,
+    slots: &[[u32; 2]],
+    mix_weights: &[u32],
+) -> Vec<GpuMaterial> {
     scene
         .materials
         .iter()
         .zip(&scene.two_sided)
         .zip(slots)
-        .map(|((m, &two_sided), &[colour, alpha])| {
+        .enumerate()
+        .map(|(index, ((m, &two_sided), &[colour, alpha]))| {
+            if let Some(Some(mix)) = scene.mixes.get(index) {
+                let weight = match &mix.weight {
+                    crate::textures::Texture::Constant(c) => c.x,
+                    _ => 0.0,
+                };
+                let [first, second] = mix.materials;
+                return GpuMaterial {
+                    h: [
+                        MaterialTag::Mix.gpu_tag(),
+                        first,
+                        second,
+                        mix_weights[index],
+                    ],
+                    a: [weight, 0.0, 0.0, bits(NONE)],
+                    b: [0.0; 4],
+                    c: [0.0, 0.0, 0.0, bits(NONE)],
+                };
+            }
+            let grid = scene.material_textures[index]
+                .as_ref()
+                .and_then(|t| t.coat_grid.as_ref());
             let kind = MaterialTag::of(m).gpu_tag();
             let smooth = m.has_smooth_part() as u32;
             let z = [0.0; 4];
@@ -88,8 +148,15 @@ pub(super) fn encode(scene: &Scene, tables: &mut Vec<f32>, slots: &[[u32; 2]]) -
                     }
                 }
                 Material::Plastic(p) => {
-                    let offset = tables.len() as u32;
-                    tables.extend_from_slice(p.coat().table());
+                    // With a textured α every hit takes its coat from the grid (`material_at`).
+                    let offset = match grid {
+                        Some(g) => push_grid(g, tables),
+                        None => {
+                            let offset = tables.len() as u32;
+                            tables.extend_from_slice(p.coat().table());
+                            offset
+                        }
+                    };
                     let f0 = crate::materials::fresnel::schlick_f0_from_ior(p.ior());
                     // As `Plastic::new`: no light reaches the base of a coat that reflects all.
                     let e_avg = p.coat().average();

@@ -94,7 +94,12 @@ impl Records {
         let mut vertex_data = Vec::new();
         let prims = shapes::encode(scene);
         let scene_textures = textures::encode(scene);
-        let materials = materials::encode(scene, &mut tables, &scene_textures.slots);
+        let materials = materials::encode(
+            scene,
+            &mut tables,
+            &scene_textures.slots,
+            &scene_textures.mix_weights,
+        );
         let lights = lights::encode(scene, &mut vertex_data, &mut tables);
         let (light_cdf, light_pmf) = lights::selection(scene, &mut tables);
         let attr = attributes::encode(&scene.attributes, &mut vertex_data);
@@ -156,36 +161,14 @@ impl GpuScene {
         GpuScene::with_bvh2(ctx, scene, false)
     }
 
-    /// Refuses scenes the GPU would render differently from the CPU: mixes, textured emission
-    /// and a plastic's textured α are CPU-only for now (issue 17, items 3 and 7).
+    /// Refuses scenes the GPU would render differently from the CPU: textured emission is
+    /// CPU-only for now (issue 17, item 7). Mixes (`mix.wgsl`) and a plastic's textured α (its
+    /// coat grid, `materials::push_grid`) are mirrored since issue 17, items 3 and 5.
     fn check_supported(scene: &Scene) -> Result<(), GpuError> {
-        // Mixes are resolved on the CPU only (`Scene::resolve_mix`).
-        if let Some(i) = scene.mixes.iter().position(Option::is_some) {
-            return Err(GpuError::Unsupported(format!(
-                "material \"{}\" is a mix",
-                scene.material_names[i]
-            )));
-        }
         if let Some(t) = scene.emission_textures.first() {
             return Err(GpuError::Unsupported(format!(
                 "{}.emission is textured",
                 t.shape
-            )));
-        }
-        // A textured plastic α blends coat tables from a grid on the CPU
-        // (`materials::plastic_textured`), which has no WGSL twin yet.
-        let plastic_alpha = scene
-            .materials
-            .iter()
-            .zip(&scene.material_textures)
-            .position(|(m, t)| {
-                matches!(m, crate::materials::Material::Plastic(_))
-                    && t.as_ref().is_some_and(|t| t.alpha.is_some())
-            });
-        if let Some(i) = plastic_alpha {
-            return Err(GpuError::Unsupported(format!(
-                "material \"{}\": a plastic's textured alpha is not rendered on the GPU yet",
-                scene.material_names[i]
             )));
         }
         Ok(())

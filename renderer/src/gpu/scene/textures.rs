@@ -200,6 +200,9 @@ pub(crate) struct SceneTextures {
     pub(crate) records: Vec<[f32; 4]>,
     /// Per material: the ids of its colour and roughness textures (`NONE`: constant).
     pub(crate) slots: Vec<[u32; 2]>,
+    /// Per material: the id of its weight's texture if it is a mix with a textured weight, else
+    /// `NONE` (`mix.wgsl`).
+    pub(crate) mix_weights: Vec<u32>,
     /// Per record: `material "wood" albedo`, for errors.
     pub(crate) names: Vec<String>,
     /// The bitmaps' texels.
@@ -214,7 +217,7 @@ fn slots(t: &MaterialTextures) -> [(Option<&Texture>, &'static str); 2] {
         albedo,
         reflectance,
         alpha,
-        // A plastic's textured α (its only user) is refused by `GpuScene::check_supported`.
+        // Uploaded with the plastic's record (`materials::push_grid`).
         coat_grid: _,
     } = t;
     // `MaterialTextures::check` admits at most one colour slot per material kind.
@@ -232,6 +235,7 @@ pub(crate) fn encode(scene: &Scene) -> SceneTextures {
     let mut out = SceneTextures {
         records: Vec::new(),
         slots: Vec::with_capacity(scene.materials.len()),
+        mix_weights: vec![none; scene.materials.len()],
         names: Vec::new(),
         texels: TextureTexels {
             rgba: Vec::new(),
@@ -257,6 +261,18 @@ pub(crate) fn encode(scene: &Scene) -> SceneTextures {
             id
         });
         out.slots.push(ids);
+    }
+    // A mix's textured weight (a constant one lives in the mix's record).
+    for (i, mix) in scene.mixes.iter().enumerate() {
+        let Some(mix) = mix else { continue };
+        if matches!(mix.weight, Texture::Constant(_)) {
+            continue;
+        }
+        let what = format!("material \"{}\" weight", scene.material_names[i]);
+        out.mix_weights[i] = (out.records.len() as u32) / RECORD_VEC4S;
+        out.records
+            .extend(record(&mix.weight, &what, &mut out.texels, &mut stored));
+        out.names.push(what);
     }
     out
 }

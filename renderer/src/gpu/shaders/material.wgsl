@@ -8,7 +8,10 @@
 //       conductors (FRESNEL_COMPLEX or FRESNEL_TINT) and the coat table's offset in `tables` for plastic.
 //   Diffuse:    a.xyz albedo.
 //   Conductor:  a.xyz η (or the tint), b.xyz k, c.x α.
-//   Plastic:    a.xyz albedo, b.xyz coat tint, c = (α, F0, 1/(1 − E_avg) or 0, _).
+//   Plastic:    a.xyz albedo, b.xyz coat tint, c = (α, F0, 1/(1 − E_avg) or 0, _); with a textured
+//               α, aux is its coat grid's offset and `material_at` makes it the hit's lower node
+//               table, b.w the blend weight of the next (`plastic.wgsl`); b.w = 0 otherwise.
+//   Mix:        (MATERIAL_MIX) resolved by `mix.wgsl` before anything here sees the material.
 //   Dielectric: a = (ior, α, _, _); never two-sided (its two sides are its two media).
 //   Every kind: a.w, c.w = bits of the ids of its colour texture (a diffuse's or plastic's albedo,
 //       a conductor's reflectance: replaces a.xyz) and its roughness texture (α: replaces a
@@ -183,6 +186,12 @@ fn material_at(m_in: Material, uv: vec2f) -> Material {
             if colour != NONE {
                 m.a = vec4f(texture_eval(colour, uv), m.a.w);
             }
+// #if HAS_PLASTIC
+            // A plastic's α: its coat from the grid (`Plastic::set_alpha_from_grid`).
+            if m.h.x == MATERIAL_PLASTIC && alpha != NONE {
+                m = plastic_alpha_from_grid(m, texture_eval_scalar(alpha, uv));
+            }
+// #endif
         }
         case MATERIAL_CONDUCTOR: {
             // A textured reflectance is a tint, whatever the constant's Fresnel.

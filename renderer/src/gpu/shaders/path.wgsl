@@ -154,7 +154,12 @@ fn radiance(camera_ray: Ray) -> vec3f {
         if max_depth >= 0 && depth >= max_depth {
             break;
         }
+// #if HAS_MIXES
+        // `Scene::resolve_mix`: a mix chooses one of its materials at the hit.
+        let mi = mix_resolve(prim_material(prim), prim, hit);
+// #else
         let mi = prim_material(prim);
+// #endif
         var m = materials[mi];
 // #if HAS_TEXTURES
         // `Scene::material_at`: the textures evaluated at the hit's texture coordinates.

@@ -1,6 +1,7 @@
 // Lambert base under a GGX dielectric coat, coupled through the coat's tabulated directional
-// albedo: the twin of `materials/plastic.rs` and `materials/coat_albedo.rs`. The table
-// (E_TABLE_SIZE = 64 nodes at μ = (i/63)³) lives in `tables` at the material's offset.
+// albedo: the twin of `materials/plastic.rs`, `materials/coat_albedo.rs` and
+// `materials/plastic_textured.rs`. The table (E_TABLE_SIZE = 64 nodes at μ = (i/63)³) lives in
+// `tables` at the material's offset; a textured α blends two tables of its coat grid.
 
 fn coat_node_mu(i: u32) -> f32 {
     let t = f32(i) / f32(E_TABLE_SIZE - 1u);
@@ -27,10 +28,50 @@ fn coat_albedo_eval(m: Material, mu_in: f32) -> f32 {
     let mb = coat_node_mu(i + 1u);
     let t = clamp((mu - ma) / (mb - ma), 0.0, 1.0);
     let off = m.h.z;
-    let ea = tables[off + i];
-    let eb = tables[off + i + 1u];
+    var ea = tables[off + i];
+    var eb = tables[off + i + 1u];
+    let s = m.b.w;
+    if s != 0.0 {
+        // `CoatAlbedo::blend` of this node table and the next, entry by entry (textured α).
+        let next = off + E_TABLE_SIZE;
+        ea = ea + s * (tables[next + i] - ea);
+        eb = eb + s * (tables[next + i + 1u] - eb);
+    }
     return ea + t * (eb - ea);
 }
+
+// #if HAS_TEXTURES
+// `Plastic::set_alpha_from_grid` with `CoatGrid::coat` (`materials/plastic_textured.rs`): `m`
+// (whose aux is its coat grid's offset) with roughness `alpha_in` clamped to [0, 1]. A smooth
+// coat is Schlick's with E_avg = F0 + (1 − F0)/21; a rough one sits between grid nodes i and
+// i + 1, located linearly in ln α by the CPU's expression, and its E_avg is their blend; the
+// tables are blended where they are read (`coat_albedo_eval`). Grid layout in
+// `gpu/scene/materials.rs`: GRID_SIZE tables of E_TABLE_SIZE entries, then the GRID_SIZE E_avg.
+fn plastic_alpha_from_grid(m_in: Material, alpha_in: f32) -> Material {
+    var m = m_in;
+    let alpha = clamp(alpha_in, 0.0, 1.0);
+    m.c.x = alpha;
+    var e_avg: f32;
+    if alpha < SMOOTH_ALPHA {
+        e_avg = m.c.y + (1.0 - m.c.y) / 21.0;
+        m.b.w = 0.0;
+    } else {
+        let x = (log(alpha) - COAT_GRID_LN_FIRST) / -COAT_GRID_LN_FIRST * f32(COAT_GRID_SIZE - 1u);
+        let i = min(u32(max(x, 0.0)), COAT_GRID_SIZE - 2u);
+        let t = clamp(x - f32(i), 0.0, 1.0);
+        let grid = m.h.z;
+        let averages = grid + COAT_GRID_SIZE * E_TABLE_SIZE;
+        let ea = tables[averages + i];
+        let eb = tables[averages + i + 1u];
+        e_avg = ea + t * (eb - ea);
+        m.h.z = grid + i * E_TABLE_SIZE;
+        m.b.w = t;
+    }
+    // As `Plastic::new`: no light reaches the base of a coat that reflects all.
+    m.c.z = select(0.0, 1.0 / (1.0 - e_avg), 1.0 - e_avg > 1e-6);
+    return m;
+}
+// #endif
 
 // #if HAS_TEXTURES
 // `Plastic::has_smooth_part`: a rough coat, or a base that receives light (the encoder's flag;
