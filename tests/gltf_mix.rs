@@ -180,21 +180,16 @@ fn metallic_half_converges_to_the_average_of_metal_and_plastic() {
     );
 }
 
-/// The GPU backend does not resolve mixes yet: it refuses one by name instead of rendering the
-/// material its mean weight favours.
+/// The GPU backend resolves mixes since issue 17, item 3 (`tests/gpu_mix.rs` compares its
+/// choices and a rendered image with the CPU's): the scene is accepted, with the mix code.
 #[test]
-fn the_gpu_refuses_a_mix() {
+fn the_gpu_accepts_a_mix() {
     let scene = scene(0.5);
     // The GPU tests' policy (tests/gpu_common): no adapter fails unless skipping is asked for.
     if std::env::var_os("LUMIS_SKIP_GPU_TESTS").is_some() {
         return;
     }
     let ctx = lumis::gpu::GpuContext::new().unwrap_or_else(|e| panic!("{e}"));
-    let err = lumis::gpu::GpuScene::new(ctx, scene)
-        .err()
-        .expect("a scene with a mix must be refused");
-    assert!(
-        err.to_string().contains("\"materials[0]\" is a mix"),
-        "{err}"
-    );
+    let gpu = lumis::gpu::GpuScene::new(ctx, scene).unwrap_or_else(|e| panic!("{e}"));
+    assert!(gpu.features().has_mixes, "{:?}", gpu.features());
 }
