@@ -426,7 +426,7 @@ fn coat_grid_blend_matches_the_cpu() {
             continue;
         }
         let x = (alpha.ln() - ln_first()) / -ln_first() * (GRID_SIZE - 1) as f32;
-        let n = ((x.max(0.0) as usize).min(GRID_SIZE - 2)).max(1);
+        let n = (x.max(0.0) as usize).clamp(1, GRID_SIZE - 2);
         let t = (x - n as f32).clamp(0.0, 1.0);
         let node = |j: usize| grids[k].node(j);
         let step = (node(n + 1).eval(mu) - node(n).eval(mu))

@@ -9,7 +9,8 @@
 //! `material_at` turns `h.z` into the offset of the hit's lower node table and sets `b.w` to the
 //! blend weight of the next one (`coat_albedo_eval`; 0 is exactly no blend, which every other
 //! plastic has).
-//! WGSL twin: `material.wgsl` (the record layout and the `switch` on [`MaterialTag`]).
+//! WGSL twin: `material.wgsl` (the record layout and the `switch` on [`MaterialTag`]) and
+//! `mix.wgsl` (a mix's record).
 
 use super::{bits, v4};
 use crate::geometry::primitive::NONE;
