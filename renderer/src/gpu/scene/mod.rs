@@ -95,7 +95,12 @@ impl Records {
         let prims = shapes::encode(scene);
         let scene_textures = textures::encode(scene);
         let materials = materials::encode(scene, &mut tables, &scene_textures.slots);
-        let lights = lights::encode(scene, &mut vertex_data, &mut tables);
+        let lights = lights::encode(
+            scene,
+            &mut vertex_data,
+            &mut tables,
+            &scene_textures.emission,
+        );
         let (light_cdf, light_pmf) = lights::selection(scene, &mut tables);
         let attr = attributes::encode(&scene.attributes, &mut vertex_data);
         let textures = vertex_data.len() as u32;
@@ -149,27 +154,22 @@ pub(crate) fn storage_layout_entry(binding: u32, read_only: bool) -> wgpu::BindG
 
 impl GpuScene {
     /// Flattens and uploads `scene`, with the CWBVH. Every scene the builder makes is mirrored
-    /// (textured materials since issue 17, item 7): the texture slots are destructured in
+    /// (textured materials and emission since issue 17, items 5 and 7): the texture slots are destructured in
     /// `textures::slots`, so a slot added to `MaterialTextures` fails to compile there until the
     /// GPU has it (or refuses it with [`GpuError::Unsupported`]).
     pub fn new(ctx: Arc<GpuContext>, scene: Arc<Scene>) -> Result<GpuScene, GpuError> {
         GpuScene::with_bvh2(ctx, scene, false)
     }
 
-    /// Refuses scenes the GPU would render differently from the CPU: mixes, textured emission
-    /// and a plastic's textured α are CPU-only for now (issue 17, items 3 and 7).
+    /// Refuses scenes the GPU would render differently from the CPU: mixes and a plastic's
+    /// textured α are CPU-only for now (issue 17, items 3 and 7). Textured emission is mirrored
+    /// (`light.wgsl`).
     fn check_supported(scene: &Scene) -> Result<(), GpuError> {
         // Mixes are resolved on the CPU only (`Scene::resolve_mix`).
         if let Some(i) = scene.mixes.iter().position(Option::is_some) {
             return Err(GpuError::Unsupported(format!(
                 "material \"{}\" is a mix",
                 scene.material_names[i]
-            )));
-        }
-        if let Some(t) = scene.emission_textures.first() {
-            return Err(GpuError::Unsupported(format!(
-                "{}.emission is textured",
-                t.shape
             )));
         }
         // A textured plastic α blends coat tables from a grid on the CPU
