@@ -15,10 +15,10 @@
 //!   of values below 4, while the smallest wrong answer, a texel of the 4×4 bitmap, is 1/4); the
 //!   GPU's textured radiance equals the CPU's texture at the GPU's own sample uv (relative 1e-4)
 //!   and the CPU's `sample_light` radiance end to end (relative 1e-3); the GPU's `light_emitted`
-//!   at the CPU's hits of those samples equals `Scene::emitted` (relative 1e-4). A checkerboard
-//!   lookup within rounding of a square's edge may take the other colour (the two compilers may
-//!   fuse the uv transform differently), so 0.5% of the lookups (1% end to end, whose sampled
-//!   points differ by the warps' rounding) may differ.
+//!   at the CPU's hits of those samples equals `Scene::emitted` (relative 1e-4). End to end the
+//!   sampled points differ by the warps' rounding, so a lookup within that of a checkerboard
+//!   square's edge may take the other colour: 1% of those values may differ (by at most 6, the
+//!   largest colour). Measured on lavapipe: no value out of tolerance anywhere.
 //! * `gpu_textured_emission_matches_the_cpu`: the block z-test of `tests/gpu_images.rs`
 //!   (8×8 blocks of the 48×48 image, family-wise α = 0.01, both films' variances; 64 spp each,
 //!   GPU seeds 4200 + i, CPU seeds 5200 + i) with light sampling (solid angle) and MIS (power
@@ -292,7 +292,9 @@ fn light_samples_and_hits_match_the_cpu() {
         .unwrap_or_else(|e| panic!("{e}"));
     let mut uv_at_cpu = Compare::new("light_uv at the CPU's sample", 0.0, 1e-5);
     let mut le_at_uv = Compare::new("textured radiance at the GPU's sample uv", 1e-4, 1e-6);
-    let mut le_end = Compare::new("textured radiance against sample_light", 1e-3, 1e-6);
+    // Outliers: the other colour of a checkerboard square, at most the largest emitted value.
+    let mut le_end = Compare::new("textured radiance against sample_light", 1e-3, 1e-6)
+        .outliers_within(0.0, 6.0);
     let mut hit_uv = Compare::new("surface_uv at the CPU's hit", 0.0, 1e-5);
     let mut hit_le = Compare::new("light_emitted at the CPU's hit", 1e-4, 1e-6);
     let mut counts = std::collections::BTreeMap::<&str, [usize; 2]>::new();
@@ -344,10 +346,8 @@ fn light_samples_and_hits_match_the_cpu() {
     let allowance = |c: &Compare, per_mille: usize| c.n * per_mille / 1000;
     uv_at_cpu.finish(0);
     hit_uv.finish(0);
-    let a = allowance(&le_at_uv, 5);
-    le_at_uv.finish(a);
-    let a = allowance(&hit_le, 5);
-    hit_le.finish(a);
+    le_at_uv.finish(0);
+    hit_le.finish(0);
     let a = allowance(&le_end, 10);
     le_end.finish(a);
 }
