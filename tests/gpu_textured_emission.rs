@@ -27,9 +27,9 @@
 //!
 //! Deliberate bugs, each run against this file (measured once, not part of the suite):
 //! light samples' uv with `v` flipped (`light_uv` returning `(u, 1 − v)`): the parity test
-//! fails (DOC_FLIP_PARITY) and the image test (DOC_FLIP_IMAGE); light samples emitting the
+//! fails (3948 of 7896 uv values at the CPU's samples) and the image test (9 of 108 blocks in either case, worst |z| 9.9 light, 7.9 MIS); light samples emitting the
 //! selection radiance (the texture's mean) instead of the texture: the parity test fails
-//! (DOC_MEAN_PARITY) and the image test (DOC_MEAN_IMAGE).
+//! (11843 of 11844 radiances at the GPU's sample uv) and the image test (8 and 7 of 108 blocks, worst |z| 8.1 and 5.4).
 
 mod common;
 mod gpu_common;
