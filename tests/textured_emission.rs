@@ -22,7 +22,7 @@
 //!   checkerboard of one colour renders bit for bit like the same emitter with that constant
 //!   radiance, in every strategy and method (same seeds, full depth): the selection weights, the
 //!   sampled radiance and the hit radiance are exactly the untextured ones.
-//! * `the_gpu_refuses_textured_emission`: by the shape's JSON path.
+//! * The GPU renders textured emission too: `tests/gpu_textured_emission.rs`.
 //!
 //! Deliberate bugs, each run against this file (measured once, not part of the suite):
 //! light-sample uv with `v` flipped: agreement fails (Light |z| 31); triangle-light samples with
@@ -565,33 +565,4 @@ fn constant_texture_renders_like_constant_radiance() {
             assert!(a.film().mean().iter().any(|c| c.max_element() > 0.0));
         }
     }
-}
-
-/// The GPU backend does not evaluate emission textures yet: it refuses them by the shape's path
-/// instead of rendering their mean.
-#[test]
-fn the_gpu_refuses_textured_emission() {
-    let json = r#"{
-  "camera": {"from": [0, 3, -1], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 60,
-             "width": 8, "height": 8},
-  "materials": {"floor": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
-  "shapes": [{"type": "quad", "corner": [-2, 0, -2], "edge_u": [0, 0, 4], "edge_v": [4, 0, 0],
-              "material": "floor"},
-             {"type": "sphere", "center": [0, 1, 0], "radius": 0.3,
-              "emission": {"type": "checkerboard", "color0": 1, "color1": 2}}]
-}"#;
-    let scene = common::build(json);
-    assert_eq!(scene.emission_textures[0].shape, "shapes[1]");
-    // The GPU tests' policy (tests/gpu_common): no adapter fails unless skipping is asked for.
-    if std::env::var_os("LUMIS_SKIP_GPU_TESTS").is_some() {
-        return;
-    }
-    let ctx = lumis::gpu::GpuContext::new().unwrap_or_else(|e| panic!("{e}"));
-    let err = lumis::gpu::GpuScene::new(ctx, scene)
-        .err()
-        .expect("textured emission must be refused");
-    assert!(
-        err.to_string().contains("shapes[1].emission is textured"),
-        "{err}"
-    );
 }

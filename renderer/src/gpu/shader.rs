@@ -118,8 +118,10 @@ pub struct Features {
     /// Triangles with vertex normals: the BSDF frame follows the interpolated shading normal and
     /// the shading-normal rule applies (`mesh_attributes.wgsl`, `same_side` in `path.wgsl`).
     pub has_shading_normals: bool,
-    /// Textured materials: texture lookups at each hit's texture coordinates (`texture.wgsl`,
-    /// `material_at` in `material.wgsl`, `surface_uv` in `shape.wgsl`) and the texel binding.
+    /// Textured materials or emission: texture lookups at each hit's texture coordinates
+    /// (`texture.wgsl`, `material_at` in `material.wgsl`, `surface_uv` in `shape.wgsl`), at
+    /// points sampled on textured lights (`light_sample_textured` in `light.wgsl`) and the
+    /// texel binding.
     pub has_textures: bool,
     /// Mixes of materials, resolved at each hit (`mix.wgsl`; a textured weight also sets
     /// [`Features::has_textures`]).
@@ -164,7 +166,8 @@ impl Features {
             use_bvh: scene.accel.cwbvh().is_some(),
             // The CPU's test too (`integrator/path.rs`).
             has_shading_normals: scene.attributes.has_normals(),
-            has_textures: scene.material_textures.iter().any(Option::is_some),
+            has_textures: scene.material_textures.iter().any(Option::is_some)
+                || !scene.emission_textures.is_empty(),
             has_mixes: scene.mixes.iter().any(Option::is_some),
             ..Features::default()
         };

@@ -10,9 +10,10 @@ use crate::lights::Light;
 use crate::scene::Scene;
 use bytemuck::{Pod, Zeroable};
 
-/// A light record (`Light` in `light.wgsl`): `h` = (kind, first triangle, triangle count, _)
-/// (an environment map: kind, width, height, offset of its tables), four vec4 of geometry per
-/// kind and `le` = (radiance, area) (see the top of `light.wgsl`).
+/// A light record (`Light` in `light.wgsl`): `h` = (kind, first triangle or a triangle's or
+/// quad's vertex attributes, triangle count, emission texture) (an environment map: kind, width,
+/// height, offset of its tables), four vec4 of geometry per kind and `le` = (radiance, area) (see
+/// the top of `light.wgsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuLight {
@@ -74,19 +75,26 @@ fn cdf(weights: &[f32]) -> Vec<f32> {
 
 /// The records of `scene`'s lights; polygon lights append their triangles to `vertex_data` (three
 /// vec4 each, the first two w's holding the triangle's interval of the by-area CDF), an
-/// environment map its sampling tables to `tables`.
+/// environment map its sampling tables to `tables`. `emission[i]` is the texture id of the
+/// scene's emission texture `i` (`textures::encode`), which textured area lights name.
 pub(super) fn encode(
     scene: &Scene,
     vertex_data: &mut Vec<[f32; 4]>,
     tables: &mut Vec<f32>,
+    emission: &[u32],
 ) -> Vec<GpuLight> {
     scene
         .lights
         .iter()
         .map(|l| {
             let z = [0.0; 4];
+            // The infinite lights have no texture (and use h.w otherwise).
+            let texture = match l.texture() {
+                NONE => NONE,
+                t => emission[t as usize],
+            };
             let mut g = GpuLight {
-                h: [LightTag::of(l).gpu_tag(), 0, 0, 0],
+                h: [LightTag::of(l).gpu_tag(), 0, 0, texture],
                 a: z,
                 b: z,
                 c: z,
@@ -95,6 +103,7 @@ pub(super) fn encode(
             };
             match l {
                 Light::Triangle(t) => {
+                    g.h[1] = t.attr;
                     g.a = v4(t.v[0], 0.0);
                     g.b = v4(t.v[1], 0.0);
                     g.c = v4(t.v[2], 0.0);
@@ -120,6 +129,7 @@ pub(super) fn encode(
                     g.le = v4(p.le, p.area);
                 }
                 Light::Quad(q) => {
+                    g.h[1] = q.attr;
                     g.a = v4(q.corner, 0.0);
                     g.b = v4(q.edge_u, 0.0);
                     g.c = v4(q.edge_v, 0.0);

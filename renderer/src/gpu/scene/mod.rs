@@ -100,7 +100,12 @@ impl Records {
             &scene_textures.slots,
             &scene_textures.mix_weights,
         );
-        let lights = lights::encode(scene, &mut vertex_data, &mut tables);
+        let lights = lights::encode(
+            scene,
+            &mut vertex_data,
+            &mut tables,
+            &scene_textures.emission,
+        );
         let (light_cdf, light_pmf) = lights::selection(scene, &mut tables);
         let attr = attributes::encode(&scene.attributes, &mut vertex_data);
         let textures = vertex_data.len() as u32;
@@ -154,24 +159,12 @@ pub(crate) fn storage_layout_entry(binding: u32, read_only: bool) -> wgpu::BindG
 
 impl GpuScene {
     /// Flattens and uploads `scene`, with the CWBVH. Every scene the builder makes is mirrored
-    /// (textured materials since issue 17, item 7): the texture slots are destructured in
-    /// `textures::slots`, so a slot added to `MaterialTextures` fails to compile there until the
-    /// GPU has it (or refuses it with [`GpuError::Unsupported`]).
+    /// (textured materials and emission, mixes and a plastic's textured α since issue 17): the
+    /// texture slots are destructured in `textures::slots`, so a slot added to
+    /// `MaterialTextures` fails to compile there until the GPU has it (or refuses it with
+    /// [`GpuError::Unsupported`]).
     pub fn new(ctx: Arc<GpuContext>, scene: Arc<Scene>) -> Result<GpuScene, GpuError> {
         GpuScene::with_bvh2(ctx, scene, false)
-    }
-
-    /// Refuses scenes the GPU would render differently from the CPU: textured emission is
-    /// CPU-only for now (issue 17, item 7). Mixes (`mix.wgsl`) and a plastic's textured α (its
-    /// coat grid, `materials::push_grid`) are mirrored since issue 17, items 3 and 5.
-    fn check_supported(scene: &Scene) -> Result<(), GpuError> {
-        if let Some(t) = scene.emission_textures.first() {
-            return Err(GpuError::Unsupported(format!(
-                "{}.emission is textured",
-                t.shape
-            )));
-        }
-        Ok(())
     }
 
     /// Flattens and uploads `scene`; with `bvh2` (and a scene large enough for a BVH) it also
@@ -183,7 +176,6 @@ impl GpuScene {
         scene: Arc<Scene>,
         bvh2: bool,
     ) -> Result<GpuScene, GpuError> {
-        GpuScene::check_supported(&scene)?;
         let records = Records::of(&scene);
         GpuScene::upload(ctx, scene, bvh2, records)
     }

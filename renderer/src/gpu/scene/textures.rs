@@ -1,5 +1,6 @@
-//! Textured materials on the GPU: every texture a material slot names as a small record, and the
-//! texels of every bitmap in one `rgba32float` 2D texture used as a linear array.
+//! Textures on the GPU: every texture a material slot names, then every emission texture, as a
+//! small record, and the texels of every bitmap in one `rgba32float` 2D texture used as a linear
+//! array.
 //!
 //! Where things go, within wgpu's portable limits (the path tracer already binds the 8 storage
 //! buffers they allow per stage):
@@ -20,6 +21,8 @@
 //!   `material.wgsl`): `a.w` the colour texture (albedo of a diffuse or plastic, a conductor's
 //!   reflectance), `c.w` the roughness texture (a conductor's or dielectric's α); the bits of
 //!   `NONE` where the slot is constant.
+//! - **Area lights** name their emission texture in `h.w` of their record (see `light.wgsl`),
+//!   `NONE` for a constant radiance.
 //!
 //! Record of a texture (`TextureRecord` in `texture.wgsl`):
 //! - `h` = bits of (kind [`TextureTag`], wrap [`WrapTag`], channel [`ChannelTag`], offset of the
@@ -203,6 +206,8 @@ pub(crate) struct SceneTextures {
     /// Per material: the id of its weight's texture if it is a mix with a textured weight, else
     /// `NONE` (`mix.wgsl`).
     pub(crate) mix_weights: Vec<u32>,
+    /// Per emission texture ([`Scene::emission_textures`]): its id, after the materials'.
+    pub(crate) emission: Vec<u32>,
     /// Per record: `material "wood" albedo`, for errors.
     pub(crate) names: Vec<String>,
     /// The bitmaps' texels.
@@ -229,13 +234,15 @@ fn slots(t: &MaterialTextures) -> [(Option<&Texture>, &'static str); 2] {
     [colour, (alpha.as_ref(), "alpha")]
 }
 
-/// Encodes the textures of `scene`'s materials (layout in the module doc).
+/// Encodes the textures of `scene`'s materials, then its emission textures, in one record
+/// array (layout in the module doc).
 pub(crate) fn encode(scene: &Scene) -> SceneTextures {
     let none = crate::geometry::primitive::NONE;
     let mut out = SceneTextures {
         records: Vec::new(),
         slots: Vec::with_capacity(scene.materials.len()),
         mix_weights: vec![none; scene.materials.len()],
+        emission: Vec::with_capacity(scene.emission_textures.len()),
         names: Vec::new(),
         texels: TextureTexels {
             rgba: Vec::new(),
@@ -261,6 +268,13 @@ pub(crate) fn encode(scene: &Scene) -> SceneTextures {
             id
         });
         out.slots.push(ids);
+    }
+    for e in &scene.emission_textures {
+        let what = format!("{}.emission", e.shape);
+        out.emission.push((out.records.len() as u32) / RECORD_VEC4S);
+        out.records
+            .extend(record(&e.texture, &what, &mut out.texels, &mut stored));
+        out.names.push(what);
     }
     // A mix's textured weight (a constant one lives in the mix's record).
     for (i, mix) in scene.mixes.iter().enumerate() {

@@ -177,7 +177,7 @@ fn envmap_light_sample(l: Light, u: vec2f, method: u32) -> LightSample {
         wi = s.xyz;
         pdf = s.w;
     }
-    return LightSample(wi, vec3f(0.0), -wi, wi, pdf, envmap_eval(l, wi), true, true);
+    return LightSample(wi, vec3f(0.0), -wi, wi, pdf, envmap_eval(l, wi), true, true, vec2f(0.0));
 }
 
 // `EnvmapLight::pdf`. Uniform samples where the map is black are discarded (`light_sample`

@@ -2,12 +2,16 @@
 // `switch` in the variant order of `Light` (Triangle, Polygon, Quad, Disk, Sphere, Background,
 // Envmap), power-proportional selection from a CDF in `tables`.
 //
-// Record layout (see `gpu/scene/lights.rs`): h = (kind, first triangle, triangle count, _),
-// le = (radiance, area).
-//   Triangle:   a, b, c = vertices, d.xyz = normal.
+// Record layout (see `gpu/scene/lights.rs`): h = (kind, first triangle, triangle count,
+// texture), le = (radiance, area). An area light's h.w is the id of its emission texture
+// (`texture.wgsl`), NONE where it emits its constant radiance; a textured light's le.xyz is its
+// selection radiance only, the texture is evaluated at the sampled or hit point (the twin of
+// `Scene::sample_light` and `Scene::emitted`, below).
+//   Triangle:   a, b, c = vertices, d.xyz = normal, h.y = its vertex attributes (NONE: none).
 //   Polygon:    a.xyz = a point of the plane, d.xyz = normal; triangles in `vertex_data`
 //               (3 vec4 each, v0.w/v1.w = the triangle's interval in the by-area CDF).
-//   Quad:       a = corner, b = edge u, c = edge v, d.xyz = normal.
+//   Quad:       a = corner, b = edge u, c = edge v, d.xyz = normal, h.y = the vertex
+//               attributes of its first triangle, the second's following (NONE: none).
 //   Disk:       a.xyz = centre, a.w = radius, d.xyz = normal.
 //   Sphere:     a.xyz = centre, a.w = radius.
 //   Background: le.xyz only.
@@ -33,10 +37,13 @@ struct LightSample {
     le: vec3f,
     infinite: bool,
     ok: bool,
+    // Barycentrics (b1, b2) of p in the sampled triangle of a triangle or polygon light, for its
+    // texture coordinates; zero for the other lights.
+    b: vec2f,
 }
 
 fn no_light_sample() -> LightSample {
-    return LightSample(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), 0.0, vec3f(0.0), false, false);
+    return LightSample(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), 0.0, vec3f(0.0), false, false, vec2f(0.0));
 }
 
 // #if HAS_LIGHTS
@@ -62,7 +69,7 @@ fn area_sample(p: vec3f, y: vec3f, ny: vec3f, pdf_area: f32, le: vec3f) -> Light
         return no_light_sample();
     }
     let pdf = area_to_solid_angle(pdf_area, p, y, ny);
-    return LightSample(y, gamma(6.0) * abs(y), ny, wi, pdf, le, false, true);
+    return LightSample(y, gamma(6.0) * abs(y), ny, wi, pdf, le, false, true, vec2f(0.0));
 }
 
 fn spherical_ok(omega: f32) -> bool {
@@ -187,3 +194,81 @@ fn light_radiance(l: Light, n: vec3f, w_in: vec3f) -> vec3f {
     }
     return vec3f(0.0);
 }
+
+// #if HAS_TEXTURES
+// `Light::texture`: the id of the light's emission texture, NONE for a constant radiance
+// (always for the lights at infinity, whose h.w means something else).
+fn light_texture(l: Light) -> u32 {
+// #if HAS_ENVMAP
+    if l.h.x == LIGHT_ENVMAP {
+        return NONE;
+    }
+// #endif
+    return select(l.h.w, NONE, l.h.x == LIGHT_BACKGROUND);
+}
+
+// `Scene::emitted`: what light `l` emits at `hit` (primitive `p`), `le` being its
+// `light_radiance` there: that, or where it is not black its texture at the hit's texture
+// coordinates (`surface_uv`, the rule materials use).
+fn light_emitted(l: Light, p: Prim, hit: SurfaceHit, le: vec3f) -> vec3f {
+    let t = light_texture(l);
+    if t == NONE || all(le == vec3f(0.0)) {
+        return le;
+    }
+    return texture_eval(t, surface_uv(p, hit));
+}
+
+// #if HAS_LIGHTS
+// `Scene::light_uv`: the texture coordinates of the point `s` sampled on area light `l`, by the
+// rule of the primitive under it (`surface_uv`): a triangle light's attributes, the quad's
+// triangle holding the point, a polygon's triangle (no attributes: its barycentrics).
+fn light_uv(l: Light, s: LightSample) -> vec2f {
+    switch l.h.x {
+// #if HAS_TRIANGLE_LIGHT
+        case LIGHT_TRIANGLE: {
+            return mesh_uv(l.h.y, s.b);
+        }
+// #endif
+// #if HAS_POLYGON_LIGHT
+        case LIGHT_POLYGON: {
+            return mesh_uv(NONE, s.b);
+        }
+// #endif
+// #if HAS_QUAD_LIGHT
+        case LIGHT_QUAD: {
+            let tp = quad_light_triangle_point(l, s.p);
+            return mesh_uv(select(l.h.y + tp.k, NONE, l.h.y == NONE), tp.b);
+        }
+// #endif
+// #if HAS_DISK_LIGHT
+        case LIGHT_DISK: {
+            return disk_uv(l.a.xyz, l.d.xyz, l.a.w, s.p);
+        }
+// #endif
+// #if HAS_SPHERE_LIGHT
+        case LIGHT_SPHERE: {
+            return sphere_uv(l.a.xyz, l.a.w, s.p);
+        }
+// #endif
+        default: {
+            return vec2f(unknown_tag());
+        }
+    }
+}
+
+// The texture step of `Scene::sample_light`: a textured light's sample `s` emits its texture at
+// the sampled point; no sample where that is black.
+fn light_sample_textured(l: Light, s: LightSample) -> LightSample {
+    let t = light_texture(l);
+    if !s.ok || t == NONE {
+        return s;
+    }
+    var out = s;
+    out.le = texture_eval(t, light_uv(l, s));
+    if !any(out.le > vec3f(0.0)) {
+        return no_light_sample();
+    }
+    return out;
+}
+// #endif
+// #endif

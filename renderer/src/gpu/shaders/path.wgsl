@@ -1,8 +1,8 @@
 // The unidirectional path tracer, the twin of `integrator/path.rs` (one loop, four direct-light
 // strategies, Mitsuba's max_depth, Russian roulette from rr_depth, transmission through
 // dielectrics under HAS_DIELECTRIC only, so a scene without glass runs the reflection-only
-// program, shading normals under HAS_SHADING_NORMALS only, textured materials under HAS_TEXTURES
-// only), and the render kernel: one invocation per pixel draws one sample per dispatch and folds
+// program, shading normals under HAS_SHADING_NORMALS only, textured materials and emission under
+// HAS_TEXTURES only), and the render kernel: one invocation per pixel draws one sample per dispatch and folds
 // it into the accumulation with Welford's update (stable variance in f32; the film reads back Σx
 // and Σx² from it).
 
@@ -58,7 +58,10 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
 // #endif
     let choice = light_sampler_sample(params.light_cdf, params.light_pmf, params.n_lights, u_light);
     let light = lights[choice.index];
-    let ls = light_sample(light, hit.p, u, params.light_sampling);
+    var ls = light_sample(light, hit.p, u, params.light_sampling);
+// #if HAS_TEXTURES
+    ls = light_sample_textured(light, ls);
+// #endif
     if !ls.ok {
         return vec3f(0.0);
     }
@@ -140,7 +143,10 @@ fn radiance(camera_ray: Ray) -> vec3f {
         let light_index = prim_light(prim);
         if light_index != NONE {
             let light = lights[light_index];
-            let le = light_radiance(light, hit.n, ray.d);
+            var le = light_radiance(light, hit.n, ray.d);
+// #if HAS_TEXTURES
+            le = light_emitted(light, prim, hit, le);
+// #endif
             if any(le != vec3f(0.0)) {
                 var lpdf = 0.0;
 // #if HAS_LIGHTS

@@ -5,6 +5,25 @@ fn quad_light_faces(l: Light, p: vec3f) -> bool {
     return dot(p - l.a.xyz, l.d.xyz) > 0.0;
 }
 
+// #if HAS_TEXTURES
+// `QuadLight::triangle_point`: which of the quad's two triangles holds y, a point of the quad
+// (k: 0 for [corner, +u, +u+v], 1 for [corner, +u+v, +v]), and y's barycentrics (b1, b2) there.
+struct QuadTrianglePoint {
+    k: u32,
+    b: vec2f,
+}
+
+fn quad_light_triangle_point(l: Light, y: vec3f) -> QuadTrianglePoint {
+    let d = y - l.a.xyz;
+    let s = clamp(dot(cross(d, l.c.xyz), l.d.xyz) / l.le.w, 0.0, 1.0);
+    let t = clamp(dot(cross(l.b.xyz, d), l.d.xyz) / l.le.w, 0.0, 1.0);
+    if t <= s {
+        return QuadTrianglePoint(0u, vec2f(s - t, t));
+    }
+    return QuadTrianglePoint(1u, vec2f(s, t - s));
+}
+// #endif
+
 fn quad_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSample {
     if !quad_light_faces(l, p) {
         return no_light_sample();

@@ -108,15 +108,12 @@ fn surface_uv(p: Prim, hit: SurfaceHit) -> vec2f {
     switch prim_kind(p) {
 // #if HAS_SPHERE_SHAPE
         case SHAPE_SPHERE: {
-            let d = (hit.p - p.a.xyz) / p.d.w;
-            return vec2f(turn_fraction(atan2_precise(d.y, d.x)), acos_precise(clamp(d.z, -1.0, 1.0)) / PI);
+            return sphere_uv(p.a.xyz, p.d.w, hit.p);
         }
 // #endif
 // #if HAS_DISK_SHAPE
         case SHAPE_DISK: {
-            let local = to_local(frame_from_normal(p.d.xyz), hit.p - p.a.xyz);
-            let r = min(hypot(local.x, local.y) / p.d.w, 1.0);
-            return vec2f(r, turn_fraction(atan2_precise(local.y, local.x)));
+            return disk_uv(p.a.xyz, p.d.xyz, p.d.w, hit.p);
         }
 // #endif
         // SHAPE_TRIANGLE (an unknown kind was flagged when it was intersected).
@@ -124,6 +121,20 @@ fn surface_uv(p: Prim, hit: SurfaceHit) -> vec2f {
             return mesh_uv(prim_attr(p), hit.b);
         }
     }
+}
+
+// `Scene::uv_at` of point y on the sphere (centre, radius): hits and sphere lights' samples.
+fn sphere_uv(center: vec3f, radius: f32, y: vec3f) -> vec2f {
+    let d = (y - center) / radius;
+    return vec2f(turn_fraction(atan2_precise(d.y, d.x)), acos_precise(clamp(d.z, -1.0, 1.0)) / PI);
+}
+
+// `Scene::uv_at` of point y on the disk (centre, unit normal n, radius): hits and disk lights'
+// samples.
+fn disk_uv(center: vec3f, n: vec3f, radius: f32, y: vec3f) -> vec2f {
+    let local = to_local(frame_from_normal(n), y - center);
+    let r = min(hypot(local.x, local.y) / radius, 1.0);
+    return vec2f(r, turn_fraction(atan2_precise(local.y, local.x)));
 }
 
 // An angle in (−π, π] as a fraction of a turn in [0, 1).

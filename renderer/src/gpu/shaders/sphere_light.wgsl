@@ -78,7 +78,7 @@ fn sphere_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSample
     }
     let pdf = 1.0 / (TAU * one_minus_cos_max);
     let err = gamma(5.0) * abs(r * n) + gamma(2.0) * abs(y);
-    return LightSample(y, err, n, wi, pdf, l.le.xyz, false, true);
+    return LightSample(y, err, n, wi, pdf, l.le.xyz, false, true, vec2f(0.0));
 }
 
 fn sphere_light_pdf(l: Light, p: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {

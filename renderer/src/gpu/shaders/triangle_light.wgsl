@@ -23,11 +23,13 @@ fn triangle_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSamp
         let b = s.barycentrics;
         let y = b.x * v0 + b.y * v1 + b.z * v2;
         let err = gamma(6.0) * (abs(b.x * v0) + abs(b.y * v1) + abs(b.z * v2));
-        return LightSample(y, err, l.d.xyz, s.dir, s.pdf, l.le.xyz, false, true);
+        return LightSample(y, err, l.d.xyz, s.dir, s.pdf, l.le.xyz, false, true, b.yz);
     }
     let b = sample_uniform_triangle(u);
     let y = b.x * v0 + b.y * v1 + b.z * v2;
-    return area_sample(p, y, l.d.xyz, 1.0 / l.le.w, l.le.xyz);
+    var s = area_sample(p, y, l.d.xyz, 1.0 / l.le.w, l.le.xyz);
+    s.b = b.yz;
+    return s;
 }
 
 fn triangle_light_pdf(l: Light, p: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
