@@ -114,9 +114,7 @@ impl PixelFilter {
         }
         match self {
             PixelFilter::Box => 1.0 / (hi - lo),
-            PixelFilter::Gaussian { .. } => {
-                self.eval(x) / (self.integral(hi) - self.integral(lo))
-            }
+            PixelFilter::Gaussian { .. } => self.eval(x) / (self.integral(hi) - self.integral(lo)),
         }
     }
 

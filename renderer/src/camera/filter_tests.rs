@@ -36,7 +36,10 @@ fn erfc_matches_known_values() {
         (3.0, 2.209_049_7e-5),
     ] {
         let got = erfc(x) as f64;
-        assert!((got - want).abs() <= 3e-7 * want, "erfc({x}) = {got}, want {want}");
+        assert!(
+            (got - want).abs() <= 3e-7 * want,
+            "erfc({x}) = {got}, want {want}"
+        );
     }
 }
 
@@ -58,7 +61,13 @@ fn gaussian_weight_is_mitsubas() {
 /// the film's left edge (centre 0.5), one pixel further in, and a 1-pixel-wide film.
 fn intervals(f: &PixelFilter) -> Vec<(f32, f32)> {
     let r = f.radius();
-    vec![(-r, r), (-0.5, 100.0), (-1.5, r), (-0.5, 0.5), (-100.0, 1.5)]
+    vec![
+        (-r, r),
+        (-0.5, 100.0),
+        (-1.5, r),
+        (-0.5, 0.5),
+        (-100.0, 1.5),
+    ]
 }
 
 #[test]
@@ -74,9 +83,15 @@ fn sample_inverts_the_cdf_and_stays_inside() {
                 };
                 let x = f.sample_1d(u, lo, hi);
                 let r = f.radius();
-                assert!(x >= lo.max(-r) && x <= hi.min(r), "{f:?} [{lo}, {hi}] u {u}: {x}");
+                assert!(
+                    x >= lo.max(-r) && x <= hi.min(r),
+                    "{f:?} [{lo}, {hi}] u {u}: {x}"
+                );
                 let back = f.cdf_1d(x, lo, hi);
-                assert!((back - u).abs() < 2e-5, "{f:?} [{lo}, {hi}]: cdf(sample({u})) = {back}");
+                assert!(
+                    (back - u).abs() < 2e-5,
+                    "{f:?} [{lo}, {hi}]: cdf(sample({u})) = {back}"
+                );
             }
         }
     }
@@ -93,13 +108,19 @@ fn pdf_is_the_cdfs_derivative_and_integrates_to_one() {
             let total: f64 = (0..n)
                 .map(|i| f.pdf_1d((a as f64 + (i as f64 + 0.5) * h) as f32, lo, hi) as f64 * h)
                 .sum();
-            assert!((total - 1.0).abs() < 1e-4, "{f:?} [{lo}, {hi}]: ∫pdf = {total}");
+            assert!(
+                (total - 1.0).abs() < 1e-4,
+                "{f:?} [{lo}, {hi}]: ∫pdf = {total}"
+            );
             for k in 1..8 {
                 let x = a + (b - a) * k as f32 / 8.0;
                 let d = 1e-2;
                 let slope = (f.cdf_1d(x + d, lo, hi) - f.cdf_1d(x - d, lo, hi)) / (2.0 * d);
                 let p = f.pdf_1d(x, lo, hi);
-                assert!((slope - p).abs() < 2e-3 * (1.0 + p), "{f:?} at {x}: {slope} vs {p}");
+                assert!(
+                    (slope - p).abs() < 2e-3 * (1.0 + p),
+                    "{f:?} at {x}: {slope} vs {p}"
+                );
             }
         }
     }
@@ -142,7 +163,10 @@ fn chi2_p(
                     a as f64 + (b - a) as f64 * (i + 1) as f64 / CELLS as f64,
                 );
                 (0..64)
-                    .map(|k| filter.eval((s + (e - s) * (k as f64 + 0.5) / 64.0 - c as f64) as f32) as f64)
+                    .map(|k| {
+                        filter.eval((s + (e - s) * (k as f64 + 0.5) / 64.0 - c as f64) as f32)
+                            as f64
+                    })
                     .sum::<f64>()
                     * (e - s)
                     / 64.0
@@ -156,7 +180,10 @@ fn chi2_p(
     let mut rng = Rng::new(seed, 0, 0);
     for _ in 0..n {
         let p = draw(rng.next_2d());
-        assert!(p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1, "{p} outside the support");
+        assert!(
+            p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1,
+            "{p} outside the support"
+        );
         let i = (((p.x - x0) / (x1 - x0) * CELLS as f32) as usize).min(CELLS - 1);
         let j = (((p.y - y0) / (y1 - y0) * CELLS as f32) as usize).min(CELLS - 1);
         counts[j * CELLS + i] += 1.0;
@@ -198,7 +225,10 @@ fn film_positions_pass_chi_square() {
         for &(px, py) in &pixels {
             let draw = |u: Vec2| f.film_position(u, px, py, 10, 8);
             let p = chi2_p(f, &draw, (px, py, 10, 8), 400_000, 1800 + case);
-            assert!(p >= alpha, "{f:?} pixel ({px}, {py}): χ² p = {p:.3e} < {alpha:.2e}");
+            assert!(
+                p >= alpha,
+                "{f:?} pixel ({px}, {py}): χ² p = {p:.3e} < {alpha:.2e}"
+            );
             case += 1;
         }
     }

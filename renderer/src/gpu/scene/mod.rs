@@ -159,6 +159,12 @@ impl GpuScene {
     /// Refuses scenes the GPU would render differently from the CPU: mixes, textured emission
     /// and a plastic's textured α are CPU-only for now (issue 17, items 3 and 7).
     fn check_supported(scene: &Scene) -> Result<(), GpuError> {
+        // The WGSL camera jitters over the pixel (box); the gaussian filter is CPU-only for now.
+        if scene.camera.filter != crate::camera::PixelFilter::Box {
+            return Err(GpuError::Unsupported(
+                "camera.filter is gaussian: the GPU camera has only the box filter".to_owned(),
+            ));
+        }
         // Mixes are resolved on the CPU only (`Scene::resolve_mix`).
         if let Some(i) = scene.mixes.iter().position(Option::is_some) {
             return Err(GpuError::Unsupported(format!(
