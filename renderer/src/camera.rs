@@ -1,8 +1,11 @@
 //! The pinhole camera of the scene format (Mitsuba `look_at` convention: image left→right along
 //! `cross(forward, up)`, top→bottom along the projection of `-up`).
 
+pub mod filter;
+
 use crate::geometry::Ray;
-use glam::Vec3;
+pub use filter::PixelFilter;
+use glam::{Vec2, Vec3};
 
 /// A pinhole camera with a vertical field of view.
 #[derive(Clone, Copy, Debug)]
@@ -18,6 +21,8 @@ pub struct Camera {
     pub width: u32,
     /// Image height in pixels.
     pub height: u32,
+    /// The pixel filter that places camera samples on the film.
+    pub filter: PixelFilter,
 }
 
 impl Camera {
@@ -38,7 +43,22 @@ impl Camera {
             tan_y,
             width,
             height,
+            filter: PixelFilter::Box,
         }
+    }
+
+    /// This camera with pixel filter `filter` (a new camera has the box filter).
+    pub fn with_filter(mut self, filter: PixelFilter) -> Camera {
+        self.filter = filter;
+        self
+    }
+
+    /// The film position of a camera sample of pixel `(px, py)` from the uniforms `u`
+    /// ([`PixelFilter::film_position`]): for the box filter `(px + u.x, py + u.y)`.
+    #[inline]
+    pub fn film_position(&self, u: Vec2, px: u32, py: u32) -> Vec2 {
+        self.filter
+            .film_position(u, px, py, self.width, self.height)
     }
 
     /// The view basis as plain data: `(forward, right, up, tan_x, tan_y)`, the unit axes and the

@@ -248,8 +248,10 @@ impl Progressive {
                     let pixel_index = (y * width + x) as u32;
                     for s in first..first + n {
                         let mut rng = Rng::new(seed, pixel_index, s);
-                        let jitter = rng.next_2d();
-                        let ray = scene.camera.ray(x as f32 + jitter.x, y as f32 + jitter.y);
+                        let p = scene
+                            .camera
+                            .film_position(rng.next_2d(), x as u32, y as u32);
+                        let ray = scene.camera.ray(p.x, p.y);
                         let l = if transmission {
                             radiance_specialised::<true>(scene, ray, &mut rng, settings)
                         } else {

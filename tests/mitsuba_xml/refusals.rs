@@ -217,16 +217,10 @@ fn refusals_name_file_line_and_element() {
     };
     let film_cases = [
         (
-            r#"<film type="hdrfilm"><rfilter type="gaussian"/></film>"#,
+            r#"<film type="hdrfilm"><rfilter type="tent"/></film>"#,
             4,
             "scene/sensor/film/rfilter",
-            "only the box filter",
-        ),
-        (
-            r#"<film type="hdrfilm"/>"#,
-            4,
-            "scene/sensor/film",
-            "default gaussian filter",
+            "lumis has `box` and `gaussian`",
         ),
         ("", 2, "scene/sensor", "the sensor has no <film>"),
         (

@@ -145,6 +145,7 @@ mod tests {
             vfov_deg: 40.0,
             width: 64,
             height: 64,
+            filter: Default::default(),
         }
     }
 

@@ -254,7 +254,8 @@ impl Scene {
             cam.vfov_deg as f32,
             cam.width,
             cam.height,
-        );
+        )
+        .with_filter(cam.filter.filter());
         let mut materials: Vec<Material> = desc
             .materials
             .iter()

@@ -65,6 +65,47 @@ pub struct CameraDesc {
     pub width: u32,
     /// Image height in pixels.
     pub height: u32,
+    /// The pixel filter (`"filter"`, a lumis addition; default box).
+    pub filter: FilterDesc,
+}
+
+/// The camera's pixel filter (`camera.filter`), rendered as [`crate::camera::PixelFilter`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum FilterDesc {
+    /// `{"type": "box"}`: uniform over the pixel.
+    #[default]
+    Box,
+    /// `{"type": "gaussian", "stddev", "radius"}`: Mitsuba's windowed Gaussian. Validated:
+    /// `0 < stddev ≤ radius ≤` [`crate::camera::filter::MAX_FILTER_RADIUS`].
+    Gaussian {
+        /// Standard deviation in pixels.
+        stddev: f64,
+        /// Support half-width in pixels.
+        radius: f64,
+    },
+}
+
+impl FilterDesc {
+    /// The render-ready filter.
+    pub fn filter(&self) -> crate::camera::PixelFilter {
+        match *self {
+            FilterDesc::Box => crate::camera::PixelFilter::Box,
+            FilterDesc::Gaussian { stddev, radius } => crate::camera::PixelFilter::Gaussian {
+                stddev: stddev as f32,
+                radius: radius as f32,
+            },
+        }
+    }
+
+    /// The file format's `filter` object.
+    pub fn to_json(&self) -> Value {
+        match *self {
+            FilterDesc::Box => json!({"type": "box"}),
+            FilterDesc::Gaussian { stddev, radius } => {
+                json!({"type": "gaussian", "stddev": stddev, "radius": radius})
+            }
+        }
+    }
 }
 
 /// A material with the name it has in the file.
@@ -331,6 +372,7 @@ impl SceneDesc {
             "camera": {
                 "from": vec3(c.from), "to": vec3(c.to), "up": vec3(c.up),
                 "vfov_deg": c.vfov_deg, "width": c.width, "height": c.height,
+                "filter": c.filter.to_json(),
             },
             "max_depth": self.max_depth,
             "background": match &self.background {

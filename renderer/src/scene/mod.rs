@@ -29,7 +29,7 @@ mod tests;
 
 pub use build::Scene;
 pub use desc::{
-    BackgroundDesc, CameraDesc, EnvmapDesc, FresnelDesc, GeometryDesc, MaterialDesc,
+    BackgroundDesc, CameraDesc, EnvmapDesc, FilterDesc, FresnelDesc, GeometryDesc, MaterialDesc,
     MaterialTextures, NamedMaterial, SceneDesc, ShapeDesc, TextureDesc,
 };
 pub use error::SceneError;

@@ -4,7 +4,7 @@
 //! The JSON is first read into a `serde_json::Value` and then walked by hand rather than derived
 //! with serde, so that every error can name the JSON path of the problem.
 
-use super::desc::{BackgroundDesc, CameraDesc, SceneDesc};
+use super::desc::{BackgroundDesc, CameraDesc, FilterDesc, SceneDesc};
 use super::error::SceneError;
 use super::parse_background::parse_background;
 use super::parse_materials::parse_materials;
@@ -178,7 +178,10 @@ pub(crate) fn check_radiance(le: DVec3, path: &str) -> Result<DVec3, SceneError>
 }
 
 fn parse_camera(obj: &Obj) -> Result<CameraDesc, SceneError> {
-    obj.only_keys(&["from", "to", "up", "vfov_deg", "width", "height"], false)?;
+    obj.only_keys(
+        &["from", "to", "up", "vfov_deg", "width", "height", "filter"],
+        false,
+    )?;
     let (from, to, up) = (obj.vec3("from")?, obj.vec3("to")?, obj.vec3("up")?);
 
     // The camera's position bounds every ray origin: beyond the supported scene size, f32 ray
@@ -226,6 +229,10 @@ fn parse_camera(obj: &Obj) -> Result<CameraDesc, SceneError> {
         Ok(integer(obj.req(key)?, &obj.at(key), 1, MAX_IMAGE_SIZE as i64)? as u32)
     };
     let (width, height) = (size("width")?, size("height")?);
+    let filter = match obj.get("filter") {
+        Some(v) => parse_filter(&Obj::new(v, obj.at("filter"))?)?,
+        None => FilterDesc::Box,
+    };
     Ok(CameraDesc {
         from,
         to,
@@ -233,7 +240,45 @@ fn parse_camera(obj: &Obj) -> Result<CameraDesc, SceneError> {
         vfov_deg,
         width,
         height,
+        filter,
     })
+}
+
+/// `camera.filter` (a lumis addition): `{"type": "box"}` or
+/// `{"type": "gaussian", "stddev": σ, "radius": r}` (defaults 0.5 and 4σ, Mitsuba's).
+fn parse_filter(obj: &Obj) -> Result<FilterDesc, SceneError> {
+    match obj.string("type")? {
+        "box" => {
+            obj.only_keys(&["type"], false)?;
+            Ok(FilterDesc::Box)
+        }
+        "gaussian" => {
+            obj.only_keys(&["type", "stddev", "radius"], false)?;
+            let max = crate::camera::filter::MAX_FILTER_RADIUS as f64;
+            let stddev = obj.opt_number("stddev")?.unwrap_or(0.5);
+            if !(stddev > 0.0 && stddev <= max) {
+                return Err(SceneError::new(
+                    obj.at("stddev"),
+                    format!("stddev {stddev} must be in (0, {max}] pixels"),
+                ));
+            }
+            let radius = obj.opt_number("radius")?.unwrap_or(4.0 * stddev);
+            // Below σ the window's weight exp(−x²/2σ²) − exp(−r²/2σ²) loses its digits in f32.
+            if !(radius >= stddev && radius <= max) {
+                return Err(SceneError::new(
+                    obj.at("radius"),
+                    format!(
+                        "radius {radius} must be in [stddev, {max}] pixels = [{stddev}, {max}]"
+                    ),
+                ));
+            }
+            Ok(FilterDesc::Gaussian { stddev, radius })
+        }
+        other => Err(SceneError::new(
+            obj.at("type"),
+            format!("unknown filter type `{other}` (expected `box` or `gaussian`)"),
+        )),
+    }
 }
 
 #[cfg(test)]

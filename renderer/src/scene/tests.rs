@@ -536,3 +536,44 @@ fn single_precision_limits() {
     s["camera"]["up"] = json!([0, 0, 1e-300]);
     expect_err(&s, "camera.up", "parallel to the view direction");
 }
+
+/// `camera.filter`: box by default, the gaussian's defaults (0.5, 4σ), written back by
+/// `to_json`, and bad values refused at their JSON path.
+#[test]
+fn camera_filter_parses_round_trips_and_names_errors() {
+    let with = |f: &str| {
+        format!(
+            r#"{{"camera": {{"from": [0,0,-5], "to": [0,0,0], "up": [0,1,0], "vfov_deg": 40, "width": 8, "height": 8{f}}}, "materials": {{}}, "shapes": []}}"#
+        )
+    };
+    let d = parse_scene(&with("")).unwrap();
+    assert_eq!(d.camera.filter, super::FilterDesc::Box);
+    let d = parse_scene(&with(r#", "filter": {"type": "gaussian"}"#)).unwrap();
+    assert_eq!(
+        d.camera.filter,
+        super::FilterDesc::Gaussian {
+            stddev: 0.5,
+            radius: 2.0
+        }
+    );
+    let back = parse_scene(&d.to_json().to_string()).unwrap();
+    assert_eq!(back.camera.filter, d.camera.filter);
+    for (f, path) in [
+        (r#", "filter": {"type": "tent"}"#, "camera.filter.type"),
+        (
+            r#", "filter": {"type": "gaussian", "stddev": 0}"#,
+            "camera.filter.stddev",
+        ),
+        (
+            r#", "filter": {"type": "gaussian", "stddev": 1, "radius": 0.5}"#,
+            "camera.filter.radius",
+        ),
+        (
+            r#", "filter": {"type": "box", "radius": 1}"#,
+            "camera.filter.radius",
+        ),
+    ] {
+        let e = parse_scene(&with(f)).unwrap_err();
+        assert!(e.to_string().contains(path), "{f}: {e}");
+    }
+}

@@ -167,6 +167,18 @@ impl GpuScene {
         GpuScene::with_bvh2(ctx, scene, false)
     }
 
+    /// Refuses scenes the GPU would render differently from the CPU: only the gaussian pixel
+    /// filter is CPU-only for now (issue 18).
+    fn check_supported(scene: &Scene) -> Result<(), GpuError> {
+        // The WGSL camera jitters over the pixel (box); the gaussian filter is CPU-only for now.
+        if scene.camera.filter != crate::camera::PixelFilter::Box {
+            return Err(GpuError::Unsupported(
+                "camera.filter is gaussian: the GPU camera has only the box filter".to_owned(),
+            ));
+        }
+        Ok(())
+    }
+
     /// Flattens and uploads `scene`; with `bvh2` (and a scene large enough for a BVH) it also
     /// builds an obvhs BVH2 and the programs traverse that instead of the CWBVH
     /// ([`Features::bvh2`]), for measuring the two. The images are the same up to float rounding
@@ -176,6 +188,7 @@ impl GpuScene {
         scene: Arc<Scene>,
         bvh2: bool,
     ) -> Result<GpuScene, GpuError> {
+        GpuScene::check_supported(&scene)?;
         let records = Records::of(&scene);
         GpuScene::upload(ctx, scene, bvh2, records)
     }

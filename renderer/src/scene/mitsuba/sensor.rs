@@ -39,13 +39,12 @@ pub fn sensor(ctx: &mut Ctx, sensor: &Plugin) -> Result<SensorOut, SceneError> {
         Some(p) => ctx.plugin(target(p))?,
         None => {
             return Err(sensor.error(
-                "the sensor has no <film>: Mitsuba's default film is 768 × 576 with a \
-                 gaussian filter, which lumis does not have; add <film type=\"hdrfilm\"> with \
-                 <rfilter type=\"box\"/>",
+                "the sensor has no <film>: Mitsuba's default film is 768 × 576, which is \
+                 unlikely to be meant; add <film type=\"hdrfilm\"> with its width and height",
             ));
         }
     };
-    let (width, height) = film_size(ctx, &film)?;
+    let (width, height, filter) = film_size(ctx, &film)?;
     let aspect = width as f64 / height as f64;
     let x_fov = x_fov(sensor, aspect)?;
     let vfov = 2.0
@@ -116,6 +115,7 @@ pub fn sensor(ctx: &mut Ctx, sensor: &Plugin) -> Result<SensorOut, SceneError> {
         camera: json!({
             "from": v(from), "to": v(from + forward), "up": v(up),
             "vfov_deg": vfov, "width": width, "height": height,
+            "filter": filter,
         }),
         spp,
     })
@@ -187,8 +187,10 @@ fn x_fov(sensor: &Plugin, aspect: f64) -> Result<f64, SceneError> {
     Ok(x)
 }
 
-/// An `hdrfilm`'s size; its filter must be a box (lumis' only one).
-fn film_size(ctx: &Ctx, film: &Plugin) -> Result<(i64, i64), SceneError> {
+/// An `hdrfilm`'s size and lumis' `camera.filter` for its `rfilter`: `box`, or `gaussian`
+/// (also when there is none, Mitsuba's default) with Mitsuba's stddev (default 0.5) and its fixed
+/// radius 4·stddev. lumis samples the film like Mitsuba's default `sample_border = false`.
+fn film_size(ctx: &mut Ctx, film: &Plugin) -> Result<(i64, i64, Value), SceneError> {
     if film.ty != "hdrfilm" {
         return Err(film.error(format!(
             "film type `{}` is not supported; use `hdrfilm`",
@@ -212,40 +214,59 @@ fn film_size(ctx: &Ctx, film: &Plugin) -> Result<(i64, i64), SceneError> {
             "pixel_format `{fmt}` is not supported: lumis renders RGB"
         )));
     }
-    // Output encodings; lumis chooses its own from the output file name. The border only
-    // matters for filters wider than a pixel, and lumis' is a box.
-    film.ignore(&[
-        "file_format",
-        "component_format",
-        "sample_border",
-        "banner",
-        "compensate",
-    ]);
-    match film.object("rfilter")? {
-        None => {
-            return Err(film.error(
-                "the film has no <rfilter>, so Mitsuba uses its default gaussian filter \
-                 (stddev 0.5 pixel), which lumis does not have (its pixels are box-filtered); \
-                 add <rfilter type=\"box\"/> to the film to render it with lumis",
-            ));
-        }
+    // Output encodings; lumis chooses its own from the output file name.
+    film.ignore(&["file_format", "component_format", "banner", "compensate"]);
+    let border = film.bool("sample_border", false)?;
+    let filter = match film.object("rfilter")? {
+        None => json!({"type": "gaussian", "stddev": 0.5, "radius": 2.0}),
         Some(p) => {
             let f = ctx.plugin(target(p))?;
-            if f.ty != "box" {
-                return Err(f.error(format!(
-                    "reconstruction filter `{}` is not supported: lumis has only the box \
-                     filter (use <rfilter type=\"box\"/>)",
-                    f.ty
-                )));
-            }
-            f.finish("nothing")?;
+            let v = match f.ty {
+                "box" => {
+                    f.finish("nothing")?;
+                    json!({"type": "box"})
+                }
+                "gaussian" => {
+                    let stddev = f.float("stddev", 0.5)?;
+                    let max = crate::camera::filter::MAX_FILTER_RADIUS as f64 / 4.0;
+                    if !(stddev > 0.0 && stddev <= max) {
+                        return Err(f.get("stddev").map_or_else(
+                            || f.error("stddev"),
+                            |p| p.error(format!("stddev {stddev} must be in (0, {max}]")),
+                        ));
+                    }
+                    f.finish("stddev")?;
+                    json!({"type": "gaussian", "stddev": stddev, "radius": 4.0 * stddev})
+                }
+                other => {
+                    return Err(f.error(format!(
+                        "reconstruction filter `{other}` is not supported: lumis has `box` and \
+                         `gaussian`"
+                    )));
+                }
+            };
+            ctx.origin("camera.filter", f.pos());
+            v
         }
+    };
+    // With a border Mitsuba also samples outside the film: the edge pixels see the whole
+    // filter, where lumis renormalises it on the film.
+    if border && filter["type"] != "box" {
+        return Err(film.get("sample_border").map_or_else(
+            || film.error("sample_border"),
+            |p| {
+                p.error(
+                    "sample_border = true is not supported with a gaussian filter (lumis \
+                     samples the film only, like Mitsuba's default false)",
+                )
+            },
+        ));
     }
     film.finish(
-        "width, height, rfilter; pixel_format rgb or rgba; file_format, component_format \
-         and sample_border are ignored",
+        "width, height, rfilter, sample_border; pixel_format rgb or rgba; file_format and \
+         component_format are ignored",
     )?;
-    Ok((w, h))
+    Ok((w, h, filter))
 }
 
 /// A sampler's `sample_count`; every Mitsuba sampler converges to the same image.
