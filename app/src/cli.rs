@@ -27,6 +27,8 @@ pub enum Command {
     View(ViewArgs),
     /// Combine part files from `render --sample-range` into one, exactly.
     Merge(MergeArgs),
+    /// Write a scene as a Mitsuba 3 XML scene (meshes as PLY files beside it).
+    Export(ExportArgs),
 }
 
 /// Direct-lighting strategy names.
@@ -183,6 +185,23 @@ fn parse_define(text: &str) -> Result<(String, String), String> {
 /// `--sample-range`'s value, `START..END` (END excluded), non-empty.
 fn parse_sample_range(text: &str) -> Result<std::ops::Range<u32>, String> {
     lumis_app::part_file::parse_range(text)
+}
+
+/// `lumis export`.
+#[derive(Args, Debug)]
+pub struct ExportArgs {
+    /// Scene file (JSON, a mesh file, or a Mitsuba 3 scene `.xml`).
+    pub scene: PathBuf,
+    /// A parameter of a Mitsuba XML scene, `-D NAME=VALUE` (as for `render`).
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub define: Vec<(String, String)>,
+    /// The sampler's `sample_count` to write (default: the scene's, if it names one, else none:
+    /// Mitsuba's 4).
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Output Mitsuba scene (.xml); PLY files go beside it, named after their shapes.
+    #[arg(short = 'o', long = "output")]
+    pub output: PathBuf,
 }
 
 /// `lumis merge`.

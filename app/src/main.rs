@@ -2,6 +2,7 @@
 
 mod bench_cmd;
 mod cli;
+mod export_cmd;
 mod merge_cmd;
 mod render_cmd;
 mod view_cmd;
@@ -31,6 +32,7 @@ fn main() {
         cli::Command::Bench(a) => bench_cmd::bench(&a),
         cli::Command::View(a) => view_cmd::view(&a),
         cli::Command::Merge(a) => merge_cmd::merge(&a),
+        cli::Command::Export(a) => export_cmd::export(&a),
     };
     if let Err(e) = result {
         eprintln!("lumis: {e:#}");

@@ -12,6 +12,9 @@
 mod bsdf;
 mod cie;
 mod emitter;
+pub mod export;
+mod export_bsdf;
+mod export_shape;
 mod plugin;
 mod presets;
 mod sensor;

@@ -1,0 +1,309 @@
+//! Export: a [`SceneDesc`] as a Mitsuba 3 XML scene (`lumis export scene.json -o scene.xml`),
+//! the inverse of the importer in this module, so that importing the written file gives a scene
+//! that renders like the original (`tests/mitsuba_export.rs`). Meshes Mitsuba cannot read from
+//! the scene's own files (glTF, inline triangles, polygons) go into binary PLY files beside the
+//! XML. Anything the exporter cannot express exactly (a `mix`, a bitmap's `scale`, a textured
+//! sphere, …) is an error naming the JSON path, never a silently different scene.
+//!
+//! Numbers are written with Rust's shortest round-trip formatting (`{:?}`), so the importer
+//! reads back the very `f64` (or `f32`) the description holds; where the importer computes a
+//! value from a transform (a rectangle's corner), the transform is chosen so that it computes
+//! exactly the original (see [`super::export_shape`]).
+
+use super::export_bsdf::{Bsdfs, color_value};
+use super::export_shape::shape;
+use crate::integrator::Settings;
+use crate::scene::desc::{BackgroundDesc, SceneDesc};
+use crate::scene::error::SceneError;
+use crate::scene::mesh::MeshData;
+use crate::scene::mesh::ply::{Encoding, write as write_ply};
+use glam::DVec3;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// What the XML says beyond the scene description.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExportOptions {
+    /// The sampler's `sample_count`; `None` leaves Mitsuba's default (4).
+    pub spp: Option<u32>,
+    /// The `path` integrator's `rr_depth` (lumis' [`Settings::rr_depth`]: Russian roulette from
+    /// this path length, which the importer maps back one to one).
+    pub rr_depth: u32,
+}
+
+impl Default for ExportOptions {
+    /// No sample count, lumis' default Russian roulette depth.
+    fn default() -> ExportOptions {
+        ExportOptions {
+            spp: None,
+            rr_depth: Settings::default().rr_depth,
+        }
+    }
+}
+
+/// An exported scene: the XML text and the mesh files it names.
+#[derive(Clone, Debug)]
+pub struct Exported {
+    /// The Mitsuba 3 XML document.
+    pub xml: String,
+    /// PLY files to write beside the XML: the path (in the XML's folder) and the mesh.
+    pub meshes: Vec<(PathBuf, MeshData)>,
+}
+
+/// `desc` as a Mitsuba scene to be written at `xml_path` (whose folder the file names written
+/// are relative to, and where the PLY files go, named `STEM_shapes_N.ply` after their shape).
+pub fn export_scene(
+    desc: &SceneDesc,
+    xml_path: &Path,
+    options: &ExportOptions,
+) -> Result<Exported, SceneError> {
+    let folder = xml_path.parent().unwrap_or(Path::new("")).to_owned();
+    let stem = xml_path
+        .file_stem()
+        .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+    let mut x = Xml::default();
+    x.line("<?xml version=\"1.0\" encoding=\"utf-8\"?>");
+    x.line(&format!(
+        "<!-- exported by lumis {} (lumis export); docs/mitsuba.md, Export -->",
+        env!("CARGO_PKG_VERSION")
+    ));
+    x.open("scene", &[("version", "3.0.0")]);
+    integrator(&mut x, desc, options);
+    sensor(&mut x, desc, options);
+    background(&mut x, desc, &folder)?;
+    let mut ctx = ExportCtx {
+        folder,
+        stem,
+        meshes: Vec::new(),
+        bsdfs: Bsdfs::default(),
+    };
+    let mut shapes = Xml {
+        depth: x.depth,
+        ..Xml::default()
+    };
+    for s in &desc.shapes {
+        shape(&mut ctx, &mut shapes, desc, s)?;
+    }
+    // BSDFs first (declared with ids, referenced by the shapes).
+    x.out
+        .push_str(&ctx.bsdfs.xml(&desc.materials, &ctx.folder, x.depth)?);
+    x.out.push_str(&shapes.out);
+    x.close("scene");
+    Ok(Exported {
+        xml: x.out,
+        meshes: ctx.meshes,
+    })
+}
+
+/// [`export_scene`], then writes the XML to `xml_path` and the PLY files beside it; returns
+/// every file written, the XML first.
+pub fn write_export(
+    desc: &SceneDesc,
+    xml_path: &Path,
+    options: &ExportOptions,
+) -> Result<Vec<PathBuf>, SceneError> {
+    let e = export_scene(desc, xml_path, options)?;
+    let io = |p: &Path, err: std::io::Error| {
+        SceneError::new("", format!("cannot write {}: {err}", p.display()))
+    };
+    std::fs::write(xml_path, &e.xml).map_err(|err| io(xml_path, err))?;
+    let mut written = vec![xml_path.to_owned()];
+    for (path, mesh) in &e.meshes {
+        write_ply(path, mesh, Encoding::BinaryLittleEndian).map_err(|err| io(path, err))?;
+        written.push(path.clone());
+    }
+    Ok(written)
+}
+
+/// The state of one export.
+pub(crate) struct ExportCtx {
+    /// The XML's folder.
+    pub folder: PathBuf,
+    /// The XML's file stem, for the PLY names.
+    pub stem: String,
+    /// PLY files to write.
+    pub meshes: Vec<(PathBuf, MeshData)>,
+    /// The materials used, declared once each.
+    pub bsdfs: Bsdfs,
+}
+
+/// `<integrator type="path">`: the importer reads `max_depth` and `rr_depth` one to one.
+fn integrator(x: &mut Xml, desc: &SceneDesc, options: &ExportOptions) {
+    x.open("integrator", &[("type", "path")]);
+    x.leaf(
+        "integer",
+        &[
+            ("name", "max_depth"),
+            ("value", &desc.max_depth.to_string()),
+        ],
+    );
+    x.leaf(
+        "integer",
+        &[
+            ("name", "rr_depth"),
+            ("value", &options.rr_depth.to_string()),
+        ],
+    );
+    x.close("integrator");
+}
+
+/// The perspective sensor: lumis' camera is Mitsuba's `lookat` frame with the vertical field
+/// of view (`fov_axis` y), an `hdrfilm` of the image size with a box filter, and an
+/// independent sampler.
+fn sensor(x: &mut Xml, desc: &SceneDesc, options: &ExportOptions) {
+    let c = &desc.camera;
+    x.open("sensor", &[("type", "perspective")]);
+    x.leaf("float", &[("name", "fov"), ("value", &num(c.vfov_deg))]);
+    x.leaf("string", &[("name", "fov_axis"), ("value", "y")]);
+    x.open("transform", &[("name", "to_world")]);
+    x.leaf(
+        "lookat",
+        &[
+            ("origin", &vec3(c.from)),
+            ("target", &vec3(c.to)),
+            ("up", &vec3(c.up)),
+        ],
+    );
+    x.close("transform");
+    x.open("sampler", &[("type", "independent")]);
+    if let Some(spp) = options.spp {
+        x.leaf(
+            "integer",
+            &[("name", "sample_count"), ("value", &spp.to_string())],
+        );
+    }
+    x.close("sampler");
+    x.open("film", &[("type", "hdrfilm")]);
+    x.leaf(
+        "integer",
+        &[("name", "width"), ("value", &c.width.to_string())],
+    );
+    x.leaf(
+        "integer",
+        &[("name", "height"), ("value", &c.height.to_string())],
+    );
+    x.leaf("string", &[("name", "pixel_format"), ("value", "rgb")]);
+    // TODO filter: the camera's pixel filter (box, the default) once CameraDesc has one.
+    x.leaf("rfilter", &[("type", "box")]);
+    x.close("film");
+    x.close("sensor");
+}
+
+/// The background as a `constant` or `envmap` emitter (none for black, Mitsuba's default).
+fn background(x: &mut Xml, desc: &SceneDesc, folder: &Path) -> Result<(), SceneError> {
+    match &desc.background {
+        BackgroundDesc::Constant(c) if *c == DVec3::ZERO => {}
+        BackgroundDesc::Constant(c) => {
+            x.open("emitter", &[("type", "constant")]);
+            color_value(x, "radiance", *c);
+            x.close("emitter");
+        }
+        BackgroundDesc::Envmap(e) => {
+            x.open("emitter", &[("type", "envmap")]);
+            x.leaf(
+                "string",
+                &[("name", "filename"), ("value", &file_name(&e.file, folder))],
+            );
+            x.leaf("float", &[("name", "scale"), ("value", &num(e.scale))]);
+            if e.rotate_y_deg != 0.0 {
+                // Mitsuba's rotate about +y is lumis' rotate_y_deg (the same convention).
+                x.open("transform", &[("name", "to_world")]);
+                x.leaf("rotate", &[("y", "1"), ("angle", &num(e.rotate_y_deg))]);
+                x.close("transform");
+            }
+            x.close("emitter");
+        }
+    }
+    Ok(())
+}
+
+/// A file as the XML names it: relative to the XML's folder when it lies inside it (both
+/// made absolute first), else absolute.
+pub(crate) fn file_name(file: &Path, folder: &Path) -> String {
+    let abs = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_owned());
+    let (file, folder) = (abs(file), abs(folder));
+    match file.strip_prefix(&folder) {
+        Ok(rel) => rel.to_string_lossy().into_owned(),
+        Err(_) => file.to_string_lossy().into_owned(),
+    }
+}
+
+/// `x` in shortest round-trip form (`0.1`, `1e-7`): the importer parses back this very `f64`.
+pub(crate) fn num(x: f64) -> String {
+    format!("{x:?}")
+}
+
+/// An `f32` in the shortest form that parses (as `f64`, then rounded to `f32`, as the importer
+/// and the JSON front end read it) back to `x`.
+pub(crate) fn num32(x: f32) -> String {
+    let s = format!("{x:?}");
+    if s.parse::<f64>().map(|d| d as f32) == Ok(x) {
+        s
+    } else {
+        num(x as f64)
+    }
+}
+
+/// Three numbers, space-separated.
+pub(crate) fn vec3(v: DVec3) -> String {
+    format!("{} {} {}", num(v.x), num(v.y), num(v.z))
+}
+
+/// A minimal XML writer: indented elements with escaped attribute values.
+#[derive(Default)]
+pub(crate) struct Xml {
+    /// The text so far.
+    pub out: String,
+    /// The current nesting depth.
+    pub depth: usize,
+}
+
+impl Xml {
+    /// One raw line at the current depth.
+    pub fn line(&mut self, text: &str) {
+        let _ = writeln!(self.out, "{}{text}", "    ".repeat(self.depth));
+    }
+
+    fn tag(tag: &str, attrs: &[(&str, &str)]) -> String {
+        let mut s = format!("<{tag}");
+        for (k, v) in attrs {
+            let _ = write!(s, " {k}=\"{}\"", escape(v));
+        }
+        s
+    }
+
+    /// `<tag attrs>`, then deeper.
+    pub fn open(&mut self, tag: &str, attrs: &[(&str, &str)]) {
+        self.line(&format!("{}>", Self::tag(tag, attrs)));
+        self.depth += 1;
+    }
+
+    /// `</tag>`, one level up.
+    pub fn close(&mut self, tag: &str) {
+        self.depth -= 1;
+        self.line(&format!("</{tag}>"));
+    }
+
+    /// `<tag attrs/>`.
+    pub fn leaf(&mut self, tag: &str, attrs: &[(&str, &str)]) {
+        self.line(&format!("{}/>", Self::tag(tag, attrs)));
+    }
+}
+
+/// `s` as an attribute value between double quotes.
+fn escape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            // The importer (like Mitsuba) substitutes `$name` parameters; `\$` is a dollar.
+            '$' => out.push_str("\\$"),
+            c => out.push(c),
+        }
+    }
+    out
+}

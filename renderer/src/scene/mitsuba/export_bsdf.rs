@@ -1,0 +1,302 @@
+//! Export of materials and textures: each material a shape uses becomes one `<bsdf>` declared
+//! with the material's name as its `id` (the importer names a material by its id), wrapped in
+//! `twosided` (id on the wrapper) unless it is one-sided or a dielectric; the inverse of
+//! [`super::bsdf`] and [`super::texture`]: lumis' `ior` becomes `int_ior` with `ext_ior` 1,
+//! a reflectance conductor Mitsuba's `material="none"` (Fresnel 1) times
+//! `specular_reflectance`, α > 0 or a textured α the rough variant with `distribution="ggx"`,
+//! and a checkerboard read as a scalar (α) has its colours swapped (Mitsuba's `eval_1`).
+
+use super::export::{Xml, file_name, num, num32};
+use crate::scene::desc::{FresnelDesc, MaterialDesc, NamedMaterial, TextureDesc};
+use crate::scene::error::SceneError;
+use crate::scene::walk::join;
+use crate::textures::{Channel, Texture, UvTransform};
+use glam::{DVec3, Vec2, Vec3};
+use std::path::Path;
+
+/// The materials shapes refer to, in order of first use.
+#[derive(Default)]
+pub(crate) struct Bsdfs {
+    used: Vec<usize>,
+}
+
+impl Bsdfs {
+    /// Marks material `index` as used; returns the id to `<ref>`.
+    pub fn use_material(&mut self, materials: &[NamedMaterial], index: usize) -> String {
+        if !self.used.contains(&index) {
+            self.used.push(index);
+        }
+        materials[index].name.clone()
+    }
+
+    /// The declarations of the used materials, at nesting `depth`.
+    pub fn xml(
+        &self,
+        materials: &[NamedMaterial],
+        folder: &Path,
+        depth: usize,
+    ) -> Result<String, SceneError> {
+        let mut x = Xml {
+            depth,
+            ..Xml::default()
+        };
+        for &i in &self.used {
+            material(&mut x, &materials[i], folder)?;
+        }
+        Ok(x.out)
+    }
+}
+
+/// JSON path of material `name`.
+fn path_of(name: &str) -> String {
+    join("materials", name)
+}
+
+/// Whether the material reads texture coordinates (a non-constant texture in a slot).
+pub(crate) fn is_textured(m: &NamedMaterial) -> bool {
+    let t = &m.textures;
+    [&t.albedo, &t.reflectance, &t.alpha]
+        .iter()
+        .any(|s| s.as_ref().is_some_and(|d| !d.texture.is_constant()))
+}
+
+/// One material as a declared `<bsdf>`.
+fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneError> {
+    let path = path_of(&m.name);
+    if m.mix.is_some() {
+        return Err(SceneError::new(
+            path,
+            "a `mix` material cannot be exported: Mitsuba's blendbsdf is not what lumis' \
+             importer maps back (nor lumis' stochastic mix), so the scene would change",
+        ));
+    }
+    let dielectric = matches!(m.material, MaterialDesc::Dielectric { .. });
+    let wrap = m.two_sided && !dielectric;
+    let ty = bsdf_type(m);
+    if wrap {
+        x.open("bsdf", &[("type", "twosided"), ("id", &m.name)]);
+        x.open("bsdf", &[("type", ty)]);
+    } else {
+        x.open("bsdf", &[("type", ty), ("id", &m.name)]);
+    }
+    let t = &m.textures;
+    let tex = |slot: &Option<TextureDesc>| slot.clone().filter(|d| !d.texture.is_constant());
+    match &m.material {
+        MaterialDesc::Diffuse { albedo } => {
+            color_slot(x, "reflectance", *albedo, tex(&t.albedo), folder, &path)?;
+        }
+        MaterialDesc::Conductor { alpha, fresnel } => {
+            match fresnel {
+                FresnelDesc::Complex { eta, k } => {
+                    color_value(x, "eta", *eta);
+                    color_value(x, "k", *k);
+                }
+                FresnelDesc::Reflectance(r) => {
+                    x.leaf("string", &[("name", "material"), ("value", "none")]);
+                    color_slot(
+                        x,
+                        "specular_reflectance",
+                        *r,
+                        tex(&t.reflectance),
+                        folder,
+                        &format!("{path}.reflectance"),
+                    )?;
+                }
+            }
+            rough(x, ty, *alpha, tex(&t.alpha), folder, &path)?;
+        }
+        MaterialDesc::Plastic {
+            albedo,
+            alpha,
+            ior,
+            specular,
+        } => {
+            if tex(&t.alpha).is_some() {
+                return Err(SceneError::new(
+                    format!("{path}.alpha"),
+                    "a plastic's textured alpha cannot be exported: Mitsuba's roughplastic \
+                     takes a constant alpha",
+                ));
+            }
+            color_slot(
+                x,
+                "diffuse_reflectance",
+                *albedo,
+                tex(&t.albedo),
+                folder,
+                &path,
+            )?;
+            color_value(x, "specular_reflectance", *specular);
+            index(x, *ior);
+            rough(x, ty, *alpha, None, folder, &path)?;
+        }
+        MaterialDesc::Dielectric { ior, alpha } => {
+            index(x, *ior);
+            rough(x, ty, *alpha, tex(&t.alpha), folder, &path)?;
+        }
+    }
+    x.close("bsdf");
+    if wrap {
+        x.close("bsdf");
+    }
+    Ok(())
+}
+
+/// The Mitsuba plugin of a (non-mix) material.
+fn bsdf_type(m: &NamedMaterial) -> &'static str {
+    let textured = m
+        .textures
+        .alpha
+        .as_ref()
+        .is_some_and(|t| !t.texture.is_constant());
+    let rough = |alpha: f64| alpha > 0.0 || textured;
+    match &m.material {
+        MaterialDesc::Diffuse { .. } => "diffuse",
+        MaterialDesc::Conductor { alpha, .. } if rough(*alpha) => "roughconductor",
+        MaterialDesc::Conductor { .. } => "conductor",
+        MaterialDesc::Plastic { alpha, .. } if rough(*alpha) => "roughplastic",
+        MaterialDesc::Plastic { .. } => "plastic",
+        MaterialDesc::Dielectric { alpha, .. } if rough(*alpha) => "roughdielectric",
+        MaterialDesc::Dielectric { .. } => "dielectric",
+    }
+}
+
+/// lumis' relative index as `int_ior` inside an explicit `ext_ior` of 1 (Mitsuba's default
+/// outside is air, 1.000277); the importer divides them back exactly.
+fn index(x: &mut Xml, ior: f64) {
+    x.leaf("float", &[("name", "int_ior"), ("value", &num(ior))]);
+    x.leaf("float", &[("name", "ext_ior"), ("value", "1.0")]);
+}
+
+/// A rough model's GGX α (constant or texture); nothing for a smooth one.
+fn rough(
+    x: &mut Xml,
+    ty: &str,
+    alpha: f64,
+    texture: Option<TextureDesc>,
+    folder: &Path,
+    path: &str,
+) -> Result<(), SceneError> {
+    if !ty.starts_with("rough") {
+        return Ok(());
+    }
+    x.leaf("string", &[("name", "distribution"), ("value", "ggx")]);
+    match texture {
+        Some(t) => texture_xml(x, "alpha", &t, true, folder, &format!("{path}.alpha")),
+        None => {
+            x.leaf("float", &[("name", "alpha"), ("value", &num(alpha))]);
+            Ok(())
+        }
+    }
+}
+
+/// A colour parameter: its texture if it has a non-constant one, else the constant.
+fn color_slot(
+    x: &mut Xml,
+    name: &str,
+    constant: DVec3,
+    texture: Option<TextureDesc>,
+    folder: &Path,
+    path: &str,
+) -> Result<(), SceneError> {
+    match texture {
+        Some(t) => texture_xml(x, name, &t, false, folder, path),
+        None => {
+            color_value(x, name, constant);
+            Ok(())
+        }
+    }
+}
+
+/// `<rgb name=… value="r g b"/>`.
+pub(crate) fn color_value(x: &mut Xml, name: &str, c: DVec3) {
+    let v = format!("{} {} {}", num(c.x), num(c.y), num(c.z));
+    x.leaf("rgb", &[("name", name), ("value", &v)]);
+}
+
+fn color32(x: &mut Xml, name: &str, c: Vec3) {
+    let v = format!("{} {} {}", num32(c.x), num32(c.y), num32(c.z));
+    x.leaf("rgb", &[("name", name), ("value", &v)]);
+}
+
+/// A texture (or a constant one as its value) as parameter `name`; `scalar` when the slot reads
+/// a scalar (Mitsuba's `eval_1`).
+pub(crate) fn texture_xml(
+    x: &mut Xml,
+    name: &str,
+    t: &TextureDesc,
+    scalar: bool,
+    folder: &Path,
+    path: &str,
+) -> Result<(), SceneError> {
+    match &t.texture {
+        Texture::Constant(c) if scalar => {
+            x.leaf("float", &[("name", name), ("value", &num32(c.x))]);
+        }
+        Texture::Constant(c) => color32(x, name, *c),
+        Texture::Bitmap(b) => {
+            let o = b.options();
+            if o.scale != Vec3::ONE {
+                return Err(SceneError::new(
+                    path,
+                    "a bitmap's `scale` cannot be exported: Mitsuba's bitmap has none (bake \
+                     it into the image)",
+                ));
+            }
+            if scalar && o.channel != Channel::Luminance {
+                return Err(SceneError::new(
+                    path,
+                    format!(
+                        "a bitmap's `channel` {} cannot be exported: Mitsuba's scalar lookup \
+                         reads the luminance",
+                        o.channel.name()
+                    ),
+                ));
+            }
+            x.open("texture", &[("type", "bitmap"), ("name", name)]);
+            x.leaf(
+                "string",
+                &[("name", "filename"), ("value", &file_name(&b.file, folder))],
+            );
+            x.leaf("string", &[("name", "filter_type"), ("value", "bilinear")]);
+            x.leaf("string", &[("name", "wrap_mode"), ("value", o.wrap.name())]);
+            if b.raw {
+                x.leaf("boolean", &[("name", "raw"), ("value", "true")]);
+            }
+            to_uv(x, &o.uv);
+            x.close("texture");
+        }
+        Texture::Checkerboard(c) => {
+            x.open("texture", &[("type", "checkerboard"), ("name", name)]);
+            // Mitsuba's eval_1 picks the other colour; the importer swaps them back.
+            let (c0, c1) = if scalar {
+                (c.color1, c.color0)
+            } else {
+                (c.color0, c.color1)
+            };
+            color32(x, "color0", c0);
+            color32(x, "color1", c1);
+            to_uv(x, &c.uv);
+            x.close("texture");
+        }
+    }
+    Ok(())
+}
+
+/// A texture's scale and offset as `to_uv` (nothing for the identity).
+fn to_uv(x: &mut Xml, uv: &UvTransform) {
+    if uv.scale == Vec2::ONE && uv.offset == Vec2::ZERO {
+        return;
+    }
+    let (s, o) = (uv.scale, uv.offset);
+    let m = format!(
+        "{} 0 0 {} 0 {} 0 {} 0 0 1 0 0 0 0 1",
+        num32(s.x),
+        num32(o.x),
+        num32(s.y),
+        num32(o.y)
+    );
+    x.open("transform", &[("name", "to_uv")]);
+    x.leaf("matrix", &[("value", &m)]);
+    x.close("transform");
+}
