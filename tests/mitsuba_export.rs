@@ -231,6 +231,28 @@ fn every_material_texture_and_shape_kind_round_trips_bit_for_bit() {
     assert_round_trip(&kitchen_sink(), "kitchen_sink");
 }
 
+/// A gaussian pixel filter goes out as Mitsuba's `gaussian` rfilter and comes back as the same
+/// filter (the same image, bit for bit); a radius other than Mitsuba's 4σ is refused by path.
+#[test]
+fn a_gaussian_filter_round_trips_and_another_radius_is_refused() {
+    let mut desc = kitchen_sink();
+    desc.camera.filter = lumis::scene::FilterDesc::Gaussian {
+        stddev: 0.5,
+        radius: 2.0,
+    };
+    assert_round_trip(&desc, "gaussian_filter");
+    let dir = Dir::new("gaussian_filter_back");
+    let (_, back) = round_trip(&desc, &dir, "gaussian_filter_back");
+    assert_eq!(back.desc.camera.filter, desc.camera.filter);
+    desc.camera.filter = lumis::scene::FilterDesc::Gaussian {
+        stddev: 0.5,
+        radius: 3.0,
+    };
+    let dir = Dir::new("gaussian_radius");
+    let err = write_export(&desc, &dir.0.join("s.xml"), &ExportOptions::default()).unwrap_err();
+    assert!(err.to_string().contains("camera.filter.radius"), "{err}");
+}
+
 /// The block z-test at family-wise α = 0.01 (seeds 1 and 2, 64 spp each, 8×8 blocks): the
 /// exported `analytic_polygon`, whose emitting polygon becomes a triangle mesh, renders like
 /// the JSON with its polygon light. Detects a wrong triangulation or winding of the PLY.

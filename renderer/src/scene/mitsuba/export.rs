@@ -13,7 +13,7 @@
 use super::export_bsdf::{Bsdfs, color_value};
 use super::export_shape::shape;
 use crate::integrator::Settings;
-use crate::scene::desc::{BackgroundDesc, SceneDesc};
+use crate::scene::desc::{BackgroundDesc, FilterDesc, SceneDesc};
 use crate::scene::error::SceneError;
 use crate::scene::mesh::MeshData;
 use crate::scene::mesh::ply::{Encoding, write as write_ply};
@@ -69,7 +69,7 @@ pub fn export_scene(
     ));
     x.open("scene", &[("version", "3.0.0")]);
     integrator(&mut x, desc, options);
-    sensor(&mut x, desc, options);
+    sensor(&mut x, desc, options)?;
     background(&mut x, desc, &folder)?;
     let mut ctx = ExportCtx {
         folder,
@@ -148,9 +148,9 @@ fn integrator(x: &mut Xml, desc: &SceneDesc, options: &ExportOptions) {
 }
 
 /// The perspective sensor: lumis' camera is Mitsuba's `lookat` frame with the vertical field
-/// of view (`fov_axis` y), an `hdrfilm` of the image size with a box filter, and an
-/// independent sampler.
-fn sensor(x: &mut Xml, desc: &SceneDesc, options: &ExportOptions) {
+/// of view (`fov_axis` y), an `hdrfilm` of the image size with the camera's pixel filter, and
+/// an independent sampler. Mitsuba's gaussian has radius 4σ, so another radius is refused.
+fn sensor(x: &mut Xml, desc: &SceneDesc, options: &ExportOptions) -> Result<(), SceneError> {
     let c = &desc.camera;
     x.open("sensor", &[("type", "perspective")]);
     x.leaf("float", &[("name", "fov"), ("value", &num(c.vfov_deg))]);
@@ -183,10 +183,26 @@ fn sensor(x: &mut Xml, desc: &SceneDesc, options: &ExportOptions) {
         &[("name", "height"), ("value", &c.height.to_string())],
     );
     x.leaf("string", &[("name", "pixel_format"), ("value", "rgb")]);
-    // TODO filter: the camera's pixel filter (box, the default) once CameraDesc has one.
-    x.leaf("rfilter", &[("type", "box")]);
+    match c.filter {
+        FilterDesc::Box => x.leaf("rfilter", &[("type", "box")]),
+        FilterDesc::Gaussian { stddev, radius } => {
+            if radius != 4.0 * stddev {
+                return Err(SceneError::new(
+                    "camera.filter.radius",
+                    format!(
+                        "Mitsuba's gaussian filter has radius 4 × stddev ({}), not {radius}",
+                        4.0 * stddev
+                    ),
+                ));
+            }
+            x.open("rfilter", &[("type", "gaussian")]);
+            x.leaf("float", &[("name", "stddev"), ("value", &num(stddev))]);
+            x.close("rfilter");
+        }
+    }
     x.close("film");
     x.close("sensor");
+    Ok(())
 }
 
 /// The background as a `constant` or `envmap` emitter (none for black, Mitsuba's default).
