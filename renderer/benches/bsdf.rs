@@ -1,11 +1,14 @@
 //! BSDF throughput: `eval`, `pdf` and `sample` of the diffuse, GGX conductor (α 0.05 and 0.5) and
 //! plastic materials through the `Material` enum, as the integrator calls them, over a fixed set of
-//! local-frame directions and random numbers. Throughput is in calls.
+//! local-frame directions and random numbers. Throughput is in calls. Also the rough plastic's
+//! coat-albedo table build (`CoatAlbedo::new`), which the viewer's roughness slider repeats per
+//! change: its budget is 10 ms (one 60 Hz frame minus the render's share).
 //!
 //! `cargo bench -p lumis-renderer --bench bsdf`
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use glam::{Vec2, Vec3};
+use lumis::materials::coat_albedo::CoatAlbedo;
 use lumis::materials::{Conductor, ConductorFresnel, Diffuse, Material, Plastic};
 use lumis::rng::Rng;
 use lumis::sampling::sample_uniform_hemisphere;
@@ -105,5 +108,17 @@ fn bsdf(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bsdf);
+/// One table build per iteration, at a few rough coats (a smooth one, α ≈ 0, skips the quadrature
+/// and is not measured).
+fn coat_albedo(c: &mut Criterion) {
+    let mut group = c.benchmark_group("coat_albedo");
+    for alpha in [0.05f32, 0.3, 1.0] {
+        group.bench_function(format!("new/a{alpha}"), |b| {
+            b.iter(|| CoatAlbedo::new(black_box(alpha), black_box(0.04)))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bsdf, coat_albedo);
 criterion_main!(benches);

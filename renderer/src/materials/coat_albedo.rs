@@ -205,18 +205,4 @@ pub(crate) mod tests {
         let c = CoatAlbedo::new(0.0, 0.04);
         assert_eq!(c.eval(0.3), fresnel::fresnel_schlick(0.04, 0.3));
     }
-
-    #[test]
-    fn builds_fast() {
-        // Viewer sliders rebuild the table; the budget is 10 ms (measured ≈ 1.3 ms in release).
-        if cfg!(debug_assertions) {
-            return;
-        }
-        let t0 = std::time::Instant::now();
-        for i in 0..10 {
-            std::hint::black_box(CoatAlbedo::new(0.1 * (i + 1) as f32, 0.04));
-        }
-        let per = t0.elapsed().as_secs_f64() / 10.0;
-        assert!(per < 10e-3, "{per} s");
-    }
 }
