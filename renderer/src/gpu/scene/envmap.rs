@@ -47,25 +47,12 @@ impl EnvmapTexels {
 
     /// Uploads the texels as an `rgba32float` texture.
     pub(crate) fn upload(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::Texture {
-        use wgpu::util::DeviceExt;
-        device.create_texture_with_data(
+        super::textures::upload_rgba32float(
+            device,
             queue,
-            &wgpu::TextureDescriptor {
-                label: Some("lumis envmap"),
-                size: wgpu::Extent3d {
-                    width: self.width,
-                    height: self.height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba32Float,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            },
-            wgpu::util::TextureDataOrder::LayerMajor,
-            bytemuck::cast_slice(&self.rgba),
+            "lumis envmap",
+            (self.width, self.height),
+            &self.rgba,
         )
     }
 }

@@ -172,29 +172,48 @@ impl TextureTexels {
         queue: &wgpu::Queue,
         (width, height): (u32, u32),
     ) -> wgpu::Texture {
-        use wgpu::util::DeviceExt;
         let mut rgba = self.rgba.clone();
         rgba.resize(width as usize * height as usize, [0.0; 4]);
-        device.create_texture_with_data(
+        upload_rgba32float(
+            device,
             queue,
-            &wgpu::TextureDescriptor {
-                label: Some("lumis texture texels"),
-                size: wgpu::Extent3d {
-                    width,
-                    height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba32Float,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            },
-            wgpu::util::TextureDataOrder::LayerMajor,
-            bytemuck::cast_slice(&rgba),
+            "lumis texture texels",
+            (width, height),
+            &rgba,
         )
     }
+}
+
+/// Uploads `rgba` (row-major, `width × height` texels) as a sampled `rgba32float` texture: the one
+/// format both the bitmaps and the environment map use, read with `textureLoad` (no sampler).
+pub(crate) fn upload_rgba32float(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    (width, height): (u32, u32),
+    rgba: &[[f32; 4]],
+) -> wgpu::Texture {
+    use wgpu::util::DeviceExt;
+    debug_assert_eq!(rgba.len(), width as usize * height as usize);
+    device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(rgba),
+    )
 }
 
 /// A scene's textures as the GPU holds them.
