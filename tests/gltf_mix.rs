@@ -21,31 +21,13 @@ mod common;
 use common::{check_unbiased, render};
 use lumis::integrator::Settings;
 use lumis::metrics::{ImageWithVariance, block_z_test};
+use lumis::scene::mesh::gltf::bytes::base64;
 use lumis::scene::{Scene, load_scene};
 use serde_json::json;
 use std::path::PathBuf;
 use std::sync::Arc;
 
 const SPP: u32 = 256;
-
-/// Standard base64 (the buffer's data URI).
-fn base64(bytes: &[u8]) -> String {
-    const A: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for c in bytes.chunks(3) {
-        let n = (c[0] as u32) << 16
-            | (*c.get(1).unwrap_or(&0) as u32) << 8
-            | *c.get(2).unwrap_or(&0) as u32;
-        for k in 0..4 {
-            out.push(if k <= c.len() {
-                A[(n >> (18 - 6 * k) & 63) as usize] as char
-            } else {
-                '='
-            });
-        }
-    }
-    out
-}
 
 /// `metallic-M.gltf` in a scratch folder: two quads (the floor in material 0 of metallic
 /// `metallic`, facing up; a light in material 1, facing down) and a camera.

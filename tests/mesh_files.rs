@@ -11,6 +11,7 @@ use common::{STRATEGIES, render};
 use glam::Vec3;
 use lumis::integrator::Settings;
 use lumis::scene::Scene;
+use lumis::scene::mesh::gltf::bytes::{base64, glb};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -144,27 +145,6 @@ fn gltf_json(p: &[Vec3], t: &[[u32; 3]], uri: Option<String>) -> String {
     )
 }
 
-fn base64(data: &[u8]) -> String {
-    const A: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::new();
-    for chunk in data.chunks(3) {
-        let b = [
-            chunk[0],
-            *chunk.get(1).unwrap_or(&0),
-            *chunk.get(2).unwrap_or(&0),
-        ];
-        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
-        for k in 0..4 {
-            if k <= chunk.len() {
-                s.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                s.push('=');
-            }
-        }
-    }
-    s
-}
-
 fn write_gltf_embedded(path: &Path, p: &[Vec3], t: &[[u32; 3]]) {
     let uri = format!(
         "data:application/octet-stream;base64,{}",
@@ -174,26 +154,8 @@ fn write_gltf_embedded(path: &Path, p: &[Vec3], t: &[[u32; 3]]) {
 }
 
 fn write_glb(path: &Path, p: &[Vec3], t: &[[u32; 3]]) {
-    let mut json = gltf_json(p, t, None).into_bytes();
-    while !json.len().is_multiple_of(4) {
-        json.push(b' ');
-    }
-    let mut bin = gltf_buffer(p, t);
-    while !bin.len().is_multiple_of(4) {
-        bin.push(0);
-    }
-    let total = 12 + 8 + json.len() + 8 + bin.len();
-    let mut b = Vec::new();
-    b.extend(b"glTF");
-    b.extend(2u32.to_le_bytes());
-    b.extend((total as u32).to_le_bytes());
-    b.extend((json.len() as u32).to_le_bytes());
-    b.extend(b"JSON");
-    b.extend(&json);
-    b.extend((bin.len() as u32).to_le_bytes());
-    b.extend(b"BIN\0");
-    b.extend(&bin);
-    std::fs::write(path, b).unwrap();
+    let bin = gltf_buffer(p, t);
+    std::fs::write(path, glb(&gltf_json(p, t, None), Some(&bin))).unwrap();
 }
 
 /// A floor, a small quad light and the octahedron (`shape`: its JSON), saved as `name` in the

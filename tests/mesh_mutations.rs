@@ -33,6 +33,7 @@
 //! files to `DIR/mesh_obj`, `DIR/mesh_ply` and `DIR/mesh_gltf`, the fuzz targets' corpora
 //! (`fuzz/README.md`).
 
+use lumis::scene::mesh::gltf::bytes::{self, base64};
 use lumis::scene::mesh::{MeshData, MeshError, check, load_mesh, load_mesh_bytes, obj, ply};
 use proptest::prelude::*;
 use proptest::sample::Index;
@@ -268,27 +269,11 @@ fn gltf_asset() -> (Value, Vec<u8>) {
 /// The `.gltf` (buffer as a data URI) or `.glb` (BIN chunk) file of `json` and `bin`, from the
 /// text of `json` (already given its data URI for `.gltf`).
 fn pack(json_text: &str, bin: &[u8], glb: bool) -> Vec<u8> {
-    if !glb {
-        return json_text.as_bytes().to_vec();
+    if glb {
+        bytes::glb(json_text, Some(bin))
+    } else {
+        json_text.as_bytes().to_vec()
     }
-    let mut j = json_text.as_bytes().to_vec();
-    while !j.len().is_multiple_of(4) {
-        j.push(b' ');
-    }
-    let mut b = bin.to_vec();
-    while !b.len().is_multiple_of(4) {
-        b.push(0);
-    }
-    let mut out = b"glTF".to_vec();
-    out.extend(2u32.to_le_bytes());
-    out.extend((12 + 8 + j.len() as u32 + 8 + b.len() as u32).to_le_bytes());
-    out.extend((j.len() as u32).to_le_bytes());
-    out.extend(b"JSON");
-    out.extend(j);
-    out.extend((b.len() as u32).to_le_bytes());
-    out.extend(b"BIN\0");
-    out.extend(b);
-    out
 }
 
 /// Gives a `.gltf`'s buffer 0 its data URI (if the JSON still has a buffer 0 object).
@@ -305,24 +290,6 @@ fn embed(json: &mut Value, bin: &[u8]) {
             )),
         );
     }
-}
-
-fn base64(bytes: &[u8]) -> String {
-    const A: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for c in bytes.chunks(3) {
-        let n = (c[0] as u32) << 16
-            | (*c.get(1).unwrap_or(&0) as u32) << 8
-            | *c.get(2).unwrap_or(&0) as u32;
-        for k in 0..4 {
-            if k <= c.len() {
-                out.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
 }
 
 /// Every seed file; each must load as it is (checked by the test).

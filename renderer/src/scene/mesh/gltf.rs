@@ -32,6 +32,9 @@
 
 #[path = "gltf_buffers.rs"]
 mod buffers;
+#[cfg(any(test, feature = "testing"))]
+#[path = "gltf_bytes.rs"]
+pub mod bytes;
 #[path = "gltf_materials.rs"]
 pub mod materials;
 #[path = "gltf_model.rs"]

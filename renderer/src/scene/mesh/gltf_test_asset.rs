@@ -3,6 +3,7 @@
 //! external or a `data:` buffer, or as a `.glb`. Shared by the geometry, material and model
 //! tests.
 
+pub(crate) use super::bytes::{base64, glb};
 use serde_json::{Value, json};
 use std::path::PathBuf;
 
@@ -207,50 +208,6 @@ impl Asset {
 
 pub(crate) fn finite_or_zero(f: f32) -> f32 {
     if f.is_finite() { f } else { 0.0 }
-}
-
-/// A `.glb` container: header, JSON chunk (space-padded), BIN chunk (zero-padded).
-pub(crate) fn glb(json: &str, bin: Option<&[u8]>) -> Vec<u8> {
-    let mut j = json.as_bytes().to_vec();
-    while !j.len().is_multiple_of(4) {
-        j.push(b' ');
-    }
-    let mut chunks = Vec::new();
-    chunks.extend((j.len() as u32).to_le_bytes());
-    chunks.extend(b"JSON");
-    chunks.extend(&j);
-    if let Some(bin) = bin {
-        let mut b = bin.to_vec();
-        while !b.len().is_multiple_of(4) {
-            b.push(0);
-        }
-        chunks.extend((b.len() as u32).to_le_bytes());
-        chunks.extend(b"BIN\0");
-        chunks.extend(&b);
-    }
-    let mut out = b"glTF".to_vec();
-    out.extend(2u32.to_le_bytes());
-    out.extend((12 + chunks.len() as u32).to_le_bytes());
-    out.extend(chunks);
-    out
-}
-
-pub(crate) fn base64(bytes: &[u8]) -> String {
-    const A: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::new();
-    for c in bytes.chunks(3) {
-        let n = (c[0] as u32) << 16
-            | (*c.get(1).unwrap_or(&0) as u32) << 8
-            | *c.get(2).unwrap_or(&0) as u32;
-        for k in 0..4 {
-            if k <= c.len() {
-                out.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
 }
 
 pub(crate) fn primitive(
