@@ -35,103 +35,30 @@ mod common;
 mod gpu_common;
 
 use common::check_unbiased;
-use glam::{DVec3, Vec2, Vec3};
+use common::emitters::{Panel, emission_texels, kind, pentagon, scratch_dir};
+use glam::{Vec2, Vec3};
 use gpu_common::images::{cpu_render, film_z_test, gpu_render};
 use gpu_common::{Compare, context};
 use lumis::geometry::Ray;
 use lumis::geometry::primitive::NONE;
 use lumis::gpu::GpuScene;
 use lumis::gpu::kernel::run_snippet;
-use lumis::image_io::Image;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::{Light, LightSampling};
 use std::path::PathBuf;
 use std::sync::Arc;
 
 fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "lumis-gpu-textured-emission-{}-{name}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-/// The panel mesh: 4 triangles fanned around a centre, facing (0, −1, −1)/√2, with irregular
-/// texture coordinates (OBJ text).
-fn panel_obj() -> String {
-    let corners = [
-        DVec3::new(-0.8, 0.15, 2.5),
-        DVec3::new(0.6, 0.15, 2.5),
-        DVec3::new(0.6, 1.15, 1.5),
-        DVec3::new(-0.8, 1.15, 1.5),
-    ];
-    let centre = DVec3::new(-0.2, 0.55, 2.1);
-    let facing = DVec3::new(0.0, -1.0, -1.0);
-    let vt = [
-        [0.1, 0.2],
-        [0.9, 0.05],
-        [0.8, 0.95],
-        [0.05, 0.8],
-        [0.55, 0.4],
-    ];
-    let p = |i: usize| if i == 4 { centre } else { corners[i] };
-    let mut s = String::new();
-    for i in 0..5 {
-        s += &format!("v {} {} {}\n", p(i).x, p(i).y, p(i).z);
-    }
-    for t in vt {
-        s += &format!("vt {} {}\n", t[0], t[1]);
-    }
-    for i in 0..4 {
-        let mut t = [i, (i + 1) % 4, 4];
-        if (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0])).dot(facing) < 0.0 {
-            t.swap(0, 1);
-        }
-        let [a, b, c] = t.map(|i| i + 1);
-        s += &format!("f {a}/{a} {b}/{b} {c}/{c}\n");
-    }
-    s
-}
-
-/// A 4×4 bitmap, every texel positive, no symmetry (a flipped axis changes it).
-fn write_bitmap(path: &std::path::Path) {
-    let data = (0..16)
-        .map(|i| {
-            let (x, y) = (i % 4, i / 4);
-            Vec3::new(
-                if (x + y) % 2 == 0 { 4.0 } else { 0.2 },
-                if x < 2 { 3.0 } else { 0.3 },
-                0.5 + y as f32,
-            )
-        })
-        .collect();
-    Image {
-        width: 4,
-        height: 4,
-        data,
-    }
-    .write(path, 0.0)
-    .unwrap();
+    scratch_dir("gpu-textured-emission", name)
 }
 
 /// The scene of the module doc, `size` pixels square.
 fn emitters_scene(size: u32) -> Arc<Scene> {
     let dir = temp_dir(&format!("scene{size}"));
     let (mesh, bitmap) = (dir.join("panel.obj"), dir.join("panel.exr"));
-    std::fs::write(&mesh, panel_obj()).unwrap();
-    write_bitmap(&bitmap);
-    // An irregular pentagon in the emitters' plane orientation.
-    let (px, py) = (DVec3::X, DVec3::new(0.0, -1.0, 1.0).normalize());
-    let pentagon: Vec<String> = [0.0f64, 1.3, 2.4, 3.7, 5.0]
-        .iter()
-        .zip([0.5, 0.6, 0.45, 0.55, 0.5])
-        .map(|(a, r)| {
-            let v = DVec3::new(1.6, 0.7, 1.6) + r * a.cos() * px + r * a.sin() * py;
-            format!("[{}, {}, {}]", v.x, v.y, v.z)
-        })
-        .collect();
+    std::fs::write(&mesh, Panel::leaning().obj()).unwrap();
+    emission_texels().write(&bitmap, 0.0).unwrap();
+    let pentagon = pentagon();
     let (m, b) = (mesh.display(), bitmap.display());
     let json = format!(
         r#"{{
@@ -169,18 +96,6 @@ fn emitters_scene(size: u32) -> Arc<Scene> {
 }
 
 use lumis::scene::Scene;
-
-/// The light kind's name.
-fn kind(light: &Light) -> &'static str {
-    match light {
-        Light::Triangle(_) => "triangle",
-        Light::Polygon(_) => "polygon",
-        Light::Quad(_) => "quad",
-        Light::Disk(_) => "disk",
-        Light::Sphere(_) => "sphere",
-        Light::Background(_) | Light::Envmap(_) => "infinite",
-    }
-}
 
 /// The difference of two coordinates, modulo 1 (a sphere's or disk's angle wraps).
 fn circular(a: f32, b: f32) -> f32 {

@@ -33,13 +33,13 @@
 
 mod common;
 
+use common::emitters::{Panel, emission_texels, kind, pentagon, scratch_dir};
 use common::{METHODS, STRATEGIES, Tally, check_unbiased, render};
 use glam::{DVec3, Vec2, Vec3};
 use lumis::geometry::Ray;
 use lumis::geometry::primitive::NONE;
-use lumis::image_io::Image;
 use lumis::integrator::{Heuristic, Settings, Strategy};
-use lumis::lights::{Light, LightSampling};
+use lumis::lights::LightSampling;
 use lumis::metrics::{normal_two_sided_critical, sidak};
 use lumis::scene::{Scene, parse_scene_in};
 use lumis::textures::Texture;
@@ -47,13 +47,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "lumis-textured-emission-{}-{name}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    scratch_dir("textured-emission", name)
 }
 
 fn build_in(json: &str, folder: &Path) -> Arc<Scene> {
@@ -62,106 +56,8 @@ fn build_in(json: &str, folder: &Path) -> Arc<Scene> {
     Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}\n{json}")))
 }
 
-/// A planar panel of 4 triangles fanned around `centre` from the 4 `corners` (in order around
-/// it), wound so that its normal is `facing`, with irregular texture coordinates (5 `vt`, the
-/// centre's last).
-struct Panel {
-    corners: [DVec3; 4],
-    centre: DVec3,
-    facing: DVec3,
-}
-
-/// The panel's `vt` values as written to the file (OBJ convention, `v` up).
-const PANEL_VT: [[f64; 2]; 5] = [
-    [0.1, 0.2],
-    [0.9, 0.05],
-    [0.8, 0.95],
-    [0.05, 0.8],
-    [0.55, 0.4],
-];
-
-impl Panel {
-    /// Its triangles as vertex indices (corners 0–3, centre 4).
-    fn triangles(&self) -> Vec<[usize; 3]> {
-        let p = |i: usize| if i == 4 { self.centre } else { self.corners[i] };
-        (0..4)
-            .map(|i| {
-                let t = [i, (i + 1) % 4, 4];
-                let n = (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0]));
-                if n.dot(self.facing) > 0.0 {
-                    t
-                } else {
-                    [t[1], t[0], t[2]]
-                }
-            })
-            .collect()
-    }
-
-    fn vertex(&self, i: usize) -> DVec3 {
-        if i == 4 { self.centre } else { self.corners[i] }
-    }
-
-    fn obj(&self) -> String {
-        let mut s = String::new();
-        for i in 0..5 {
-            let v = self.vertex(i);
-            s += &format!("v {} {} {}\n", v.x, v.y, v.z);
-        }
-        for vt in PANEL_VT {
-            s += &format!("vt {} {}\n", vt[0], vt[1]);
-        }
-        for t in self.triangles() {
-            let [a, b, c] = t.map(|i| i + 1);
-            s += &format!("f {a}/{a} {b}/{b} {c}/{c}\n");
-        }
-        s
-    }
-
-    /// Texture coordinates lumis gives the panel's point hit by `(o, d)` (OBJ's `v` flipped to
-    /// `1 − v`), and the ray parameter; `None` on a miss. f64, Möller–Trumbore.
-    fn uv(&self, o: DVec3, d: DVec3) -> Option<(f64, [f64; 2])> {
-        for t in self.triangles() {
-            let [p0, p1, p2] = t.map(|i| self.vertex(i));
-            let (e1, e2) = (p1 - p0, p2 - p0);
-            let pv = d.cross(e2);
-            let det = e1.dot(pv);
-            let tv = o - p0;
-            let b1 = tv.dot(pv) / det;
-            let qv = tv.cross(e1);
-            let b2 = d.dot(qv) / det;
-            let dist = e2.dot(qv) / det;
-            if b1 >= 0.0 && b2 >= 0.0 && b1 + b2 <= 1.0 && dist > 0.0 {
-                let vt = t.map(|i| [PANEL_VT[i][0], 1.0 - PANEL_VT[i][1]]);
-                let w = [1.0 - b1 - b2, b1, b2];
-                let uv = [0, 1].map(|c| (0..3).map(|k| w[k] * vt[k][c]).sum());
-                return Some((dist, uv));
-            }
-        }
-        None
-    }
-}
-
 fn write_pfm(path: &Path) {
-    // 4 × 4 texels of strongly varying colours (linear), so that the bilinear value, and the
-    // light the panel casts, change a lot across the panel.
-    let (w, h) = (4, 4);
-    let data = (0..w * h)
-        .map(|i| {
-            let (x, y) = (i % w, i / w);
-            Vec3::new(
-                if (x + y) % 2 == 0 { 4.0 } else { 0.2 },
-                if x < 2 { 3.0 } else { 0.3 },
-                0.5 + y as f32,
-            )
-        })
-        .collect();
-    Image {
-        width: w,
-        height: h,
-        data,
-    }
-    .write(path, 1.0)
-    .unwrap();
+    emission_texels().write(path, 1.0).unwrap();
 }
 
 fn checker(c0: [f32; 3], c1: [f32; 3], scale: [f32; 2]) -> String {
@@ -195,29 +91,10 @@ fn agreement_textures() -> [String; EMITTERS] {
 fn agreement_scene(name: &str, size: u32, emission: &[String; EMITTERS]) -> Arc<Scene> {
     let dir = temp_dir(name);
     // The flat emitters face (0, −1, −1)/√2; their planes are y + z = const.
-    let facing = DVec3::new(0.0, -1.0, -1.0).normalize();
-    let panel = Panel {
-        corners: [
-            DVec3::new(-0.8, 0.15, 2.5),
-            DVec3::new(0.6, 0.15, 2.5),
-            DVec3::new(0.6, 1.15, 1.5),
-            DVec3::new(-0.8, 1.15, 1.5),
-        ],
-        centre: DVec3::new(-0.2, 0.55, 2.1),
-        facing,
-    };
+    let panel = Panel::leaning();
     std::fs::write(dir.join("panel.obj"), panel.obj()).unwrap();
     write_pfm(&dir.join("panel.pfm"));
-    // An irregular pentagon in the same orientation: x = +x, y = (0, −1, 1)/√2, x × y = facing.
-    let (px, py) = (DVec3::X, DVec3::new(0.0, -1.0, 1.0).normalize());
-    let pentagon: Vec<String> = [0.0f64, 1.3, 2.4, 3.7, 5.0]
-        .iter()
-        .zip([0.5, 0.6, 0.45, 0.55, 0.5])
-        .map(|(a, r)| {
-            let v = DVec3::new(1.6, 0.7, 1.6) + r * a.cos() * px + r * a.sin() * py;
-            format!("[{}, {}, {}]", v.x, v.y, v.z)
-        })
-        .collect();
+    let pentagon = pentagon();
     let [quad, mesh, sphere, disk, polygon] = emission;
     let json = format!(
         r#"{{
@@ -250,19 +127,6 @@ fn agreement_scene(name: &str, size: u32, emission: &[String; EMITTERS]) -> Arc<
     let scene = build_in(&json, &dir);
     let _ = std::fs::remove_dir_all(&dir);
     scene
-}
-
-/// The light kind's name.
-fn kind(light: &Light) -> &'static str {
-    match light {
-        Light::Triangle(_) => "triangle",
-        Light::Polygon(_) => "polygon",
-        Light::Quad(_) => "quad",
-        Light::Disk(_) => "disk",
-        Light::Sphere(_) => "sphere",
-        Light::Background(_) => "background",
-        Light::Envmap(_) => "envmap",
-    }
 }
 
 /// Distance between texture coordinates, each axis modulo 1 (a sphere's or disk's angle wraps).

@@ -3,6 +3,7 @@
 
 #![allow(dead_code)]
 
+pub mod emitters;
 pub mod ground;
 
 use glam::Vec3;
