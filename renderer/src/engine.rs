@@ -141,6 +141,34 @@ impl Film {
             })
             .collect()
     }
+
+    /// The block z-test (`block`×`block` pixels, family-wise `alpha`, Šidák over blocks and
+    /// channels) of this film against `other`, each with its own per-pixel variance of the mean:
+    /// whether two independent renders estimate the same image.
+    pub fn z_test(&self, other: &Film, block: u32, alpha: f64) -> crate::metrics::BlockTest {
+        use crate::metrics::{ImageWithVariance, block_z_test};
+        assert_eq!(
+            (self.width, self.height),
+            (other.width, other.height),
+            "films of different sizes"
+        );
+        let (mean, var) = (self.mean(), self.variance_of_mean());
+        let (other_mean, other_var) = (other.mean(), other.variance_of_mean());
+        block_z_test(
+            self.width,
+            self.height,
+            &ImageWithVariance {
+                mean: &mean,
+                var: &var,
+            },
+            &ImageWithVariance {
+                mean: &other_mean,
+                var: &other_var,
+            },
+            block,
+            alpha,
+        )
+    }
 }
 
 fn to_vec3(s: [f64; 3], scale: f64) -> Vec3 {

@@ -114,24 +114,7 @@ pub fn test_against(
 /// The block z-test (`block`×`block` pixels, family-wise `alpha`) of one render against
 /// another, each with its own per-pixel variance of the mean.
 pub fn renders_z_test(a: &Progressive, b: &Progressive, block: u32, alpha: f64) -> BlockTest {
-    let (fa, fb) = (a.film(), b.film());
-    assert_eq!((fa.width, fa.height), (fb.width, fb.height));
-    let (ma, mb) = (fa.mean(), fb.mean());
-    let (va, vb) = (fa.variance_of_mean(), fb.variance_of_mean());
-    block_z_test(
-        fa.width,
-        fa.height,
-        &ImageWithVariance {
-            mean: &ma,
-            var: &va,
-        },
-        &ImageWithVariance {
-            mean: &mb,
-            var: &vb,
-        },
-        block,
-        alpha,
-    )
+    a.film().z_test(b.film(), block, alpha)
 }
 
 /// A mean against a closed-form value: `z = (mean − expected) / sd` and whether it passes at

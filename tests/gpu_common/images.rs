@@ -6,7 +6,7 @@ use super::context;
 use lumis::engine::{Film, Progressive};
 use lumis::gpu::GpuProgressive;
 use lumis::integrator::Settings;
-use lumis::metrics::{BlockTest, ImageWithVariance, block_z_test};
+use lumis::metrics::BlockTest;
 use lumis::scene::Scene;
 use std::sync::Arc;
 
@@ -33,21 +33,5 @@ pub fn cpu_render(scene: &Arc<Scene>, settings: Settings, spp: u32, seed: u32) -
 /// The block z-test (`block`×`block` pixels, family-wise α = 0.01) of `film` against `other`,
 /// each with its own per-pixel variance of the mean.
 pub fn film_z_test(film: &Film, other: &Film, block: u32) -> BlockTest {
-    let (mean, var) = (film.mean(), film.variance_of_mean());
-    let (other_mean, other_var) = (other.mean(), other.variance_of_mean());
-    assert_eq!((film.width, film.height), (other.width, other.height));
-    block_z_test(
-        film.width,
-        film.height,
-        &ImageWithVariance {
-            mean: &mean,
-            var: &var,
-        },
-        &ImageWithVariance {
-            mean: &other_mean,
-            var: &other_var,
-        },
-        block,
-        0.01,
-    )
+    film.z_test(other, block, 0.01)
 }
