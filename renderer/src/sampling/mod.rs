@@ -1,5 +1,6 @@
 //! Pure sampling routines: each warp from `[0,1)ⁿ` comes with its pdf and its inverse.
 
+pub mod bilinear;
 pub mod cone;
 pub mod discrete;
 pub mod disk;
@@ -13,6 +14,7 @@ pub mod triangle;
 #[cfg(test)]
 mod testing;
 
+pub use bilinear::*;
 pub use cone::*;
 pub use discrete::DiscreteDistribution;
 pub use disk::*;
