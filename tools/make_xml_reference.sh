@@ -40,6 +40,7 @@ def half(seed):
     for i in range(n):
         img = np.array(mi.render(scene, seed=seed * 100003 + i, spp=npass), dtype=np.float64)[..., :3]
         acc = img if acc is None else acc + img
+        print("seed %d: pass %d of %d, %.0f s" % (seed, i + 1, n, time.time() - t), flush=True)
     return acc / n
 
 t = time.time()
