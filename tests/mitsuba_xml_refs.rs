@@ -20,8 +20,8 @@
 //! with worst |z| 1.55–3.28 (xml_meshes) and 1.85–2.85 (xml_shapes) over 60 comparisons each.
 //! The smallest block difference detected (critical |z| × sd / reference block mean, sd from two
 //! 256-spp MIS renders by `lumis render` and the reference's variance): xml_meshes 2.1 % of the
-//! block mean for the median block (0.12 % to 12 % over blocks and channels, the dark glass the
-//! worst), xml_shapes 3.1 % (1.8 % to 9.7 %).
+//! block mean for the median block (0.12 % to 12 % over blocks and channels), xml_shapes 3.1 %
+//! (1.8 % to 9.7 %).
 //!
 //! **Power:** one deliberate mutation per scene must fail the same test (MIS, power heuristic);
 //! each test's doc comment names it and the measured result. Two importer bugs were also tried
