@@ -131,7 +131,8 @@ mod tests {
     /// The preview camera carries the scene's filter in preview pixels: a gaussian's σ and radius
     /// over the factor, the box unchanged (its film positions are the original jitter). Catches
     /// a preview that drops the filter (the box everywhere, as before issue 18) or forgets the
-    /// scale (deliberate bugs tried: both fail the first assertion).
+    /// scale (deliberate bug tried: σ and radius not divided by the factor: the first assertion
+    /// failed, σ 0.5 for 0.125).
     #[test]
     fn preview_camera_has_the_scenes_filter_in_preview_pixels() {
         let desc = CameraDesc {

@@ -199,7 +199,8 @@ mod tests {
     /// `GpuParams` is `Params` byte for byte: the same size as naga lays the WGSL struct out and
     /// every member at the offset WGSL gives it, within [`PARAMS_STRIDE`]. Catches a member added
     /// on one side only or in another order, and a size that is not the struct's (deliberate bug
-    /// tried: `GpuParams` without `pad`, 156 bytes against WGSL's 160: failed).
+    /// tried: `filter_stddev` and `filter_radius` swapped in `GpuParams`: failed, offsets 152 and
+    /// 148 against WGSL's 148 and 152).
     #[test]
     fn gpu_params_has_the_wgsl_layout() {
         let src = path_tracer_source(&Features::default()).unwrap();
