@@ -301,3 +301,40 @@ fn refusals_name_file_line_and_element() {
         "{e}"
     );
 }
+
+/// `hdrfilm`'s `sample_border = true` with a gaussian filter (explicit, or Mitsuba's default when
+/// the film has no `<rfilter>`) is refused at the boolean's line: Mitsuba then samples outside
+/// the film too, so its edge pixels see the whole filter, where lumis renormalises it on the film
+/// (the image would differ near the border). `false`, and `true` with a box (whose samples never
+/// leave the film), import. Catches the importer ignoring the flag (deliberate bug tried:
+/// `film.bool("sample_border", false)` read as `false` always: the first case was accepted).
+#[test]
+fn sample_border_with_a_gaussian_is_refused() {
+    let dir = Dir::new("sample_border");
+    let sensor = |border: &str, filter: &str| {
+        format!(
+            "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n<film type=\"hdrfilm\">\n<boolean name=\"sample_border\" value=\"{border}\"/>\n{filter}</film>\n</sensor>\n</scene>"
+        )
+    };
+    for filter in ["<rfilter type=\"gaussian\"/>\n", ""] {
+        let e = import(&dir, &sensor("true", filter), &[])
+            .err()
+            .unwrap_or_else(|| panic!("sample_border true accepted with {filter:?}"))
+            .to_string();
+        assert!(
+            e.contains("scene.xml:5:")
+                && e.contains("scene/sensor/film/boolean")
+                && e.contains("sample_border = true is not supported with a gaussian filter")
+                && !e.contains('\n'),
+            "{filter:?}: {e}"
+        );
+    }
+    for (border, filter) in [
+        ("false", "<rfilter type=\"gaussian\"/>\n"),
+        ("false", ""),
+        ("true", "<rfilter type=\"box\"/>\n"),
+    ] {
+        import(&dir, &sensor(border, filter), &[])
+            .unwrap_or_else(|e| panic!("sample_border {border} with {filter:?}: {e}"));
+    }
+}

@@ -14,7 +14,10 @@
 //! renormalised. Per axis the film is an interval, so that is the 1-D filter on
 //! `[max(−r, −c), min(r, n − c)]` about the pixel centre `c`: [`PixelFilter::film_position`]
 //! samples exactly that truncated density, by inverting its CDF (Newton steps kept inside a
-//! bisection bracket, a fixed iteration cap, the same code in `shaders/filter.wgsl`).
+//! bisection bracket, a fixed iteration cap, the same code in `shaders/filter.wgsl`, whose
+//! cap and tolerance are these constants through the generated WGSL prelude).
+//!
+//! WGSL twin: `filter.wgsl`.
 
 use glam::Vec2;
 
@@ -37,8 +40,13 @@ pub enum PixelFilter {
 /// The widest filter the scene format accepts, in pixels.
 pub const MAX_FILTER_RADIUS: f32 = 16.0;
 
-/// Newton/bisection steps at most per axis (typically 3–6 are taken).
+/// Newton/bisection steps at most per axis (typically 3–6 are taken); `FILTER_MAX_STEPS` in
+/// the WGSL prelude.
 pub const MAX_STEPS: u32 = 40;
+
+/// [`PixelFilter::sample_1d`] stops once a step moves less than this times `1 + |x|`, or the
+/// bracket is narrower than this (pixels); `FILTER_TOLERANCE` in the WGSL prelude.
+pub const TOLERANCE: f32 = 1e-6;
 
 /// `erfc(x)` to a fractional error below 1.2e-7 (Numerical Recipes' Chebyshev fit `erfcc`), the
 /// same formula as `filter.wgsl`'s, so that CPU and GPU invert the same CDF.
@@ -149,7 +157,7 @@ impl PixelFilter {
             if !(f > 0.0 && next > a && next < b) {
                 next = 0.5 * (a + b);
             }
-            let done = (next - x).abs() <= 1e-6 * (1.0 + x.abs()) || b - a <= 1e-6;
+            let done = (next - x).abs() <= TOLERANCE * (1.0 + x.abs()) || b - a <= TOLERANCE;
             x = next;
             if done {
                 break;

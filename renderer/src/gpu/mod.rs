@@ -47,9 +47,6 @@ pub enum GpuError {
     /// The scene exceeds what the GPU's limits allow.
     #[error("the scene does not fit the GPU: {0}")]
     TooLarge(String),
-    /// The scene uses something the GPU backend does not render yet.
-    #[error("the GPU backend cannot render this scene yet: {0}; use the CPU backend")]
-    Unsupported(String),
 }
 
 #[cfg(test)]

@@ -11,9 +11,10 @@
 //! WGSL twin: `tags.wgsl`.
 
 use super::scene::{
-    BVH2_STACK_SIZE, CWBVH_STACK_SIZE, ChannelTag, FresnelTag, HeuristicTag, LightSamplingTag,
-    LightTag, MaterialTag, ShapeTag, StrategyTag, TextureTag, WrapTag, textures,
+    BVH2_STACK_SIZE, CWBVH_STACK_SIZE, ChannelTag, FilterTag, FresnelTag, HeuristicTag,
+    LightSamplingTag, LightTag, MaterialTag, ShapeTag, StrategyTag, TextureTag, WrapTag, textures,
 };
+use crate::camera::filter;
 use crate::geometry::{mesh_attributes, primitive, ray, wide_bvh};
 use crate::lights::{polygon, sphere};
 use crate::materials::{coat_albedo, ggx, mix, plastic_textured};
@@ -123,8 +124,14 @@ pub fn constants() -> Vec<Constant> {
         f32c("TAU", consts::TAU),
         f32c("FRAC_PI_2", consts::FRAC_PI_2),
         f32c("FRAC_PI_4", consts::FRAC_PI_4),
+        f32c("FRAC_1_SQRT_2", consts::FRAC_1_SQRT_2),
+        // Rust's runtime sqrt (correctly rounded); a GPU's sqrt need not be.
+        f32c("SQRT_FRAC_PI_2", consts::FRAC_PI_2.sqrt()),
         u32c("NONE", primitive::NONE),
         f32c("ONE_MINUS_EPSILON", sampling::ONE_MINUS_EPSILON),
+        // The pixel filter.
+        u32c("FILTER_MAX_STEPS", filter::MAX_STEPS),
+        f32c("FILTER_TOLERANCE", filter::TOLERANCE),
         // Materials.
         f32c("SMOOTH_ALPHA", ggx::SMOOTH_ALPHA),
         u32c("E_TABLE_SIZE", const { count(coat_albedo::E_TABLE_SIZE) }),
@@ -183,6 +190,7 @@ pub fn constants() -> Vec<Constant> {
     c.extend(tags(TextureTag::ALL));
     c.extend(tags(WrapTag::ALL));
     c.extend(tags(ChannelTag::ALL));
+    c.extend(tags(FilterTag::ALL));
     #[cfg(feature = "mutants")]
     c.extend(mutant_constants(crate::mutants::active()));
     c
@@ -327,6 +335,9 @@ mod tests {
             ("CHANNEL_B", Value::U32(3)),
             ("RECORD_VEC4S", Value::U32(4)),
             ("LUMINANCE_G", Value::F32(0.715_160)),
+            ("FILTER_MAX_STEPS", Value::U32(filter::MAX_STEPS)),
+            ("FILTER_TOLERANCE", Value::F32(filter::TOLERANCE)),
+            ("FILTER_GAUSSIAN", Value::U32(1)),
         ] {
             assert_eq!(value(name), want, "{name}");
         }
@@ -349,5 +360,6 @@ mod tests {
         check(TextureTag::ALL);
         check(WrapTag::ALL);
         check(ChannelTag::ALL);
+        check(FilterTag::ALL);
     }
 }

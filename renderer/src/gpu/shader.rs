@@ -40,6 +40,7 @@ const MODULES: &[Module] = &[
     module!("tags.wgsl"),
     module!("math.wgsl"),
     module!("rng.wgsl"),
+    module!("filter.wgsl"),
     module!("warps.wgsl"),
     module!("spherical_triangle.wgsl"),
     module!("spherical_rectangle.wgsl"),

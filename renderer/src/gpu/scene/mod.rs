@@ -25,7 +25,9 @@ pub use attributes::AttrOffsets;
 pub use bvh::{BVH2_STACK_SIZE, CWBVH_STACK_SIZE};
 pub use lights::{GpuLight, LightTag};
 pub use materials::{FresnelTag, GpuMaterial, MaterialTag};
-pub use params::{GpuParams, HeuristicTag, LightSamplingTag, PARAMS_STRIDE, StrategyTag};
+pub use params::{
+    FilterTag, GpuParams, HeuristicTag, LightSamplingTag, PARAMS_STRIDE, StrategyTag,
+};
 pub use shapes::{GpuPrim, ShapeTag};
 pub use textures::{ChannelTag, TextureTag, WrapTag};
 
@@ -161,22 +163,10 @@ impl GpuScene {
     /// Flattens and uploads `scene`, with the CWBVH. Every scene the builder makes is mirrored
     /// (textured materials and emission, mixes and a plastic's textured α since issue 17): the
     /// texture slots are destructured in `textures::slots`, so a slot added to
-    /// `MaterialTextures` fails to compile there until the GPU has it (or refuses it with
-    /// [`GpuError::Unsupported`]).
+    /// `MaterialTextures` fails to compile there until the GPU has it. The camera's pixel filter,
+    /// box or gaussian, is the kernel's too (`filter.wgsl`, issue 18), so no scene is refused.
     pub fn new(ctx: Arc<GpuContext>, scene: Arc<Scene>) -> Result<GpuScene, GpuError> {
         GpuScene::with_bvh2(ctx, scene, false)
-    }
-
-    /// Refuses scenes the GPU would render differently from the CPU: only the gaussian pixel
-    /// filter is CPU-only for now (issue 18).
-    fn check_supported(scene: &Scene) -> Result<(), GpuError> {
-        // The WGSL camera jitters over the pixel (box); the gaussian filter is CPU-only for now.
-        if scene.camera.filter != crate::camera::PixelFilter::Box {
-            return Err(GpuError::Unsupported(
-                "camera.filter is gaussian: the GPU camera has only the box filter".to_owned(),
-            ));
-        }
-        Ok(())
     }
 
     /// Flattens and uploads `scene`; with `bvh2` (and a scene large enough for a BVH) it also
@@ -188,7 +178,6 @@ impl GpuScene {
         scene: Arc<Scene>,
         bvh2: bool,
     ) -> Result<GpuScene, GpuError> {
-        GpuScene::check_supported(&scene)?;
         let records = Records::of(&scene);
         GpuScene::upload(ctx, scene, bvh2, records)
     }

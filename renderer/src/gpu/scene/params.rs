@@ -2,6 +2,7 @@
 //! WGSL twin: `bindings.wgsl` (the uniform's layout).
 
 use super::{GpuScene, v4};
+use crate::camera::PixelFilter;
 use crate::geometry::primitive::NONE;
 use crate::gpu::prelude::gpu_tags;
 use crate::integrator::{Heuristic, Settings, Strategy};
@@ -54,6 +55,15 @@ pub struct GpuParams {
     pub cam_up: [f32; 4],
     /// Where the mesh attribute arrays start in the vertex data (`gpu/scene/attributes.rs`).
     pub attr: [u32; 4],
+    /// The camera's pixel filter ([`FilterTag`]).
+    pub pixel_filter: u32,
+    /// The gaussian filter's standard deviation in pixels (0 for the box).
+    pub filter_stddev: f32,
+    /// The filter's support half-width in pixels ([`PixelFilter::radius`]).
+    pub filter_radius: f32,
+    /// Rounds the struct to a multiple of 16 bytes, the size WGSL gives a uniform struct with
+    /// vec4 members (`pad` in `Params`).
+    pub pad: u32,
 }
 
 /// Uniform slots are this far apart (the largest `min_uniform_buffer_offset_alignment` wgpu
@@ -114,6 +124,26 @@ impl LightSamplingTag {
     }
 }
 
+gpu_tags! {
+    /// [`GpuParams::pixel_filter`], in the variant order of [`PixelFilter`].
+    pub enum FilterTag {
+        /// [`PixelFilter::Box`].
+        Box => "FILTER_BOX",
+        /// [`PixelFilter::Gaussian`].
+        Gaussian => "FILTER_GAUSSIAN",
+    }
+}
+
+impl FilterTag {
+    /// The tag of `f` and its (σ, radius): the box's σ is 0 (unused).
+    pub fn of(f: PixelFilter) -> (FilterTag, f32, f32) {
+        match f {
+            PixelFilter::Box => (FilterTag::Box, 0.0, f.radius()),
+            PixelFilter::Gaussian { stddev, radius } => (FilterTag::Gaussian, stddev, radius),
+        }
+    }
+}
+
 impl GpuScene {
     /// The uniform for sample `sample` of a render with `settings` and `seed`.
     pub fn params(&self, settings: &Settings, seed: u32, sample: u32) -> GpuParams {
@@ -128,6 +158,7 @@ impl GpuScene {
             Strategy::Mixture { light_weight } => (StrategyTag::Mixture, balance, light_weight),
             Strategy::Mis { heuristic } => (StrategyTag::Mis, HeuristicTag::of(heuristic), 0.0),
         };
+        let (filter, filter_stddev, filter_radius) = FilterTag::of(cam.filter);
         GpuParams {
             width: cam.width,
             height: cam.height,
@@ -150,6 +181,75 @@ impl GpuScene {
             cam_right: v4(right, 0.0),
             cam_up: v4(up, 0.0),
             attr: self.attr,
+            pixel_filter: filter.gpu_tag(),
+            filter_stddev,
+            filter_radius,
+            pad: 0,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gpu::shader::{Features, path_tracer_source};
+    use std::mem::offset_of;
+    use wgpu::naga;
+
+    /// `GpuParams` is `Params` byte for byte: the same size as naga lays the WGSL struct out and
+    /// every member at the offset WGSL gives it, within [`PARAMS_STRIDE`]. Catches a member added
+    /// on one side only or in another order, and a size that is not the struct's (deliberate bug
+    /// tried: `filter_stddev` and `filter_radius` swapped in `GpuParams`: failed, offsets 152 and
+    /// 148 against WGSL's 148 and 152).
+    #[test]
+    fn gpu_params_has_the_wgsl_layout() {
+        let src = path_tracer_source(&Features::default()).unwrap();
+        let module = naga::front::wgsl::parse_str(&src).unwrap_or_else(|e| panic!("{e}"));
+        let ty = module
+            .types
+            .iter()
+            .map(|(_, t)| t)
+            .find(|t| t.name.as_deref() == Some("Params"))
+            .expect("Params");
+        let naga::TypeInner::Struct { members, span } = &ty.inner else {
+            panic!("Params is not a struct");
+        };
+        assert_eq!(*span as usize, size_of::<GpuParams>());
+        assert!(size_of::<GpuParams>() as u64 <= PARAMS_STRIDE);
+        let rust = [
+            ("width", offset_of!(GpuParams, width)),
+            ("height", offset_of!(GpuParams, height)),
+            ("seed", offset_of!(GpuParams, seed)),
+            ("sample", offset_of!(GpuParams, sample)),
+            ("strategy", offset_of!(GpuParams, strategy)),
+            ("heuristic", offset_of!(GpuParams, heuristic)),
+            ("light_sampling", offset_of!(GpuParams, light_sampling)),
+            ("max_depth", offset_of!(GpuParams, max_depth)),
+            ("rr_depth", offset_of!(GpuParams, rr_depth)),
+            ("n_lights", offset_of!(GpuParams, n_lights)),
+            ("background", offset_of!(GpuParams, background)),
+            ("light_cdf", offset_of!(GpuParams, light_cdf)),
+            ("light_pmf", offset_of!(GpuParams, light_pmf)),
+            ("mix_weight", offset_of!(GpuParams, mix_weight)),
+            (
+                "samples_per_dispatch",
+                offset_of!(GpuParams, samples_per_dispatch),
+            ),
+            ("textures", offset_of!(GpuParams, textures)),
+            ("cam_origin", offset_of!(GpuParams, cam_origin)),
+            ("cam_forward", offset_of!(GpuParams, cam_forward)),
+            ("cam_right", offset_of!(GpuParams, cam_right)),
+            ("cam_up", offset_of!(GpuParams, cam_up)),
+            ("attr", offset_of!(GpuParams, attr)),
+            ("pixel_filter", offset_of!(GpuParams, pixel_filter)),
+            ("filter_stddev", offset_of!(GpuParams, filter_stddev)),
+            ("filter_radius", offset_of!(GpuParams, filter_radius)),
+            ("pad", offset_of!(GpuParams, pad)),
+        ];
+        let wgsl: Vec<(&str, usize)> = members
+            .iter()
+            .map(|m| (m.name.as_deref().unwrap(), m.offset as usize))
+            .collect();
+        assert_eq!(wgsl, rust);
     }
 }

@@ -30,6 +30,18 @@ struct Params {
     cam_up: vec4f,
     // Where the mesh attribute arrays start in `vertex_data` (triangles, meshes, normals, uvs).
     attr: vec4<u32>,
+    // The camera's pixel filter (FILTER_*) and the gaussian's σ and radius in pixels
+    // (`filter.wgsl`); `pad` rounds the struct to the 16 bytes a uniform's size is a multiple of,
+    // as `GpuParams` does.
+    pixel_filter: u32,
+    filter_stddev: f32,
+    filter_radius: f32,
+    pad: u32,
+}
+
+// The camera's pixel filter (`film_position` in `filter.wgsl`; an unknown tag fails there).
+fn params_filter() -> PixelFilter {
+    return PixelFilter(params.pixel_filter, params.filter_stddev, params.filter_radius);
 }
 
 // Flags the sample when `p` holds a tag `gpu/scene/params.rs` never writes (the heuristic and the

@@ -325,8 +325,10 @@ fn render(@builtin(global_invocation_id) gid: vec3<u32>) {
     let s = params.sample + gid.z;
     rng_init(params.seed, pixel, s);
     check_param_tags(params);
-    let jitter = rng_next_2d();
-    var x = radiance(camera_ray(f32(gid.x) + jitter.x, f32(gid.y) + jitter.y));
+    // `Camera::film_position`: the box filter's jitter over the pixel or the gaussian's film
+    // position, from the stream's first two numbers either way.
+    let film = film_position(params_filter(), rng_next_2d(), gid.x, gid.y, params.width, params.height);
+    var x = radiance(camera_ray(film.x, film.y));
     if unknown_tag_seen {
         // A record or parameter with a tag no `switch` knows (`tags.wgsl`): a NaN sample.
         x = vec3f(unknown_tag());

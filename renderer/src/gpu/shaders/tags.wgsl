@@ -1,5 +1,5 @@
 // Unknown kind tags, the twin of `gpu/prelude.rs` (which generates the tags themselves: MATERIAL_*,
-// FRESNEL_*, LIGHT_*, SHAPE_*, STRATEGY_*, HEURISTIC_*, LIGHT_SAMPLING_*). A `switch` over a tag
+// FRESNEL_*, LIGHT_*, SHAPE_*, STRATEGY_*, HEURISTIC_*, LIGHT_SAMPLING_*, FILTER_*, …). A `switch` over a tag
 // whose cases miss the value (a record or parameter the encoders never write) calls
 // `unknown_tag()` instead of quietly returning 0: the sample is then NaN, which the render kernel
 // counts as non-finite (`path.wgsl`), and eval and pdf return NaN to their callers.
