@@ -168,12 +168,7 @@ fn sampler_setting_reaches_the_engine() {
 #[test]
 fn gpu_backend_refuses_sobol() {
     use lumis::engine::{AnyProgressive, Backend};
-    let r = AnyProgressive::new(
-        Backend::Gpu,
-        scene("seed_cornell"),
-        sobol(STRATEGIES[3]),
-        1,
-    );
+    let r = AnyProgressive::new(Backend::Gpu, scene("seed_cornell"), sobol(STRATEGIES[3]), 1);
     match r {
         Err(e @ lumis::gpu::GpuError::Sampler("sobol")) => {
             assert!(e.to_string().contains("--sampler independent"), "{e}")

@@ -160,18 +160,32 @@ fn merged_sobol_parts_equal_one_render_of_all_samples() {
 fn check_merged_parts_equal_one_render(name: &str, extra: &[&str]) {
     let dir = TempDir::new(name);
     let scene = dir.scene("scene.json", 24, 4);
-    let with = |args: &[&'static str]| -> Vec<&str> { args.iter().copied().chain(extra.iter().copied()).collect() };
+    let with = |args: &[&'static str]| -> Vec<&str> {
+        args.iter().copied().chain(extra.iter().copied()).collect()
+    };
     let (one, a, b, m) = (
         dir.path("one.exr"),
         dir.path("a.exr"),
         dir.path("b.exr"),
         dir.path("m.exr"),
     );
-    let line = render(&scene, &one, &with(&["--sample-range", "0..8", "--threads", "2"]));
+    let line = render(
+        &scene,
+        &one,
+        &with(&["--sample-range", "0..8", "--threads", "2"]),
+    );
     assert!(line.ends_with(" samples=0..8"), "{line}");
     assert!(line.starts_with("spp=8 "), "{line}");
-    render(&scene, &a, &with(&["--sample-range", "0..3", "--threads", "1"]));
-    let line = render(&scene, &b, &with(&["--sample-range", "3..8", "--threads", "3"]));
+    render(
+        &scene,
+        &a,
+        &with(&["--sample-range", "0..3", "--threads", "1"]),
+    );
+    let line = render(
+        &scene,
+        &b,
+        &with(&["--sample-range", "3..8", "--threads", "3"]),
+    );
     assert!(
         line.starts_with("spp=5 ") && line.ends_with(" samples=3..8"),
         "{line}"

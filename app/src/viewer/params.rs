@@ -3,9 +3,9 @@
 
 use super::worker::LaneSpec;
 use lumis::engine::Backend;
-use lumis::sampler::SamplerKind;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSampling;
+use lumis::sampler::SamplerKind;
 
 /// A direct-lighting strategy without its parameters (for menus).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

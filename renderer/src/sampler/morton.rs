@@ -50,9 +50,15 @@ mod tests {
             }
         }
         for i in 0..10_000u32 {
-            let (x, y) = (i.wrapping_mul(40_503) & 0xffff, i.wrapping_mul(65_521) >> 3 & 0xffff);
+            let (x, y) = (
+                i.wrapping_mul(40_503) & 0xffff,
+                i.wrapping_mul(65_521) >> 3 & 0xffff,
+            );
             assert_eq!(morton_decode(morton_encode(x, y)), (x, y));
-            assert_eq!(morton_encode(morton_decode(i * 429_497).0, morton_decode(i * 429_497).1), i * 429_497);
+            assert_eq!(
+                morton_encode(morton_decode(i * 429_497).0, morton_decode(i * 429_497).1),
+                i * 429_497
+            );
         }
         // x = 0b11, y = 0b01: bits x0 y0 x1 y1 = 1 1 1 0 → 0b0111.
         assert_eq!(morton_encode(3, 1), 0b0111);

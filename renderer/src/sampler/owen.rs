@@ -92,7 +92,10 @@ mod tests {
                 // The same prefix with different low bits maps to the same prefix.
                 assert_eq!(owen_scramble((k << 16) | 0xffff, seed) >> 16, s >> 16);
                 assert_eq!(owen_scramble((k << 16) | 0x1234, seed) >> 16, s >> 16);
-                assert!(!seen[(s >> 16) as usize], "seed {seed:#x}: prefix {k} collides");
+                assert!(
+                    !seen[(s >> 16) as usize],
+                    "seed {seed:#x}: prefix {k} collides"
+                );
                 seen[(s >> 16) as usize] = true;
             }
         }

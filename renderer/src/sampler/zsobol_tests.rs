@@ -154,7 +154,10 @@ fn dimensions_are_pairwise_independent() {
             }
         }
     }
-    eprintln!("largest χ² {:.1} ({}), α per test {alpha:.2e}", worst.0, worst.1);
+    eprintln!(
+        "largest χ² {:.1} ({}), α per test {alpha:.2e}",
+        worst.0, worst.1
+    );
 }
 
 /// The same (seed, pixel, sample, dimension) always gives the same value, whatever else was
