@@ -13,7 +13,7 @@
 //! wall's albedo × 1.03) fails the MIS render here too (`sobol_local_bias_is_detected`); sampler
 //! bugs that break independence between dimensions are `renderer/src/mutants.rs`'
 //! `sampler:shared_bounces` and `sampler:light_camera` (run with `--features mutants` and
-//! `LUMIS_MUTANT`; results in `docs/testing.md`, "Sobol sampler").
+//! `LUMIS_MUTANT`; not yet run, see `docs/testing.md`, "Sobol sampler").
 
 mod common;
 
@@ -58,9 +58,9 @@ fn spp(strategy: Strategy) -> u32 {
 /// strategy (worst |z| 2.0–3.2) but MIS (power) at seed 3003, one block of 576 comparisons
 /// (block (224, 128), green: 1.2% low, z −4.17, critical 4.04); CLI renders of that block at
 /// seeds 1, 2, 3 give z ≈ +1.1, −1.5, −0.8 (with that render's sd), no sign of a bias there, and
-/// a false failure somewhere in 7 renders at α = 0.01 each has probability 7%. Catches a sampler whose values are not
-/// uniformly distributed (tried: `get_1d` returning `v * 0.98`, and a ZSobol index permutation
-/// chosen by the low digits, which makes dimensions dependent: both fail several strategies).
+/// a false failure somewhere in 7 renders at α = 0.01 each has probability 7%. Its power against a scene-level bias is
+/// `sobol_local_bias_is_detected`; no deliberate sampler bug has been run through it yet (the
+/// mutants `sampler:light_camera` and `sampler:shared_bounces` are there for that).
 #[test]
 fn seed_cornell_matches_reference_with_sobol() {
     let scene = scene("seed_cornell");
@@ -119,7 +119,7 @@ fn sobol_image_is_independent_of_thread_count() {
 /// in passes of 2 and 3) add up to one render of 0..8 within f64 rounding (the bound of
 /// `engine::tests::sample_offset_slices_add_up_to_the_whole_render`), and a render of 0..8 in
 /// passes of 3 and 5 is bit for bit the render in one pass. A sampler that depended on the
-/// pass (or on the first sample of a range) fails both.
+/// pass (or on the first sample of a range) would fail both (not tried).
 #[test]
 fn sobol_sample_ranges_add_up_to_the_whole_render() {
     let scene = scene("seed_cornell");

@@ -72,7 +72,7 @@ mod tests {
     use super::*;
 
     /// The one error for a sampler the GPU lacks names it and both ways out; the independent
-    /// sampler passes. (Tried: letting `Sobol` through fails the first assertion.)
+    /// sampler passes.
     #[test]
     fn sobol_sampler_is_refused_with_one_clear_error() {
         use crate::integrator::Settings;

@@ -80,9 +80,9 @@ mod tests {
 
     /// Exhaustive on 16 bits: for several seeds, the top 16 bits of the scrambled value depend
     /// only on the top 16 bits of the input (nested: the low bits are zero here), and the 2^16
-    /// prefixes map one to one. Catches a step whose carries flow downwards in value (tried:
-    /// `x ^= x >> 7` instead of the first multiply breaks the nesting) or a lossy step (tried:
-    /// `x *= seed >> 16` without `| 1` fails for seed 0x2_0000).
+    /// prefixes map one to one. Catches a lossy step (tried: `x *= seed >> 16` without `| 1`: prefixes
+    /// collide for seed 0, and the 32-bit round trip fails) and, by the nesting checks, a step
+    /// whose carries would flow downwards in value.
     #[test]
     fn owen_scramble_is_a_nested_bijection_on_16_bits() {
         for seed in [0u32, 1, 0x2_0000, 0xdead_beef, 0x1234_5678] {

@@ -45,7 +45,7 @@ mod tests {
 
     /// The (0, m, 2)-net property of the unscrambled points: every aligned block of `2^m`
     /// indices (m ≤ 10, three blocks each) has one point in every elementary interval
-    /// `2^-a × 2^-(m−a)`. Catches a wrong direction number (tried: `c[i-1] >> 2` fails at m = 2).
+    /// `2^-a × 2^-(m−a)`. Catches a wrong direction number (tried: `c[i-1] >> 2` fails the direction-number check).
     #[test]
     fn first_two_dimensions_are_a_0_2_sequence() {
         let top: Vec<u32> = SOBOL_1_COLUMNS[..6].iter().map(|c| c >> 26).collect();

@@ -166,8 +166,8 @@ mod tests {
 
     /// `unpermute_index` undoes `permute_index` on every 12-bit index and a spread of 24-bit
     /// ones, several keys; and the permutation is nested (indices that share their top digits
-    /// share them after permuting). Catches a permutation chosen by the permuted instead of the
-    /// original higher digits in one twin only (tried: the round trip fails).
+    /// share them after permuting). Catches twins that disagree on which digits choose a
+    /// permutation (tried: `permute_index` choosing by the low digits: the round trip fails).
     #[test]
     fn index_permutation_round_trip_and_nesting() {
         for key in [0u64, 1, 0xdead_beef_cafe] {
