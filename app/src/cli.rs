@@ -3,6 +3,7 @@
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSampling;
+use lumis::sampler::SamplerKind;
 use std::path::PathBuf;
 
 /// lumis: an interactive, progressive, physically based path tracer.
@@ -62,6 +63,15 @@ pub enum LightSamplingArg {
     SolidAngle,
 }
 
+/// Samplers (`lumis::sampler`).
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SamplerArg {
+    /// Independent uniforms (a PCG stream per pixel sample).
+    Independent,
+    /// Owen-scrambled Sobol points, pixels in Morton order (CPU backend only).
+    Sobol,
+}
+
 /// Estimator options shared by every command that renders.
 #[derive(Args, Debug, Clone)]
 pub struct EstimatorArgs {
@@ -96,6 +106,9 @@ pub struct EstimatorOptions {
     /// Override the scene's max_depth (-1 = unlimited).
     #[arg(long, allow_negative_numbers = true)]
     pub max_depth: Option<i32>,
+    /// Where the random numbers come from (`sobol`: CPU backend only).
+    #[arg(long, value_enum, default_value = "independent")]
+    pub sampler: SamplerArg,
 }
 
 impl EstimatorOptions {
@@ -129,6 +142,10 @@ impl EstimatorOptions {
             strategy,
             light_sampling,
             max_depth: self.max_depth,
+            sampler: match self.sampler {
+                SamplerArg::Independent => SamplerKind::Independent,
+                SamplerArg::Sobol => SamplerKind::Sobol,
+            },
             ..Settings::default()
         })
     }

@@ -55,6 +55,7 @@ pub fn view(args: &ViewArgs) -> anyhow::Result<()> {
         },
         light_sampling: settings.light_sampling,
         max_depth: settings.max_depth,
+        sampler: settings.sampler,
         spp_limit: args.spp_limit,
         compare: !args.compare.is_empty(),
         compare_strategies: if args.compare.is_empty() {

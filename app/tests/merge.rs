@@ -145,19 +145,47 @@ fn assert_same_film(merged: &Part, whole: &Part) -> f64 {
 
 #[test]
 fn merged_parts_equal_one_render_of_all_samples() {
-    let dir = TempDir::new("equal");
+    check_merged_parts_equal_one_render("equal", &[]);
+}
+
+/// The same with the Sobol sampler: its sample `s` of pixel `p` is the same point in every split
+/// (`lumis::sampler`), so parts merge into the whole render exactly as with the independent one.
+#[test]
+fn merged_sobol_parts_equal_one_render_of_all_samples() {
+    check_merged_parts_equal_one_render("equal-sobol", &["--sampler", "sobol"]);
+}
+
+/// Renders 0..8 whole and as 0..3 + 3..8 on different thread counts with the options `extra`,
+/// merges, and checks the merged film against the whole one and a plain `--spp 8` render.
+fn check_merged_parts_equal_one_render(name: &str, extra: &[&str]) {
+    let dir = TempDir::new(name);
     let scene = dir.scene("scene.json", 24, 4);
+    let with = |args: &[&'static str]| -> Vec<&str> {
+        args.iter().copied().chain(extra.iter().copied()).collect()
+    };
     let (one, a, b, m) = (
         dir.path("one.exr"),
         dir.path("a.exr"),
         dir.path("b.exr"),
         dir.path("m.exr"),
     );
-    let line = render(&scene, &one, &["--sample-range", "0..8", "--threads", "2"]);
+    let line = render(
+        &scene,
+        &one,
+        &with(&["--sample-range", "0..8", "--threads", "2"]),
+    );
     assert!(line.ends_with(" samples=0..8"), "{line}");
     assert!(line.starts_with("spp=8 "), "{line}");
-    render(&scene, &a, &["--sample-range", "0..3", "--threads", "1"]);
-    let line = render(&scene, &b, &["--sample-range", "3..8", "--threads", "3"]);
+    render(
+        &scene,
+        &a,
+        &with(&["--sample-range", "0..3", "--threads", "1"]),
+    );
+    let line = render(
+        &scene,
+        &b,
+        &with(&["--sample-range", "3..8", "--threads", "3"]),
+    );
     assert!(
         line.starts_with("spp=5 ") && line.ends_with(" samples=3..8"),
         "{line}"
@@ -169,7 +197,7 @@ fn merged_parts_equal_one_render_of_all_samples() {
 
     // The part's image is what a plain render writes, bit for bit, and any EXR reader sees it.
     let plain = dir.path("plain.exr");
-    render(&scene, &plain, &["--spp", "8"]);
+    render(&scene, &plain, &with(&["--spp", "8"]));
     let read = |p: &Path| Image::read(p).unwrap();
     assert_eq!(read(&one), read(&plain));
     // The merged mean rounds to f32 from a sum within 8ε: at most one f32 step away.

@@ -10,6 +10,7 @@
 use libfuzzer_sys::fuzz_target;
 use lumis::integrator::{Settings, radiance};
 use lumis::rng::Rng;
+use lumis::sampler::Sampler;
 use lumis::scene::Scene;
 
 fuzz_target!(|data: &[u8]| {
@@ -37,7 +38,7 @@ fuzz_target!(|data: &[u8]| {
             .into_iter()
             .enumerate()
             {
-                let mut rng = Rng::new(0, i as u32, 0);
+                let mut rng = Sampler::from(Rng::new(0, i as u32, 0));
                 radiance(&scene, scene.camera.ray(x, y), &mut rng, &settings);
             }
         }

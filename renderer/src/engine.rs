@@ -1,7 +1,8 @@
 //! The progressive CPU engine: renders whole sample passes over the image with rayon and
 //! accumulates them in f64.
 //!
-//! Each (pixel, sample index) pair draws from its own counter-based random stream and each pixel's
+//! Each (pixel, sample index) pair draws from its own sampler (`Settings::sampler`: a
+//! counter-based random stream, or its own point of a scrambled Sobol sequence) and each pixel's
 //! samples are added in sample order by one thread, so the image for a given seed and sample count
 //! is bit-identical for any thread count.
 //!
@@ -13,7 +14,7 @@ pub mod backend;
 pub use backend::{AnyProgressive, Backend};
 
 use crate::integrator::{Settings, radiance_specialised};
-use crate::rng::Rng;
+use crate::sampler::Sampler;
 use crate::scene::Scene;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -273,17 +274,23 @@ impl Progressive {
                 }
                 let mut bad = 0u64;
                 for (x, px) in row.iter_mut().enumerate() {
-                    let pixel_index = (y * width + x) as u32;
                     for s in first..first + n {
-                        let mut rng = Rng::new(seed, pixel_index, s);
+                        let mut sampler = Sampler::new(
+                            settings.sampler,
+                            seed,
+                            x as u32,
+                            y as u32,
+                            width as u32,
+                            s,
+                        );
                         let p = scene
                             .camera
-                            .film_position(rng.next_2d(), x as u32, y as u32);
+                            .film_position(sampler.camera_2d(), x as u32, y as u32);
                         let ray = scene.camera.ray(p.x, p.y);
                         let l = if transmission {
-                            radiance_specialised::<true>(scene, ray, &mut rng, settings)
+                            radiance_specialised::<true>(scene, ray, &mut sampler, settings)
                         } else {
-                            radiance_specialised::<false>(scene, ray, &mut rng, settings)
+                            radiance_specialised::<false>(scene, ray, &mut sampler, settings)
                         };
                         if !l.is_finite() {
                             bad += 1;

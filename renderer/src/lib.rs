@@ -6,6 +6,7 @@
 //! * [`scene`]: the JSON scene format, its validation, and the render-ready [`scene::Scene`].
 //! * [`geometry`]: rays, shapes, robust ray offsets and the BVH.
 //! * [`sampling`]: pure warping functions with their pdfs and inverses.
+//! * [`sampler`]: where a sample's random numbers come from (independent, Owen-scrambled Sobol).
 //! * [`materials`]: BSDFs (diffuse, GGX conductor, plastic).
 //! * [`lights`]: area lights of every shape, the background, power-based light selection.
 //! * [`integrator`]: the path tracer and its four strategies.
@@ -28,6 +29,7 @@ pub mod math;
 pub mod metrics;
 pub mod mutants;
 pub mod rng;
+pub mod sampler;
 pub mod sampling;
 pub mod scene;
 pub mod textures;

@@ -17,6 +17,8 @@
 //! | `light_pdf:KIND` | the pdf of lights of `KIND` (`triangle`, `polygon`, `quad`, `disk`, `sphere`, `background`) × 1.03, in sampling and evaluation alike |
 //! | `bsdf_pdf:KIND` | the non-delta pdf of materials of `KIND` (`diffuse`, `conductor`, `plastic`) × 1.03 (weights ÷ 1.03) |
 //! | `plastic_eval` | the plastic's f (both lobes, non-delta) × 1.03, in eval and sample alike |
+//! | `sampler:light_camera` | the light sample draws the camera's dimensions (ZSobol; CPU only) |
+//! | `sampler:shared_bounces` | every bounce's BSDF direction draws bounce 0's dimensions (ZSobol; CPU only) |
 //!
 //! On the GPU the same points are constants of the generated WGSL prelude
 //! (`gpu::prelude::mutant_constants`, built with the feature), so a mutant reaches both backends; a value ending
@@ -45,6 +47,10 @@ pub enum Mutant {
     BsdfPdf(u32),
     /// The plastic's f is scaled.
     PlasticEval,
+    /// The light sample reuses the camera's sampler dimensions.
+    SamplerLightCamera,
+    /// Every bounce's BSDF direction reuses bounce 0's sampler dimensions.
+    SamplerSharedBounces,
 }
 
 /// The tag named `kind` in a GPU tag list (`LIGHT_DISK` for `disk` with prefix `LIGHT_`): the
@@ -79,6 +85,8 @@ pub fn parse(text: &str) -> Result<Mutant, String> {
             Mutant::BsdfPdf(tag_of(MaterialTag::ALL, "MATERIAL_", arg).ok_or_else(unknown)?)
         }
         "plastic_eval" if arg.is_empty() => Mutant::PlasticEval,
+        "sampler" if arg == "light_camera" => Mutant::SamplerLightCamera,
+        "sampler" if arg == "shared_bounces" => Mutant::SamplerSharedBounces,
         _ => return Err(format!("LUMIS_MUTANT={text}: unknown mutant")),
     })
 }
@@ -171,6 +179,19 @@ pub fn plastic_eval() -> f32 {
     } else {
         1.0
     }
+}
+
+/// Whether the light sample draws the camera's dimensions (a dimension-allocation bug).
+#[inline(always)]
+pub fn sampler_light_reuses_camera() -> bool {
+    cfg!(feature = "mutants") && *active_on_cpu() == Mutant::SamplerLightCamera
+}
+
+/// Whether every bounce's BSDF direction draws bounce 0's dimensions (a dimension-allocation
+/// bug: the bounce is not advanced).
+#[inline(always)]
+pub fn sampler_bounces_share_dimensions() -> bool {
+    cfg!(feature = "mutants") && *active_on_cpu() == Mutant::SamplerSharedBounces
 }
 
 /// Applies a scene-level mutant (emission, albedo) to a description before it is built.

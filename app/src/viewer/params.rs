@@ -5,6 +5,7 @@ use super::worker::LaneSpec;
 use lumis::engine::Backend;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSampling;
+use lumis::sampler::SamplerKind;
 
 /// A direct-lighting strategy without its parameters (for menus).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,6 +55,8 @@ pub struct RenderParams {
     pub light_sampling: LightSampling,
     /// Overrides the scene's maximum path depth.
     pub max_depth: Option<i32>,
+    /// Where the random numbers come from (`--sampler`).
+    pub sampler: SamplerKind,
     /// Stop at this many samples per pixel (0: never).
     pub spp_limit: u32,
     /// Show the comparison view instead of the single view.
@@ -73,6 +76,7 @@ impl Default for RenderParams {
             heuristic: Heuristic::Power,
             light_sampling: LightSampling::SolidAngle,
             max_depth: None,
+            sampler: SamplerKind::Independent,
             spp_limit: 0,
             compare: false,
             compare_strategies: vec![StrategyKind::Light, StrategyKind::Bsdf, StrategyKind::Mis],
@@ -98,6 +102,7 @@ impl RenderParams {
             strategy,
             light_sampling: self.light_sampling,
             max_depth: self.max_depth,
+            sampler: self.sampler,
             ..Settings::default()
         }
     }

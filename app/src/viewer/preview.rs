@@ -9,6 +9,7 @@ use glam::{Vec3, Vec3A};
 use lumis::camera::{Camera, PixelFilter};
 use lumis::integrator::{Settings, radiance};
 use lumis::rng::Rng;
+use lumis::sampler::Sampler;
 use lumis::scene::{CameraDesc, Scene};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -98,8 +99,10 @@ pub fn render_preview(
                 // A stream of its own (sample index u32::MAX − factor) so previews never repeat
                 // the film's first samples' noise pattern.
                 let pixel = y as u32 * width + x as u32;
-                let mut rng = Rng::new(seed, pixel, u32::MAX - factor);
-                let p = cam.film_position(rng.next_2d(), x as u32, y as u32);
+                // Previews always use the independent sampler: one sample per pixel of a
+                // reduced image, where a net has nothing to stratify.
+                let mut rng = Sampler::from(Rng::new(seed, pixel, u32::MAX - factor));
+                let p = cam.film_position(rng.camera_2d(), x as u32, y as u32);
                 let ray = cam.ray(p.x, p.y);
                 let l = radiance(scene, ray, &mut rng, settings);
                 // Non-finite samples count as zero, as in the engine.

@@ -7,6 +7,7 @@ pub use mis::Heuristic;
 pub use path::{radiance, radiance_specialised};
 
 use crate::lights::LightSampling;
+use crate::sampler::SamplerKind;
 
 /// How each path vertex estimates the light arriving directly from emitters.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,6 +57,8 @@ pub struct Settings {
     pub max_depth: Option<i32>,
     /// Path length (in segments) from which Russian roulette may end paths.
     pub rr_depth: u32,
+    /// Where the random numbers come from (the GPU backend has only the independent sampler).
+    pub sampler: SamplerKind,
 }
 
 impl Default for Settings {
@@ -67,6 +70,7 @@ impl Default for Settings {
             light_sampling: LightSampling::SolidAngle,
             max_depth: None,
             rr_depth: 5,
+            sampler: SamplerKind::Independent,
         }
     }
 }

@@ -24,7 +24,7 @@ use super::{Heuristic, Settings, Strategy};
 use crate::geometry::primitive::NONE;
 use crate::geometry::ray::{Ray, spawn_ray, spawn_ray_to};
 use crate::math::{Frame, max_component};
-use crate::rng::Rng;
+use crate::sampler::Sampler;
 use crate::scene::Scene;
 use glam::Vec3;
 
@@ -42,11 +42,11 @@ enum EmissionWeight {
 }
 
 /// Radiance arriving at the camera along `ray` (one sample of the estimator).
-pub fn radiance(scene: &Scene, ray: Ray, rng: &mut Rng, settings: &Settings) -> Vec3 {
+pub fn radiance(scene: &Scene, ray: Ray, sampler: &mut Sampler, settings: &Settings) -> Vec3 {
     if scene.has_transmission() {
-        radiance_specialised::<true>(scene, ray, rng, settings)
+        radiance_specialised::<true>(scene, ray, sampler, settings)
     } else {
-        radiance_specialised::<false>(scene, ray, rng, settings)
+        radiance_specialised::<false>(scene, ray, sampler, settings)
     }
 }
 
@@ -56,7 +56,7 @@ pub fn radiance(scene: &Scene, ray: Ray, rng: &mut Rng, settings: &Settings) -> 
 pub fn radiance_specialised<const TRANSMISSION: bool>(
     scene: &Scene,
     mut ray: Ray,
-    rng: &mut Rng,
+    sampler: &mut Sampler,
     settings: &Settings,
 ) -> Vec3 {
     debug_assert!(TRANSMISSION || !scene.has_transmission());
@@ -70,6 +70,8 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
     let mut depth: i32 = 0;
     loop {
         depth += 1;
+        // The sampler's bounce: 0 at the camera ray's hit.
+        let bounce = (depth - 1) as u32;
         let Some(hit) = scene.accel.intersect(&ray) else {
             if let Some(bg) = scene.background_light {
                 let light = &scene.lights[bg as usize];
@@ -155,7 +157,7 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
                     }
                 }
                 Strategy::Mixture { light_weight } => {
-                    if rng.next_f32() < light_weight {
+                    if sampler.mixture_1d(bounce) < light_weight {
                         do_nee = true;
                         nee_mixture_weight = Some(light_weight);
                         EmissionWeight::Zero
@@ -169,8 +171,8 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
             }
         };
         if do_nee {
-            let u_light = rng.next_f32();
-            let u = rng.next_2d();
+            let u_light = sampler.light_select_1d(bounce);
+            let u = sampler.light_2d(bounce);
             l += beta
                 * direct_light::<TRANSMISSION>(
                     scene,
@@ -189,9 +191,11 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
         }
 
         // Continue the path by BSDF sampling.
-        let Some(bs) =
-            material.sample_specialised::<TRANSMISSION>(wo, rng.next_f32(), rng.next_2d())
-        else {
+        let Some(bs) = material.sample_specialised::<TRANSMISSION>(
+            wo,
+            sampler.bsdf_lobe_1d(bounce),
+            sampler.bsdf_2d(bounce),
+        ) else {
             break;
         };
         if bs.delta {
@@ -221,7 +225,7 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
         if depth as u32 >= settings.rr_depth {
             let rr_beta = if TRANSMISSION { beta * eta_scale } else { beta };
             let q = max_component(rr_beta).min(0.95);
-            if rng.next_f32() >= q {
+            if sampler.rr_1d(bounce) >= q {
                 break;
             }
             beta /= q;
@@ -359,7 +363,7 @@ mod tests {
                 let (w, h) = (scene.camera.width, scene.camera.height);
                 for i in 0..4000u32 {
                     let (x, y) = ((i * 7919) % w, (i * 104_729) % h);
-                    let mut rng_a = Rng::new(3, i, 0);
+                    let mut rng_a = Sampler::from(crate::rng::Rng::new(3, i, 0));
                     let mut rng_b = rng_a.clone();
                     let ray = scene.camera.ray(x as f32 + 0.5, y as f32 + 0.5);
                     let a = radiance_specialised::<false>(&scene, ray, &mut rng_a, &settings);
@@ -368,7 +372,7 @@ mod tests {
                         a.to_array().map(f32::to_bits),
                         b.to_array().map(f32::to_bits)
                     );
-                    assert_eq!(rng_a.next_f32().to_bits(), rng_b.next_f32().to_bits());
+                    assert_eq!(rng_a.get_1d(0).to_bits(), rng_b.get_1d(0).to_bits());
                 }
             }
         }
