@@ -7,7 +7,7 @@
 //! pdf too (the harness's 1% test), as are malformed samples and `∫pdf` against the fraction of
 //! samples drawn.
 //!
-//! **Cases** (84):
+//! **Cases** (92):
 //! * warps: the cosine hemisphere (`sample_cosine_hemisphere`). WGSL has no bare uniform-cone
 //!   warp; the sphere light's solid-angle sampling is one (uniform in the cone it subtends), and
 //!   runs here through both of its branches: the ordinary cone (near) and the sin²θ form of tiny
@@ -19,7 +19,9 @@
 //!   sides × two angles each, including total internal reflection and grazing incidence
 //!   (`dielectric_subset`).
 //! * `light_sample` of every shape of `stats::suite` (triangle, hexagon, concave star polygon,
-//!   quad, disk, sphere) from the suite's near and grazing points, by area and by solid angle.
+//!   quad, disk, sphere) from the suite's near and grazing points, by area and by solid angle;
+//!   with the cosine warp (issue 19, receiver normal +z) the triangle, polygons and quad from the
+//!   near point and with half the light below the horizon.
 //! * the one-sample strategy mixture (w = ½) of a plastic under a quad light, composed from
 //!   `light_sample`, `material_sample`, `material_pdf` and a traced `light_pdf` as
 //!   `stats::Mixture` composes their Rust twins.
@@ -29,7 +31,7 @@
 //!
 //! **Budget:** 500,000 samples per case (half the CPU suite's 1M), which keeps the file near a
 //! minute on lavapipe on two cores (measured: 40 s, of which the dielectric cases 14 s).
-//! **Significance:** family-wise α = 0.01, Šidák-corrected over the 84 cases (per test ≈ 1.2e-4).
+//! **Significance:** family-wise α = 0.01, Šidák-corrected over the 92 cases (per test ≈ 1.1e-4).
 //! **Control:** a deliberately broken GPU sampler (the conductor sampled at α·1.1, i.e. 0.33,
 //! against the α 0.3 density) must be rejected by the χ² statistic at the same per-test level
 //! (so must a dielectric whose lobe choice sees η·1.1: all 36 of its cases fail, checked by hand).
@@ -178,15 +180,30 @@ fn wgsl_method(method: LightSampling) -> &'static str {
     match method {
         LightSampling::Area => "LIGHT_SAMPLING_AREA",
         LightSampling::SolidAngle => "LIGHT_SAMPLING_SOLID_ANGLE",
+        LightSampling::SolidAngleCosine => "LIGHT_SAMPLING_SOLID_ANGLE_COSINE",
+    }
+}
+
+/// The receiver's shading normal in the light cases: +z (`suite::light_sampler`'s) for the
+/// cosine warp, none otherwise.
+fn light_normal(method: LightSampling) -> Vec3 {
+    if method == LightSampling::SolidAngleCosine {
+        Vec3::Z
+    } else {
+        Vec3::ZERO
     }
 }
 
 /// `light_sample` of light 0 from the origin.
 fn light_body(method: LightSampling) -> String {
+    let ns = light_normal(method);
     format!(
-        "let s = light_sample(lights[0u], vec3f(0.0), inp(0u).yz, {});
+        "let s = light_sample(lights[0u], vec3f(0.0), vec3f({:?}, {:?}, {:?}), inp(0u).yz, {});
          outp(0u, vec4f(s.wi, select(-1.0, s.pdf, s.ok)));
          outp(1u, vec4f(0.0));",
+        ns.x,
+        ns.y,
+        ns.z,
         wgsl_method(method)
     )
 }
@@ -211,7 +228,7 @@ fn mixture_body(material: usize, wo: Vec3, method: LightSampling, weight: f32) -
          var pdf = -1.0;
          var delta = false;
          if u1 < w {{
-             let ls = light_sample(lights[0u], vec3f(0.0), inp(0u).yz, {method});
+             let ls = light_sample(lights[0u], vec3f(0.0), vec3f(0.0), inp(0u).yz, {method});
              if ls.ok {{
                  wi = ls.wi;
                  pdf = w * ls.pdf + (1.0 - w) * material_pdf(m, wo, wi);
@@ -225,7 +242,7 @@ fn mixture_body(material: usize, wo: Vec3, method: LightSampling, weight: f32) -
                  var p_light = 0.0;
                  let h = scene_intersect(Ray(vec3f(0.0), wi, inf()));
                  if h.prim != NONE && prim_light(prims[h.prim]) == 0u {{
-                     p_light = light_pdf(lights[0u], vec3f(0.0), wi, h.p, h.n, {method});
+                     p_light = light_pdf(lights[0u], vec3f(0.0), vec3f(0.0), wi, h.p, h.n, {method});
                  }}
                  pdf = select((1.0 - w) * bs.pdf + w * p_light, bs.pdf, delta);
              }}
@@ -338,31 +355,38 @@ fn gpu_samples_pass_chi_square() {
     }
 
     // Lights: one scene per shape and placement, as in `stats::suite`.
-    let mut light_case =
-        |shape: Shape, placement: Placement, methods: &[LightSampling], label: &str| {
-            let scene = suite::light_scene(shape, placement);
-            scenes.push(Arc::clone(&scene));
-            for &method in methods {
-                cases.push(Case {
-                    name: format!("{label}/{shape:?}/{placement:?}/{method:?}").to_lowercase(),
-                    scene: scenes.len() - 1,
-                    body: light_body(method),
-                    density: Box::new(LightDirections {
-                        scene: Arc::clone(&scene),
-                        light: 0,
-                        p: Vec3::ZERO,
-                        method,
-                    }),
-                });
-            }
-        };
+    let light_case = |scenes: &mut Vec<Arc<Scene>>,
+                      cases: &mut Vec<Case>,
+                      shape: Shape,
+                      placement: Placement,
+                      methods: &[LightSampling],
+                      label: &str| {
+        let scene = suite::light_scene(shape, placement);
+        scenes.push(Arc::clone(&scene));
+        for &method in methods {
+            cases.push(Case {
+                name: format!("{label}/{shape:?}/{placement:?}/{method:?}").to_lowercase(),
+                scene: scenes.len() - 1,
+                body: light_body(method),
+                density: Box::new(LightDirections {
+                    scene: Arc::clone(&scene),
+                    light: 0,
+                    p: Vec3::ZERO,
+                    method,
+                    ns: light_normal(method),
+                }),
+            });
+        }
+    };
     for shape in suite::SHAPES {
         for placement in PLACEMENTS {
-            light_case(shape, placement, &METHODS, "light");
+            light_case(&mut scenes, &mut cases, shape, placement, &METHODS, "light");
         }
     }
     // The tiny-cone (sin²θ) branch of uniform cone sampling.
     light_case(
+        &mut scenes,
+        &mut cases,
         Shape::Sphere,
         Placement::Far,
         &[LightSampling::SolidAngle],
@@ -398,6 +422,7 @@ fn gpu_samples_pass_chi_square() {
             light: 0,
             p: Vec3::ZERO,
             method,
+            ns: Vec3::ZERO,
         },
         bsdf: BsdfSampler::at_angle(mixture.materials[plastic].clone(), 30.0),
         weight: MIX_WEIGHT,
@@ -409,8 +434,23 @@ fn gpu_samples_pass_chi_square() {
         density: Box::new(density),
     });
 
+    // The cosine warp (issue 19) where it changes the samples, also with half the light below
+    // the horizon; last, so that the earlier cases keep the seeds they were calibrated with.
+    for shape in suite::COSINE_WARPED_SHAPES {
+        for placement in [Placement::Near, Placement::BelowHorizon] {
+            light_case(
+                &mut scenes,
+                &mut cases,
+                shape,
+                placement,
+                &[LightSampling::SolidAngleCosine],
+                "light",
+            );
+        }
+    }
+
     let tests = cases.len();
-    assert_eq!(tests, 84, "update the doc comment's case count");
+    assert_eq!(tests, 92, "update the doc comment's case count");
     let gpus: Vec<GpuScene> = scenes
         .iter()
         .map(|s| GpuScene::new(ctx.clone(), Arc::clone(s)).expect("upload"))
@@ -463,7 +503,7 @@ const ENVMAP_SEED: u32 = 7000;
 /// `light_sample` of light `light` from the origin.
 fn indexed_light_body(light: usize, method: LightSampling) -> String {
     format!(
-        "let s = light_sample(lights[{light}u], vec3f(0.0), inp(0u).yz, {});
+        "let s = light_sample(lights[{light}u], vec3f(0.0), vec3f(0.0), inp(0u).yz, {});
          outp(0u, vec4f(s.wi, select(-1.0, s.pdf, s.ok)));
          outp(1u, vec4f(0.0));",
         wgsl_method(method)
@@ -498,6 +538,7 @@ fn envmap_samples_pass_chi_square() {
                 light,
                 p: Vec3::ZERO,
                 method,
+                ns: Vec3::ZERO,
             };
             let body = indexed_light_body(light, method);
             cases.push((name, gpus.len() - 1, body, density));
@@ -550,6 +591,7 @@ fn envmap_samples_pass_chi_square() {
         scene,
         p: Vec3::ZERO,
         method,
+        ns: Vec3::ZERO,
     };
     let body = indexed_light_body(shifted.background_light.unwrap() as usize, method);
     let seed = ENVMAP_SEED + tests as u32;

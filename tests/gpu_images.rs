@@ -152,6 +152,20 @@ fn gpu_analytic_polygon_matches_reference() {
     assert_none(failures);
 }
 
+/// The cosine warp (issue 19, `LightSampling::SolidAngleCosine`) on the scenes whose polygon
+/// lights it changes: light-only and MIS (power), against the reference and the CPU.
+#[test]
+fn gpu_cosine_warp_matches_reference() {
+    let method = LightSampling::SolidAngleCosine;
+    let mut failures = check_scene("seed_cornell", method, &[STRATEGIES[0], STRATEGIES[3]]);
+    failures.extend(check_scene(
+        "analytic_polygon",
+        method,
+        &[STRATEGIES[0], STRATEGIES[3]],
+    ));
+    assert_none(failures);
+}
+
 #[test]
 fn gpu_analytic_disk_matches_reference() {
     assert_none(check_scene(

@@ -1135,12 +1135,20 @@ fn dielectric_matches() {
     assert!(ambiguous * 100 < items, "{ambiguous} ambiguous samples");
 }
 
+/// Every light-sampling method, in the order of `lights_match`'s inputs.
+const METHODS: [LightSampling; 3] = [
+    LightSampling::Area,
+    LightSampling::SolidAngle,
+    LightSampling::SolidAngleCosine,
+];
+
 /// How closely the GPU's and the CPU's sampled light directions agree where the geometry is
 /// well conditioned, in radians (measured on an NVIDIA H100: ~4e-6).
 const DIRECTION_AGREEMENT: f32 = 1e-5;
 
-/// Every light of the scene with both sampling methods: the sample (point, direction, pdf,
-/// radiance) from random points around the scene, and the pdf of the sampled direction. Relative
+/// Every light of the scene with every sampling method: the sample (point, direction, pdf,
+/// radiance) from random points around the scene, and the pdf of the sampled direction; the
+/// receiver's shading normal is random (read by the cosine warp only). Relative
 /// 1e-4: the spherical warps run a Newton iteration and half-angle formulas whose f32 results
 /// differ by a few ulp of their intermediate quantities between the two compilers. On top of it,
 /// the conditioning of the geometry: the two sides' sampled directions may differ by
@@ -1157,35 +1165,39 @@ fn lights_match() {
     let mut inputs = Vec::new();
     for i in 0..N {
         let light = (i % scene.lights.len()) as f32;
-        let method = ((i / scene.lights.len()) % 2) as f32;
+        let method = ((i / scene.lights.len()) % METHODS.len()) as f32;
         let p = Vec3::new(
             r.next_f32() * 8.0 - 4.0,
             r.next_f32() * 4.0,
             r.next_f32() * 8.0 - 4.0,
         );
+        let ns = lumis::sampling::sample_uniform_sphere(Vec2::new(r.next_f32(), r.next_f32()));
         inputs.push(f4(p, light));
         inputs.push([r.next_f32(), r.next_f32(), method, 0.0]);
+        inputs.push(f4(ns, 0.0));
     }
     let out = run(
         &gpu,
         "let l = lights[u32(inp(0u).w)]; let p = inp(0u).xyz; let u = inp(1u).xy; let method = u32(inp(1u).z);
-         let s = light_sample(l, p, u, method);
+         let ns = inp(2u).xyz;
+         let s = light_sample(l, p, ns, u, method);
          outp(0u, vec4f(s.p, select(-1.0, s.pdf, s.ok)));
-         outp(1u, vec4f(s.wi, light_pdf(l, p, s.wi, s.p, s.n, method)));
+         outp(1u, vec4f(s.wi, light_pdf(l, p, ns, s.wi, s.p, s.n, method)));
          outp(2u, vec4f(s.le, select(0.0, 1.0, s.infinite)));",
         &inputs,
-        2,
+        3,
         3,
     );
     // Outliers (below) stay within 1.5e-2 relative: 5× the worst on lavapipe (3.0e-3, an area pdf
     // at |cos| 1.4e-2; 4 of 82,475 values), ~15× the H100's 1e-3.
     let mut c = Compare::new("light sample", 1e-4, 1e-5).outliers_within(1.5e-2, 1e-5);
-    for (i, o) in inputs.chunks(2).zip(out.chunks(3)) {
+    for (i, o) in inputs.chunks(3).zip(out.chunks(3)) {
         let light = &scene.lights[i[0][3] as usize];
         let p = Vec3::from_slice(&i[0][..3]);
         let u = Vec2::new(i[1][0], i[1][1]);
-        let method = [LightSampling::Area, LightSampling::SolidAngle][i[1][2] as usize];
-        match light.sample(p, u, method) {
+        let method = METHODS[i[1][2] as usize];
+        let ns = Vec3::from_slice(&i[2][..3]);
+        match light.sample(p, ns, u, method) {
             Some(s) => {
                 let angle = DIRECTION_AGREEMENT / s.n.dot(s.wi).abs().max(1e-6);
                 let dist = (s.p - p).length();
@@ -1196,7 +1208,7 @@ fn lights_match() {
                         s.n.dot(s.wi).abs()
                     )
                 };
-                let pdf = light.pdf(p, s.wi, s.p, s.n, method);
+                let pdf = light.pdf(p, ns, s.wi, s.p, s.n, method);
                 c.v3_conditioned(o[0], s.p, angle * dist, &what("point"));
                 c.scalar_conditioned(o[0][3], s.pdf, angle * s.pdf, &what("pdf"));
                 c.v3_conditioned(o[1], s.wi, angle, &what("wi"));
@@ -1357,8 +1369,8 @@ fn unknown_tags_are_detectable() {
          unknown_tag_seen = false; let d = material_pdf(m, wo, wi); let d_seen = unknown_tag_seen;
          unknown_tag_seen = false; let s = material_sample(m, wo, 0.5, vec2f(0.3, 0.7)); let s_seen = unknown_tag_seen;
          unknown_tag_seen = false; let f = material_eval(g, wo, wi).x; let f_seen = unknown_tag_seen;
-         unknown_tag_seen = false; let ls = light_sample(l, p, vec2f(0.3, 0.7), LIGHT_SAMPLING_SOLID_ANGLE); let ls_seen = unknown_tag_seen;
-         unknown_tag_seen = false; let lp = light_pdf(l, p, ls.wi, ls.p, ls.n, LIGHT_SAMPLING_AREA); let lp_seen = unknown_tag_seen;
+         unknown_tag_seen = false; let ls = light_sample(l, p, vec3f(0.0), vec2f(0.3, 0.7), LIGHT_SAMPLING_SOLID_ANGLE); let ls_seen = unknown_tag_seen;
+         unknown_tag_seen = false; let lp = light_pdf(l, p, vec3f(0.0), ls.wi, ls.p, ls.n, LIGHT_SAMPLING_AREA); let lp_seen = unknown_tag_seen;
          unknown_tag_seen = false; let t = shape_intersect_t(prim, ray, triangle_ray_new(ray)); let t_seen = unknown_tag_seen;
          unknown_tag_seen = false; check_param_tags(q); let q_seen = unknown_tag_seen;
          let seen = vec4f(select(0.0, 1.0, e_seen), select(0.0, 1.0, d_seen), select(0.0, 1.0, s_seen), select(0.0, 1.0, f_seen));

@@ -396,9 +396,9 @@ fn gpu_samples(m: &Map, u: &[Vec2], method: LightSampling) -> Vec<[[f32; 4]; 4]>
         .collect();
     let body = format!(
         "let p = vec3f({:?}, {:?}, {:?}); let method = u32(inp(0u).z);
-         let s = light_sample(l, p, inp(0u).xy, method);
+         let s = light_sample(l, p, vec3f(0.0), inp(0u).xy, method);
          outp(0u, vec4f(s.wi, select(-1.0, s.pdf, s.ok)));
-         outp(1u, vec4f(s.le, light_pdf(l, p, s.wi, s.p, s.n, method)));
+         outp(1u, vec4f(s.le, light_pdf(l, p, vec3f(0.0), s.wi, s.p, s.n, method)));
          outp(2u, vec4f(s.p, select(0.0, 1.0, s.infinite)));
          outp(3u, vec4f(s.n, 0.0));",
         P.x, P.y, P.z
@@ -505,7 +505,7 @@ fn check_importance_sampling(m: &Map, us: &[Vec2]) {
             let wi = Vec3::from_slice(&o[0][..3]);
             let what = format!("{name} u {u} -> gpu {wi}");
             let black = |le: Vec3, d: Vec3| le.max_element() <= lookup_atol + m.eval_tolerance(d);
-            let want = match (m.light().sample(P, u, method), o[0][3] >= 0.0) {
+            let want = match (m.light().sample(P, Vec3::ZERO, u, method), o[0][3] >= 0.0) {
                 (Some(w), true) => w,
                 (None, false) => continue,
                 (Some(w), false) if black(w.le, w.wi) => {
@@ -607,7 +607,7 @@ fn uniform_sampling_matches() {
             let wi = Vec3::from_slice(&o[0][..3]);
             let what = format!("{name} u {u} -> gpu {wi}");
             let black = |le: Vec3, d: Vec3| le.max_element() <= lookup_atol + m.eval_tolerance(d);
-            let want = match (m.light().sample(P, u, method), o[0][3] >= 0.0) {
+            let want = match (m.light().sample(P, Vec3::ZERO, u, method), o[0][3] >= 0.0) {
                 (Some(w), true) => w,
                 (None, false) => continue,
                 (Some(w), false) if black(w.le, w.wi) => {
@@ -653,8 +653,8 @@ fn pdf_of_directions_matches() {
         let inputs: Vec<[f32; 4]> = dirs.iter().map(|&d| f4(d, 0.0)).collect();
         let body = format!(
             "let p = vec3f({:?}, {:?}, {:?}); let d = inp(0u).xyz;
-             outp(0u, vec4f(light_pdf(l, p, d, vec3f(0.0), vec3f(0.0), LIGHT_SAMPLING_SOLID_ANGLE),
-                            light_pdf(l, p, d, vec3f(0.0), vec3f(0.0), LIGHT_SAMPLING_AREA), 0.0, 0.0));",
+             outp(0u, vec4f(light_pdf(l, p, vec3f(0.0), d, vec3f(0.0), vec3f(0.0), LIGHT_SAMPLING_SOLID_ANGLE),
+                            light_pdf(l, p, vec3f(0.0), d, vec3f(0.0), vec3f(0.0), LIGHT_SAMPLING_AREA), 0.0, 0.0));",
             P.x, P.y, P.z
         );
         let out = m.run(&body, &inputs, 1, 1);
@@ -666,7 +666,9 @@ fn pdf_of_directions_matches() {
                 (o[0], LightSampling::SolidAngle),
                 (o[1], LightSampling::Area),
             ] {
-                let want = m.light().pdf(P, d, Vec3::ZERO, Vec3::ZERO, method);
+                let want = m
+                    .light()
+                    .pdf(P, Vec3::ZERO, d, Vec3::ZERO, Vec3::ZERO, method);
                 match pdf_match(m, got, d, method) {
                     PdfMatch::Edge if k < special => special_edges += 1,
                     PdfMatch::Edge => edges += 1,

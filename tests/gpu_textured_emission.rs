@@ -113,7 +113,7 @@ fn f4(v: Vec3, w: f32) -> [f32; 4] {
 /// `light_uv` at the CPU's sample, and `light_emitted` and `surface_uv` at the CPU's hit.
 const BODY: &str = "let a = inp(0u);
     let l = lights[bitcast<u32>(a.w)];
-    let s = light_sample(l, a.xyz, inp(1u).xy, u32(inp(1u).z));
+    let s = light_sample(l, a.xyz, vec3f(0.0), inp(1u).xy, u32(inp(1u).z));
     let t = light_sample_textured(l, s);
     outp(0u, vec4f(light_uv(l, s), select(0.0, 1.0, s.ok), select(0.0, 1.0, t.ok)));
     outp(1u, vec4f(t.le, 0.0));
@@ -176,7 +176,7 @@ fn light_samples_and_hits_match_the_cpu() {
     let mut cpu = Vec::new();
     for &(l, p, u, m) in &items {
         let light = &scene.lights[l];
-        let raw = light.sample(p, u, methods[m]);
+        let raw = light.sample(p, Vec3::ZERO, u, methods[m]);
         let hit = raw.and_then(|s| {
             let ray = Ray::new(p, s.wi);
             let h = scene.accel.intersect(&ray)?;
@@ -201,7 +201,11 @@ fn light_samples_and_hits_match_the_cpu() {
                 inputs.extend([[0.0; 4]; 3]);
             }
         }
-        cpu.push((raw, scene.sample_light(l, p, u, methods[m]), hit));
+        cpu.push((
+            raw,
+            scene.sample_light(l, p, Vec3::ZERO, u, methods[m]),
+            hit,
+        ));
     }
     let out = run_snippet(&gpu, &Settings::default(), BODY, &inputs, 8, 5)
         .unwrap_or_else(|e| panic!("{e}"));

@@ -385,7 +385,7 @@ fn estimate(light: &Light, r: &Receiver, method: LightSampling, seed: u32) -> (f
     let (mut sum, mut sum_sq) = (0.0f64, 0.0f64);
     for _ in 0..SAMPLES {
         let u = Vec2::new(rng.next_f32(), rng.next_f32());
-        let v = match light.sample(p, u, method) {
+        let v = match light.sample(p, glam::Vec3::ZERO, u, method) {
             Some(s) => {
                 assert!(
                     s.pdf > 0.0 && s.pdf.is_finite() && s.wi.is_finite(),

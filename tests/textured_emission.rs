@@ -164,7 +164,7 @@ fn light_samples_and_hits_agree_on_texture_coordinates() {
                                 ((k % n) as f32 + 0.37) / n as f32,
                                 ((k / n) as f32 + 0.61) / n as f32,
                             );
-                            let Some(s) = light.sample(p, u, method) else {
+                            let Some(s) = light.sample(p, Vec3::ZERO, u, method) else {
                                 continue;
                             };
                             let Some(hit) = scene.accel.intersect(&Ray::new(p, s.wi)) else {

@@ -61,6 +61,9 @@ pub enum LightSamplingArg {
     Area,
     /// Uniform by solid angle where the shape allows it; an environment map by importance.
     SolidAngle,
+    /// Solid angle, warped towards the receiver's cos θ for triangles, quads and polygons
+    /// (Hart et al. 2020).
+    SolidAngleCosine,
 }
 
 /// Samplers (`lumis::sampler`).
@@ -137,6 +140,7 @@ impl EstimatorOptions {
         let light_sampling = match self.light_sampling {
             LightSamplingArg::Area => LightSampling::Area,
             LightSamplingArg::SolidAngle => LightSampling::SolidAngle,
+            LightSamplingArg::SolidAngleCosine => LightSampling::SolidAngleCosine,
         };
         Ok(Settings {
             strategy,

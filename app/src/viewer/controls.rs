@@ -29,6 +29,7 @@ fn sampling_name(s: LightSampling) -> &'static str {
     match s {
         LightSampling::Area => "area (env. map: uniform)",
         LightSampling::SolidAngle => "solid angle (env. map: importance)",
+        LightSampling::SolidAngleCosine => "solid angle × cos warp (Hart 2020)",
     }
 }
 
@@ -144,7 +145,11 @@ impl ViewerApp {
             ui,
             "Light sampling",
             &mut p.light_sampling,
-            &[LightSampling::Area, LightSampling::SolidAngle],
+            &[
+                LightSampling::Area,
+                LightSampling::SolidAngle,
+                LightSampling::SolidAngleCosine,
+            ],
             |s| sampling_name(s).into(),
         );
         let mut depth = p.max_depth.unwrap_or(0);

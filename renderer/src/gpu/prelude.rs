@@ -166,6 +166,7 @@ pub fn constants() -> Vec<Constant> {
             "MAX_SOLID_ANGLE_TRIANGLES",
             const { count(polygon::MAX_SOLID_ANGLE_TRIANGLES) },
         ),
+        f32c("MIN_COSINE_WEIGHT", sampling::MIN_COSINE_WEIGHT),
         // Rays and BVHs.
         f32c("SHADOW_EPSILON", ray::SHADOW_EPSILON),
         f32c("MAX_INV", wide_bvh::MAX_INV),
@@ -329,6 +330,8 @@ mod tests {
             ("STRATEGY_MIS", Value::U32(3)),
             ("HEURISTIC_POWER", Value::U32(1)),
             ("LIGHT_SAMPLING_SOLID_ANGLE", Value::U32(1)),
+            ("LIGHT_SAMPLING_SOLID_ANGLE_COSINE", Value::U32(2)),
+            ("MIN_COSINE_WEIGHT", Value::F32(0.01)),
             ("FRESNEL_TINT", Value::U32(1)),
             ("TEXTURE_CHECKERBOARD", Value::U32(2)),
             ("WRAP_CLAMP", Value::U32(2)),

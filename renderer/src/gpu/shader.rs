@@ -44,6 +44,7 @@ const MODULES: &[Module] = &[
     module!("warps.wgsl"),
     module!("spherical_triangle.wgsl"),
     module!("spherical_rectangle.wgsl"),
+    module!("bilinear.wgsl"),
     module!("fresnel.wgsl"),
     module!("ggx.wgsl"),
     module!("mis.wgsl"),
@@ -274,7 +275,7 @@ impl Features {
     fn wants(&self, name: &str) -> bool {
         let lights = self.has_lights;
         match name {
-            "spherical_triangle.wgsl" | "light_sampler.wgsl" => lights,
+            "spherical_triangle.wgsl" | "light_sampler.wgsl" | "bilinear.wgsl" => lights,
             "spherical_rectangle.wgsl" | "quad_light.wgsl" => lights && self.has_quad_light,
             "triangle_light.wgsl" => lights && self.has_triangle_light,
             "polygon_light.wgsl" => lights && self.has_polygon_light,

@@ -67,6 +67,8 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
     let mut eta_scale = 1.0f32;
     let mut weight_rule = EmissionWeight::One;
     let mut prev_p = ray.o;
+    // The previous vertex's shading normal, for the cosine warp's pdf (zero at the camera).
+    let mut prev_ns = Vec3::ZERO;
     let mut depth: i32 = 0;
     loop {
         depth += 1;
@@ -78,6 +80,7 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
                 let w = emission_weight(scene, weight_rule, bg, || {
                     light.pdf(
                         prev_p,
+                        prev_ns,
                         ray.d,
                         Vec3::ZERO,
                         Vec3::ZERO,
@@ -96,6 +99,7 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
                 let w = emission_weight(scene, weight_rule, prim.light, || {
                     light.pdf(
                         prev_p,
+                        prev_ns,
                         ray.d.normalize(),
                         hit.p,
                         hit.n,
@@ -220,6 +224,7 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
             break;
         }
         prev_p = hit.p;
+        prev_ns = ns;
         ray = spawn_ray(hit.p, hit.p_error, n, wi);
 
         if depth as u32 >= settings.rr_depth {
@@ -298,7 +303,7 @@ fn direct_light<const TRANSMISSION: bool>(
         return Vec3::ZERO;
     };
     let (index, pmf) = sampler.sample(u_light);
-    let Some(ls) = scene.sample_light(index, hit.p, u, settings.light_sampling) else {
+    let Some(ls) = scene.sample_light(index, hit.p, frame.n, u, settings.light_sampling) else {
         return Vec3::ZERO;
     };
     let wi = frame.to_local(ls.wi);

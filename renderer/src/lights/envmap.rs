@@ -209,9 +209,10 @@ impl EnvmapLight {
     /// Samples a direction towards the map: importance-sampled ([`LightSampling::SolidAngle`]) or
     /// uniform on the sphere ([`LightSampling::Area`], the sphere at infinity's area measure).
     pub fn sample(&self, u: Vec2, method: LightSampling) -> Option<LightSample> {
-        let (wi, pdf) = match method {
-            LightSampling::SolidAngle => self.sample_importance(u),
-            LightSampling::Area => (sample_uniform_sphere(u), uniform_sphere_pdf()),
+        let (wi, pdf) = if method.solid_angle() {
+            self.sample_importance(u)
+        } else {
+            (sample_uniform_sphere(u), uniform_sphere_pdf())
         };
         Some(LightSample {
             p: wi,
@@ -229,10 +230,12 @@ impl EnvmapLight {
     /// sampling's samples where the map is black are discarded (a light returns no sample where
     /// it contributes nothing), so its pdf is 0 there.
     pub fn pdf(&self, d: Vec3, method: LightSampling) -> f32 {
-        match method {
-            LightSampling::SolidAngle => self.pdf_importance(d),
-            LightSampling::Area if self.eval(d) == Vec3::ZERO => 0.0,
-            LightSampling::Area => uniform_sphere_pdf(),
+        if method.solid_angle() {
+            self.pdf_importance(d)
+        } else if self.eval(d) == Vec3::ZERO {
+            0.0
+        } else {
+            uniform_sphere_pdf()
         }
     }
 

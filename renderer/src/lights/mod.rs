@@ -47,6 +47,60 @@ pub enum LightSampling {
     /// spherical warps to be accurate. An environment map is importance-sampled.
     #[default]
     SolidAngle,
+    /// [`LightSampling::SolidAngle`], with the spherical triangles and rectangles (of triangle,
+    /// polygon and quad lights) sampled through a bilinear warp towards the receiver's |cos θ| at
+    /// the light's corners first (Hart et al. 2020; pbrt-v4 does this whenever it knows the
+    /// shading normal), so that the density is nearly proportional to cos θ dω: the cosine
+    /// factor of the integrand is then mostly sampled away. Without a receiver normal (a zero
+    /// `ns`), and for disks, spheres and infinite lights, the same as `SolidAngle`.
+    SolidAngleCosine,
+}
+
+impl LightSampling {
+    /// Whether shapes with a spherical warp use it (every method but [`LightSampling::Area`]).
+    #[inline(always)]
+    pub fn solid_angle(self) -> bool {
+        self != LightSampling::Area
+    }
+
+    /// Whether spherical samples are warped towards the cosine for a receiver with shading
+    /// normal `ns`: [`LightSampling::SolidAngleCosine`] with a normal.
+    #[inline(always)]
+    pub fn warps(self, ns: Vec3) -> bool {
+        self == LightSampling::SolidAngleCosine && ns != Vec3::ZERO
+    }
+
+    /// `u` through the cosine warp of a receiver at `p` with shading normal `ns`, for a spherical
+    /// warp whose sample square's corners go to the points `corners`
+    /// ([`crate::sampling::cosine_corner_weights`]), and the warp's density there; `u` and 1
+    /// where the method does not warp ([`LightSampling::warps`]).
+    #[inline(always)]
+    pub(crate) fn warp(self, p: Vec3, ns: Vec3, corners: [Vec3; 4], u: Vec2) -> (Vec2, f32) {
+        if !self.warps(ns) {
+            return (u, 1.0);
+        }
+        let w = crate::sampling::cosine_corner_weights(ns, corners.map(|c| c - p));
+        let u = crate::sampling::sample_bilinear(u, w);
+        (u, crate::sampling::bilinear_pdf(u, w))
+    }
+
+    /// The density of [`LightSampling::warp`] at the warped point `warped()` (the inverse of the
+    /// spherical warp at the direction in question), 1 where the method does not warp; `warped`
+    /// runs only where it does.
+    #[inline(always)]
+    pub(crate) fn warp_pdf(
+        self,
+        p: Vec3,
+        ns: Vec3,
+        corners: [Vec3; 4],
+        warped: impl FnOnce() -> Vec2,
+    ) -> f32 {
+        if !self.warps(ns) {
+            return 1.0;
+        }
+        let w = crate::sampling::cosine_corner_weights(ns, corners.map(|c| c - p));
+        crate::sampling::bilinear_pdf(warped(), w)
+    }
 }
 
 /// A point sampled on a light, as seen from a reference point.
@@ -102,13 +156,14 @@ pub enum Light {
 }
 
 impl Light {
-    /// Samples a direction towards the light from `p`; `None` when it contributes nothing from `p`
-    /// (behind a one-sided emitter, a degenerate configuration).
-    pub fn sample(&self, p: Vec3, u: Vec2, method: LightSampling) -> Option<LightSample> {
+    /// Samples a direction towards the light from `p`, a receiver with shading normal `ns` (zero
+    /// where there is none; only [`LightSampling::SolidAngleCosine`] reads it); `None` when it
+    /// contributes nothing from `p` (behind a one-sided emitter, a degenerate configuration).
+    pub fn sample(&self, p: Vec3, ns: Vec3, u: Vec2, method: LightSampling) -> Option<LightSample> {
         let s = match self {
-            Light::Triangle(l) => l.sample(p, u, method),
-            Light::Polygon(l) => l.sample(p, u, method),
-            Light::Quad(l) => l.sample(p, u, method),
+            Light::Triangle(l) => l.sample(p, ns, u, method),
+            Light::Polygon(l) => l.sample(p, ns, u, method),
+            Light::Quad(l) => l.sample(p, ns, u, method),
             Light::Disk(l) => l.sample(p, u),
             Light::Sphere(l) => l.sample(p, u, method),
             Light::Background(l) => l.sample(u),
@@ -121,10 +176,19 @@ impl Light {
         (s.pdf > 0.0 && s.pdf.is_finite() && s.le.cmpgt(Vec3::ZERO).any()).then_some(s)
     }
 
-    /// Solid-angle pdf with which [`Light::sample`] from `p` yields direction `wi` hitting the light
-    /// at `y` with normal `ny` (`y`, `ny` unused for the infinite lights).
-    pub fn pdf(&self, p: Vec3, wi: Vec3, y: Vec3, ny: Vec3, method: LightSampling) -> f32 {
-        self.pdf_unmutated(p, wi, y, ny, method) * crate::mutants::light_pdf(self.kind_tag())
+    /// Solid-angle pdf with which [`Light::sample`] from `p` (shading normal `ns`) yields
+    /// direction `wi` hitting the light at `y` with normal `ny` (`y`, `ny` unused for the infinite
+    /// lights).
+    pub fn pdf(
+        &self,
+        p: Vec3,
+        ns: Vec3,
+        wi: Vec3,
+        y: Vec3,
+        ny: Vec3,
+        method: LightSampling,
+    ) -> f32 {
+        self.pdf_unmutated(p, ns, wi, y, ny, method) * crate::mutants::light_pdf(self.kind_tag())
     }
 
     /// Index of the light's emission texture in [`crate::scene::Scene::emission_textures`], or
@@ -169,11 +233,19 @@ impl Light {
     }
 
     #[inline(always)]
-    fn pdf_unmutated(&self, p: Vec3, wi: Vec3, y: Vec3, ny: Vec3, method: LightSampling) -> f32 {
+    fn pdf_unmutated(
+        &self,
+        p: Vec3,
+        ns: Vec3,
+        wi: Vec3,
+        y: Vec3,
+        ny: Vec3,
+        method: LightSampling,
+    ) -> f32 {
         match self {
-            Light::Triangle(l) => l.pdf(p, wi, y, ny, method),
-            Light::Polygon(l) => l.pdf(p, wi, y, ny, method),
-            Light::Quad(l) => l.pdf(p, wi, y, ny, method),
+            Light::Triangle(l) => l.pdf(p, ns, wi, y, ny, method),
+            Light::Polygon(l) => l.pdf(p, ns, wi, y, ny, method),
+            Light::Quad(l) => l.pdf(p, ns, wi, y, ny, method),
             Light::Disk(l) => area_to_solid_angle(1.0 / l.disk.area(), p, y, ny),
             Light::Sphere(l) => l.pdf(p, y, ny, method),
             Light::Background(_) => crate::sampling::uniform_sphere_pdf(),

@@ -4,15 +4,17 @@
 //! proportion to the solid angle it subtends from the shading point, then samples that spherical
 //! triangle uniformly: from a point off the plane, the triangles of a planar simple polygon project to
 //! disjoint spherical triangles, so the result is uniform over the polygon's solid angle with
-//! pdf `1 / Σ Ω_i`.
+//! pdf `1 / Σ Ω_i`. With the cosine warp ([`LightSampling::SolidAngleCosine`]) the chosen
+//! spherical triangle is sampled through its own bilinear warp, so the pdf is
+//! `B_i(u) / Σ Ω_i` with `B_i` the warp's density in triangle `i` (the one holding the point).
 //! WGSL twin: `polygon_light.wgsl`.
 
 use super::triangle::spherical_ok;
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
 use crate::geometry::ray::gamma;
 use crate::sampling::{
-    DiscreteDistribution, sample_spherical_triangle_from_dirs, sample_uniform_triangle,
-    spherical_triangle_area,
+    DiscreteDistribution, invert_spherical_triangle, sample_spherical_triangle_from_dirs,
+    sample_uniform_triangle, spherical_triangle_area, spherical_triangle_corners,
 };
 use glam::{Vec2, Vec3};
 
@@ -134,30 +136,47 @@ impl PolygonLight {
         })
     }
 
-    /// Samples a point as seen from `p`.
-    pub fn sample(&self, p: Vec3, u: Vec2, method: LightSampling) -> Option<LightSample> {
+    /// The triangle of the triangulation that holds `y` (a point of the polygon): the one whose
+    /// smallest barycentric coordinate of `y` is largest, so a point on a shared edge, or just
+    /// off the polygon by rounding, still gets one.
+    fn triangle_holding(&self, y: Vec3) -> usize {
+        let mut best = (0, f32::NEG_INFINITY);
+        for (i, [a, b, c]) in self.triangles.iter().enumerate() {
+            let (a, b, c) = (*a - y, *b - y, *c - y);
+            let area = self.n.dot((b - a).cross(c - a));
+            let smallest = self
+                .n
+                .dot(b.cross(c))
+                .min(self.n.dot(c.cross(a)))
+                .min(self.n.dot(a.cross(b)))
+                / area;
+            if smallest > best.1 {
+                best = (i, smallest);
+            }
+        }
+        best.0
+    }
+
+    /// Samples a point as seen from `p` (shading normal `ns`: [`super::Light::sample`]).
+    pub fn sample(&self, p: Vec3, ns: Vec3, u: Vec2, method: LightSampling) -> Option<LightSample> {
         if !self.faces(p) {
             return None;
         }
-        let picked = if method == LightSampling::SolidAngle {
+        let picked = if method.solid_angle() {
             self.with_solid_angles(p, |dirs, omegas, total| {
                 let (i, ux) = pick(omegas, total, u.x)?;
                 let corners = self.indices[i].map(|k| dirs[k as usize]);
                 let v = &self.triangles[i];
-                let s = sample_spherical_triangle_from_dirs(
-                    v,
-                    p,
-                    corners,
-                    omegas[i],
-                    Vec2::new(ux, u.y),
-                )?;
-                Some((i, s, total))
+                let warp_corners = spherical_triangle_corners(v);
+                let (u, warp_pdf) = method.warp(p, ns, warp_corners, Vec2::new(ux, u.y));
+                let s = sample_spherical_triangle_from_dirs(v, p, corners, omegas[i], u)?;
+                Some((i, s, warp_pdf / total))
             })
         } else {
             None
         };
         if let Some(picked) = picked {
-            let (i, s, total) = picked?;
+            let (i, s, pdf) = picked?;
             let v = &self.triangles[i];
             let b = s.barycentrics;
             let y = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
@@ -167,7 +186,7 @@ impl PolygonLight {
                 p_error: err,
                 n: self.n,
                 wi: s.dir,
-                pdf: 1.0 / total,
+                pdf,
                 le: self.le,
                 infinite: false,
                 b: Vec2::new(b[1], b[2]),
@@ -184,15 +203,28 @@ impl PolygonLight {
         })
     }
 
-    /// Solid-angle pdf of hitting `y` (normal `ny`) from `p`.
-    pub fn pdf(&self, p: Vec3, _wi: Vec3, y: Vec3, ny: Vec3, method: LightSampling) -> f32 {
+    /// Solid-angle pdf of hitting `y` (normal `ny`) from `p` (shading normal `ns`) along `wi`.
+    pub fn pdf(
+        &self,
+        p: Vec3,
+        ns: Vec3,
+        wi: Vec3,
+        y: Vec3,
+        ny: Vec3,
+        method: LightSampling,
+    ) -> f32 {
         if !self.faces(p) {
             return 0.0;
         }
-        if method == LightSampling::SolidAngle
+        if method.solid_angle()
             && let Some(total) = self.with_solid_angles(p, |_, _, total| total)
         {
-            return 1.0 / total;
+            if !method.warps(ns) {
+                return 1.0 / total;
+            }
+            let v = &self.triangles[self.triangle_holding(y)];
+            let corners = spherical_triangle_corners(v);
+            return method.warp_pdf(p, ns, corners, || invert_spherical_triangle(v, p, wi)) / total;
         }
         area_to_solid_angle(1.0 / self.area, p, y, ny)
     }

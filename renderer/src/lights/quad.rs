@@ -1,5 +1,6 @@
 //! Emitting parallelograms: area sampling, or solid-angle sampling of the spherical rectangle
-//! (Ureña, Fajardo & King 2013) when the quad is a rectangle.
+//! (Ureña, Fajardo & King 2013) when the quad is a rectangle, optionally through the cosine warp
+//! ([`LightSampling::SolidAngleCosine`]).
 //! WGSL twin: `quad_light.wgsl`.
 
 use super::triangle::spherical_ok;
@@ -75,32 +76,54 @@ impl QuadLight {
             .filter(|r| spherical_ok(r.solid_angle()))
     }
 
-    /// Samples a point as seen from `p`.
-    pub fn sample(&self, p: Vec3, u: Vec2, method: LightSampling) -> Option<LightSample> {
+    /// The points the corners `(0,0), (1,0), (0,1), (1,1)` of the sample square go to under
+    /// [`SphericalRectangle::sample`] (`u.x` along `edge_u`, `u.y` along `edge_v`): the cosine
+    /// warp's corners.
+    fn corners(&self) -> [Vec3; 4] {
+        let c = self.corner;
+        [
+            c,
+            c + self.edge_u,
+            c + self.edge_v,
+            c + self.edge_u + self.edge_v,
+        ]
+    }
+
+    /// Samples a point as seen from `p` (shading normal `ns`: [`super::Light::sample`]).
+    pub fn sample(&self, p: Vec3, ns: Vec3, u: Vec2, method: LightSampling) -> Option<LightSample> {
         if !self.faces(p) {
             return None;
         }
-        if method == LightSampling::SolidAngle
+        if method.solid_angle()
             && let Some(rect) = self.spherical(p)
         {
+            let (u, warp_pdf) = method.warp(p, ns, self.corners(), u);
             let y = rect.sample(u);
             let mut s = area_sample(p, y, self.n, 1.0 / self.area, self.le)?;
-            s.pdf = 1.0 / rect.solid_angle();
+            s.pdf = warp_pdf / rect.solid_angle();
             return Some(s);
         }
         let y = self.corner + u.x * self.edge_u + u.y * self.edge_v;
         area_sample(p, y, self.n, 1.0 / self.area, self.le)
     }
 
-    /// Solid-angle pdf of hitting `y` (normal `ny`) from `p`.
-    pub fn pdf(&self, p: Vec3, _wi: Vec3, y: Vec3, ny: Vec3, method: LightSampling) -> f32 {
+    /// Solid-angle pdf of hitting `y` (normal `ny`) from `p` (shading normal `ns`).
+    pub fn pdf(
+        &self,
+        p: Vec3,
+        ns: Vec3,
+        _wi: Vec3,
+        y: Vec3,
+        ny: Vec3,
+        method: LightSampling,
+    ) -> f32 {
         if !self.faces(p) {
             return 0.0;
         }
-        if method == LightSampling::SolidAngle
+        if method.solid_angle()
             && let Some(rect) = self.spherical(p)
         {
-            return 1.0 / rect.solid_angle();
+            return method.warp_pdf(p, ns, self.corners(), || rect.invert(y)) / rect.solid_angle();
         }
         area_to_solid_angle(1.0 / self.area, p, y, ny)
     }

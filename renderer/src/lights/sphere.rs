@@ -121,9 +121,10 @@ impl SphereLight {
         let Some((_, one_minus_cos_max)) = self.cone(p) else {
             return 0.0;
         };
-        match method {
-            LightSampling::Area => area_to_solid_angle(1.0 / self.sphere.area(), p, y, ny),
-            LightSampling::SolidAngle => 1.0 / (2.0 * PI * one_minus_cos_max),
+        if method.solid_angle() {
+            1.0 / (2.0 * PI * one_minus_cos_max)
+        } else {
+            area_to_solid_angle(1.0 / self.sphere.area(), p, y, ny)
         }
     }
 }

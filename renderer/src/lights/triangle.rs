@@ -1,12 +1,14 @@
 //! Emitting triangles: area sampling (uniform barycentrics) or solid-angle sampling of the
-//! spherical triangle (Arvo 1995).
+//! spherical triangle (Arvo 1995), optionally through the cosine warp
+//! ([`LightSampling::SolidAngleCosine`]).
 //! WGSL twin: `triangle_light.wgsl`.
 
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
 use crate::geometry::ray::gamma;
 use crate::sampling::{
-    MAX_SPHERICAL_SAMPLE_AREA, MIN_SPHERICAL_SAMPLE_AREA, sample_spherical_triangle,
-    sample_uniform_triangle, spherical_triangle_area,
+    MAX_SPHERICAL_SAMPLE_AREA, MIN_SPHERICAL_SAMPLE_AREA, invert_spherical_triangle,
+    sample_spherical_triangle, sample_uniform_triangle, spherical_triangle_area,
+    spherical_triangle_corners,
 };
 use glam::{Vec2, Vec3};
 
@@ -51,12 +53,13 @@ impl TriangleLight {
         (p - self.v[0]).dot(self.n) > 0.0
     }
 
-    /// Samples a point as seen from `p`.
-    pub fn sample(&self, p: Vec3, u: Vec2, method: LightSampling) -> Option<LightSample> {
+    /// Samples a point as seen from `p` (shading normal `ns`: [`super::Light::sample`]).
+    pub fn sample(&self, p: Vec3, ns: Vec3, u: Vec2, method: LightSampling) -> Option<LightSample> {
         if !self.faces(p) {
             return None;
         }
-        if method == LightSampling::SolidAngle && spherical_ok(triangle_solid_angle(&self.v, p)) {
+        if method.solid_angle() && spherical_ok(triangle_solid_angle(&self.v, p)) {
+            let (u, warp_pdf) = method.warp(p, ns, spherical_triangle_corners(&self.v), u);
             let s = sample_spherical_triangle(&self.v, p, u)?;
             let b = s.barycentrics;
             let y = b[0] * self.v[0] + b[1] * self.v[1] + b[2] * self.v[2];
@@ -67,7 +70,7 @@ impl TriangleLight {
                 p_error: err,
                 n: self.n,
                 wi: s.dir,
-                pdf: s.pdf,
+                pdf: s.pdf * warp_pdf,
                 le: self.le,
                 infinite: false,
                 b: Vec2::new(b[1], b[2]),
@@ -82,15 +85,26 @@ impl TriangleLight {
         })
     }
 
-    /// Solid-angle pdf of hitting `y` (normal `ny`) from `p` along `wi`.
-    pub fn pdf(&self, p: Vec3, _wi: Vec3, y: Vec3, ny: Vec3, method: LightSampling) -> f32 {
+    /// Solid-angle pdf of hitting `y` (normal `ny`) from `p` (shading normal `ns`) along `wi`.
+    pub fn pdf(
+        &self,
+        p: Vec3,
+        ns: Vec3,
+        wi: Vec3,
+        y: Vec3,
+        ny: Vec3,
+        method: LightSampling,
+    ) -> f32 {
         if !self.faces(p) {
             return 0.0;
         }
-        if method == LightSampling::SolidAngle {
+        if method.solid_angle() {
             let omega = triangle_solid_angle(&self.v, p);
             if spherical_ok(omega) {
-                return 1.0 / omega;
+                let corners = spherical_triangle_corners(&self.v);
+                return method
+                    .warp_pdf(p, ns, corners, || invert_spherical_triangle(&self.v, p, wi))
+                    / omega;
             }
         }
         area_to_solid_angle(1.0 / self.area, p, y, ny)

@@ -8,9 +8,23 @@
 //! order; the density on the square is `4·B(p) / Σw` with `B` the bilinear interpolant, so
 //! `∫ pdf = 1`. All-zero weights mean the uniform density (there is nothing to prefer), and every
 //! function accepts non-negative weights only.
+//! WGSL twin: `bilinear.wgsl`.
 
 use super::ONE_MINUS_EPSILON;
-use glam::Vec2;
+use glam::{Vec2, Vec3};
+
+/// Smallest corner weight of the cosine warp: where the receiver's horizon cuts a light, corners
+/// at or below it would otherwise weigh 0 and starve the part of the light above it that lies
+/// near them (pbrt-v4 uses the same floor). Any positive weights keep the estimator unbiased.
+pub const MIN_COSINE_WEIGHT: f32 = 0.01;
+
+/// The bilinear weights `max(MIN_COSINE_WEIGHT, |ns·ŵ|)` of a cosine warp for a receiver with
+/// unit shading normal `ns` and the vectors `to_corners` from it to the four points the corners
+/// of the sample square map to (order in the module doc). `|cos|` rather than `cos`, so that a
+/// transmitting receiver, lit from below, gets the same warp.
+pub fn cosine_corner_weights(ns: Vec3, to_corners: [Vec3; 4]) -> [f32; 4] {
+    to_corners.map(|d| ns.dot(d.normalize_or_zero()).abs().max(MIN_COSINE_WEIGHT))
+}
 
 /// The density on `[0,1]` proportional to the line from `a` at 0 to `b` at 1 (`a, b ≥ 0`; both 0
 /// is the uniform density); 0 outside `[0,1]`.

@@ -99,6 +99,15 @@ impl Arvo {
     }
 }
 
+/// The points the corners `(0,0), (1,0), (0,1), (1,1)` of the sample square go to under
+/// [`sample_spherical_triangle`] (its `u.x` sweeps the arc `v0 → v2`, its `u.y` runs from `v1`
+/// to that arc): where a bilinear warp in front of it ([`super::bilinear`]) puts its corner
+/// weights.
+#[inline]
+pub fn spherical_triangle_corners(v: &[Vec3; 3]) -> [Vec3; 4] {
+    [v[1], v[1], v[0], v[2]]
+}
+
 /// Unit tangent at unit vector `from` along the great circle towards `from + e`; taking the
 /// difference `e` rather than the endpoint keeps the digits when the two are close.
 fn tangent(from: Vec3, e: Vec3) -> Vec3 {

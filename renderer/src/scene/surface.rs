@@ -116,11 +116,12 @@ impl Scene {
         &self,
         index: usize,
         p: Vec3,
+        ns: Vec3,
         u: Vec2,
         method: LightSampling,
     ) -> Option<LightSample> {
         let light = &self.lights[index];
-        let mut s = light.sample(p, u, method)?;
+        let mut s = light.sample(p, ns, u, method)?;
         let texture = light.texture();
         if texture != NONE {
             let uv = self.light_uv(light, &s)?;

@@ -15,7 +15,7 @@ const DISK_RIM_POINTS: usize = 64;
 /// The cap is this much wider than the light's bounding cone, so silhouettes fall inside it.
 const CAP_MARGIN: f64 = 1.15;
 
-/// `scene.lights[light].sample(p, ·, method)` as a direction sampler.
+/// `scene.lights[light].sample(p, ns, ·, method)` as a direction sampler.
 #[derive(Clone)]
 pub struct LightDirections {
     /// The scene holding the light (ideally nothing else, so no other surface hides it).
@@ -26,6 +26,8 @@ pub struct LightDirections {
     pub p: Vec3,
     /// Area or solid-angle sampling.
     pub method: LightSampling,
+    /// The receiver's shading normal (zero: none), for [`LightSampling::SolidAngleCosine`].
+    pub ns: Vec3,
 }
 
 impl LightDirections {
@@ -58,7 +60,7 @@ impl LightDirections {
 
 impl DirectionalSampler for LightDirections {
     fn sample(&self, _u1: f32, u: Vec2) -> Option<DirectionSample> {
-        let s = self.scene.lights[self.light].sample(self.p, u, self.method)?;
+        let s = self.scene.lights[self.light].sample(self.p, self.ns, u, self.method)?;
         Some(DirectionSample {
             w: s.wi,
             pdf: s.pdf,
@@ -69,7 +71,7 @@ impl DirectionalSampler for LightDirections {
     fn pdf(&self, w: Vec3) -> f32 {
         let light = &self.scene.lights[self.light];
         if light.is_infinite() {
-            return light.pdf(self.p, w, Vec3::ZERO, Vec3::ZERO, self.method);
+            return light.pdf(self.p, self.ns, w, Vec3::ZERO, Vec3::ZERO, self.method);
         }
         let Some(hit) = self.scene.accel.intersect(&Ray::new(self.p, w)) else {
             return 0.0;
@@ -77,7 +79,7 @@ impl DirectionalSampler for LightDirections {
         if self.scene.accel.primitives()[hit.prim as usize].light != self.light as u32 {
             return 0.0;
         }
-        light.pdf(self.p, w, hit.p, hit.n, self.method)
+        light.pdf(self.p, self.ns, w, hit.p, hit.n, self.method)
     }
 
     /// A cap about the light's bounding cone from `p`: a far light covers thousands of cells

@@ -190,15 +190,22 @@ pub fn light_scene(shape: Shape, placement: Placement) -> Arc<Scene> {
     Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{shape:?}: {e}")))
 }
 
-/// Sampling the (only) light of `light_scene(shape, placement)` from the origin.
+/// Sampling the (only) light of `light_scene(shape, placement)` from the origin, a receiver
+/// with normal +z.
 pub fn light_sampler(shape: Shape, placement: Placement, method: LightSampling) -> LightDirections {
     LightDirections {
         scene: light_scene(shape, placement),
         light: 0,
         p: Vec3::ZERO,
         method,
+        ns: Vec3::Z,
     }
 }
+
+/// The shapes whose solid-angle samples the cosine warp changes
+/// ([`LightSampling::SolidAngleCosine`]; disks and spheres sample as with `SolidAngle`).
+pub const COSINE_WARPED_SHAPES: [Shape; 4] =
+    [Shape::Triangle, Shape::Hexagon, Shape::Star, Shape::Quad];
 
 /// The warps.
 pub fn warp_cases() -> Vec<Case> {
@@ -263,12 +270,16 @@ pub fn dielectric_cases() -> Vec<Case> {
         .collect()
 }
 
-/// Every light shape × placement × method.
+/// Every light shape × placement × method (the cosine warp for the shapes it changes).
 pub fn light_cases() -> Vec<Case> {
     let mut out = Vec::new();
     for shape in SHAPES {
         for placement in PLACEMENTS {
-            for method in [LightSampling::Area, LightSampling::SolidAngle] {
+            let mut methods = vec![LightSampling::Area, LightSampling::SolidAngle];
+            if COSINE_WARPED_SHAPES.contains(&shape) {
+                methods.push(LightSampling::SolidAngleCosine);
+            }
+            for method in methods {
                 let name = format!("light/{shape:?}/{placement:?}/{method:?}").to_lowercase();
                 out.push(case(name, light_sampler(shape, placement, method)));
             }
@@ -344,6 +355,7 @@ pub fn envmap_cases() -> Vec<Case> {
                 light,
                 p: Vec3::ZERO,
                 method,
+                ns: Vec3::ZERO,
             };
             out.push(case(name, sampler));
         }

@@ -111,6 +111,8 @@ gpu_tags! {
         Area => "LIGHT_SAMPLING_AREA",
         /// [`LightSampling::SolidAngle`].
         SolidAngle => "LIGHT_SAMPLING_SOLID_ANGLE",
+        /// [`LightSampling::SolidAngleCosine`].
+        SolidAngleCosine => "LIGHT_SAMPLING_SOLID_ANGLE_COSINE",
     }
 }
 
@@ -120,6 +122,7 @@ impl LightSamplingTag {
         match m {
             LightSampling::Area => LightSamplingTag::Area,
             LightSampling::SolidAngle => LightSamplingTag::SolidAngle,
+            LightSampling::SolidAngleCosine => LightSamplingTag::SolidAngleCosine,
         }
     }
 }

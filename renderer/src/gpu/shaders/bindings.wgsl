@@ -60,7 +60,7 @@ fn check_param_tags(p: Params) {
         }
     }
     switch p.light_sampling {
-        case LIGHT_SAMPLING_AREA, LIGHT_SAMPLING_SOLID_ANGLE: {}
+        case LIGHT_SAMPLING_AREA, LIGHT_SAMPLING_SOLID_ANGLE, LIGHT_SAMPLING_SOLID_ANGLE_COSINE: {}
         default: {
             _ = unknown_tag();
         }

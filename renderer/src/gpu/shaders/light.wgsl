@@ -76,23 +76,35 @@ fn spherical_ok(omega: f32) -> bool {
     return omega >= MIN_SPHERICAL_SAMPLE_AREA && omega <= MAX_SPHERICAL_SAMPLE_AREA;
 }
 
-// `Light::sample`, including its final validity test.
-fn light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSample {
+// Whether spherical samples are warped for a receiver with shading normal ns
+// (`LightSampling::warps`).
+fn light_sampling_warps(method: u32, ns: vec3f) -> bool {
+    return method == LIGHT_SAMPLING_SOLID_ANGLE_COSINE && any(ns != vec3f(0.0));
+}
+
+// `SolidAngle` or `SolidAngleCosine` (`LightSampling::solid_angle`).
+fn light_sampling_solid_angle(method: u32) -> bool {
+    return method != LIGHT_SAMPLING_AREA;
+}
+
+// `Light::sample`, including its final validity test; ns is the receiver's shading normal (zero:
+// none), read by LIGHT_SAMPLING_SOLID_ANGLE_COSINE only.
+fn light_sample(l: Light, p: vec3f, ns: vec3f, u: vec2f, method: u32) -> LightSample {
     var s = no_light_sample();
     switch l.h.x {
 // #if HAS_TRIANGLE_LIGHT
         case LIGHT_TRIANGLE: {
-            s = triangle_light_sample(l, p, u, method);
+            s = triangle_light_sample(l, p, ns, u, method);
         }
 // #endif
 // #if HAS_POLYGON_LIGHT
         case LIGHT_POLYGON: {
-            s = polygon_light_sample(l, p, u, method);
+            s = polygon_light_sample(l, p, ns, u, method);
         }
 // #endif
 // #if HAS_QUAD_LIGHT
         case LIGHT_QUAD: {
-            s = quad_light_sample(l, p, u, method);
+            s = quad_light_sample(l, p, ns, u, method);
         }
 // #endif
 // #if HAS_DISK_LIGHT
@@ -130,29 +142,30 @@ fn light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSample {
     return s;
 }
 
-// `Light::pdf`: solid-angle pdf of sampling direction wi from p, hitting y with normal ny.
-fn light_pdf(l: Light, p: vec3f, wi: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
+// `Light::pdf`: solid-angle pdf of sampling direction wi from p (shading normal ns), hitting y
+// with normal ny.
+fn light_pdf(l: Light, p: vec3f, ns: vec3f, wi: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
 // #if MUTANTS
-    let pdf = light_pdf_unmutated(l, p, wi, y, ny, method);
+    let pdf = light_pdf_unmutated(l, p, ns, wi, y, ny, method);
     return select(pdf, pdf * MUTANT_FACTOR, l.h.x == MUTANT_LIGHT_PDF_TAG);
 }
 
-fn light_pdf_unmutated(l: Light, p: vec3f, wi: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
+fn light_pdf_unmutated(l: Light, p: vec3f, ns: vec3f, wi: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
 // #endif
     switch l.h.x {
 // #if HAS_TRIANGLE_LIGHT
         case LIGHT_TRIANGLE: {
-            return triangle_light_pdf(l, p, y, ny, method);
+            return triangle_light_pdf(l, p, ns, wi, y, ny, method);
         }
 // #endif
 // #if HAS_POLYGON_LIGHT
         case LIGHT_POLYGON: {
-            return polygon_light_pdf(l, p, y, ny, method);
+            return polygon_light_pdf(l, p, ns, wi, y, ny, method);
         }
 // #endif
 // #if HAS_QUAD_LIGHT
         case LIGHT_QUAD: {
-            return quad_light_pdf(l, p, y, ny, method);
+            return quad_light_pdf(l, p, ns, wi, y, ny, method);
         }
 // #endif
 // #if HAS_DISK_LIGHT

@@ -58,7 +58,7 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
 // #endif
     let choice = light_sampler_sample(params.light_cdf, params.light_pmf, params.n_lights, u_light);
     let light = lights[choice.index];
-    var ls = light_sample(light, hit.p, u, params.light_sampling);
+    var ls = light_sample(light, hit.p, frame.n, u, params.light_sampling);
 // #if HAS_TEXTURES
     ls = light_sample_textured(light, ls);
 // #endif
@@ -117,6 +117,8 @@ fn radiance(camera_ray: Ray) -> vec3f {
     var rule = EW_ONE;
     var p_bsdf = 0.0;
     var prev_p = ray.o;
+    // The previous vertex's shading normal, for the cosine warp's pdf (zero at the camera).
+    var prev_ns = vec3f(0.0);
     var depth = 0;
     loop {
         depth += 1;
@@ -130,7 +132,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
                 var lpdf = 0.0;
 // #if HAS_LIGHTS
                 if rule == EW_MIS || rule == EW_MIXTURE {
-                    lpdf = light_pdf(bg, prev_p, ray.d, vec3f(0.0), vec3f(0.0), params.light_sampling);
+                    lpdf = light_pdf(bg, prev_p, prev_ns, ray.d, vec3f(0.0), vec3f(0.0), params.light_sampling);
                 }
 // #endif
                 let w = emission_weight(rule, p_bsdf, params.background, lpdf);
@@ -151,7 +153,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
                 var lpdf = 0.0;
 // #if HAS_LIGHTS
                 if rule == EW_MIS || rule == EW_MIXTURE {
-                    lpdf = light_pdf(light, prev_p, normalize_glam(ray.d), hit.p, hit.n, params.light_sampling);
+                    lpdf = light_pdf(light, prev_p, prev_ns, normalize_glam(ray.d), hit.p, hit.n, params.light_sampling);
                 }
 // #endif
                 l += beta * le * emission_weight(rule, p_bsdf, light_index, lpdf);
@@ -286,6 +288,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
         }
 // #endif
         prev_p = hit.p;
+        prev_ns = frame.n;
         ray = spawn_ray(hit.p, hit.p_error, n, wi);
 
         if u32(depth) >= params.rr_depth {

@@ -2,6 +2,7 @@
 // area, then uniform), or by solid angle (a triangle picked by its solid angle, then Arvo), which
 // is uniform over the whole polygon's solid angle. The per-triangle solid angles are summed twice
 // (total, then the pick) instead of being kept in an array: private arrays are costly on GPUs.
+// With the cosine warp, the chosen spherical triangle is sampled through its own bilinear warp.
 
 fn polygon_light_faces(l: Light, p: vec3f) -> bool {
     return dot(p - l.a.xyz, l.d.xyz) > 0.0;
@@ -30,13 +31,34 @@ fn polygon_total_solid_angle(l: Light, p: vec3f) -> f32 {
     return -1.0;
 }
 
-fn polygon_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSample {
+// `PolygonLight::triangle_holding`: the triangle (index from `first`) whose smallest
+// barycentric coordinate of y is largest.
+fn polygon_triangle_holding(l: Light, y: vec3f) -> u32 {
+    var best = 0u;
+    var best_smallest = -3.4028235e38;
+    for (var i = 0u; i < l.h.z; i++) {
+        let t = l.h.y + i;
+        let a = vertex_data[3u * t].xyz - y;
+        let b = vertex_data[3u * t + 1u].xyz - y;
+        let c = vertex_data[3u * t + 2u].xyz - y;
+        let n = l.d.xyz;
+        let area = dot(n, cross(b - a, c - a));
+        let smallest = min(min(dot(n, cross(b, c)), dot(n, cross(c, a))), dot(n, cross(a, b))) / area;
+        if smallest > best_smallest {
+            best = i;
+            best_smallest = smallest;
+        }
+    }
+    return best;
+}
+
+fn polygon_light_sample(l: Light, p: vec3f, ns: vec3f, u: vec2f, method: u32) -> LightSample {
     if !polygon_light_faces(l, p) {
         return no_light_sample();
     }
     let first = l.h.y;
     let count = l.h.z;
-    if method == LIGHT_SAMPLING_SOLID_ANGLE {
+    if light_sampling_solid_angle(method) {
         let total = polygon_total_solid_angle(l, p);
         if total > 0.0 {
             // `pick`: an entry in proportion to its solid angle, u.x remapped within it.
@@ -63,14 +85,21 @@ fn polygon_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSampl
             let v0 = vertex_data[3u * t].xyz;
             let v1 = vertex_data[3u * t + 1u].xyz;
             let v2 = vertex_data[3u * t + 2u].xyz;
-            let s = sample_spherical_triangle(v0, v1, v2, p, vec2f(ux, u.y));
+            var uw = vec2f(ux, u.y);
+            var warp_pdf = 1.0;
+            if light_sampling_warps(method, ns) {
+                let w = spherical_triangle_cosine_weights(v0, v1, v2, p, ns);
+                uw = sample_bilinear(uw, w);
+                warp_pdf = bilinear_pdf(uw, w);
+            }
+            let s = sample_spherical_triangle(v0, v1, v2, p, uw);
             if !s.ok {
                 return no_light_sample();
             }
             let b = s.barycentrics;
             let y = b.x * v0 + b.y * v1 + b.z * v2;
             let err = gamma(6.0) * (abs(b.x * v0) + abs(b.y * v1) + abs(b.z * v2));
-            return LightSample(y, err, l.d.xyz, s.dir, 1.0 / total, l.le.xyz, false, true, b.yz);
+            return LightSample(y, err, l.d.xyz, s.dir, warp_pdf / total, l.le.xyz, false, true, b.yz);
         }
     }
     // By area: the triangle whose CDF interval holds u.x, u.x remapped within it.
@@ -98,13 +127,21 @@ fn polygon_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSampl
     return s;
 }
 
-fn polygon_light_pdf(l: Light, p: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
+fn polygon_light_pdf(l: Light, p: vec3f, ns: vec3f, wi: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
     if !polygon_light_faces(l, p) {
         return 0.0;
     }
-    if method == LIGHT_SAMPLING_SOLID_ANGLE {
+    if light_sampling_solid_angle(method) {
         let total = polygon_total_solid_angle(l, p);
         if total > 0.0 {
+            if light_sampling_warps(method, ns) {
+                let t = l.h.y + polygon_triangle_holding(l, y);
+                let v0 = vertex_data[3u * t].xyz;
+                let v1 = vertex_data[3u * t + 1u].xyz;
+                let v2 = vertex_data[3u * t + 2u].xyz;
+                let w = spherical_triangle_cosine_weights(v0, v1, v2, p, ns);
+                return bilinear_pdf(invert_spherical_triangle(v0, v1, v2, p, wi), w) / total;
+            }
             return 1.0 / total;
         }
     }

@@ -1,5 +1,6 @@
 // Emitting parallelograms, the twin of `lights/quad.rs`: by area, or by solid angle (spherical
-// rectangle) when the quad is a rectangle and its solid angle suits the warp.
+// rectangle) when the quad is a rectangle and its solid angle suits the warp, optionally through
+// the cosine warp.
 
 fn quad_light_faces(l: Light, p: vec3f) -> bool {
     return dot(p - l.a.xyz, l.d.xyz) > 0.0;
@@ -24,16 +25,29 @@ fn quad_light_triangle_point(l: Light, y: vec3f) -> QuadTrianglePoint {
 }
 // #endif
 
-fn quad_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSample {
+// `QuadLight::corners` + `LightSampling::cosine_weights`: the warp's corner weights.
+fn quad_cosine_weights(l: Light, p: vec3f, ns: vec3f) -> vec4f {
+    let c = l.a.xyz - p;
+    return cosine_corner_weights(ns, c, c + l.b.xyz, c + l.c.xyz, c + l.b.xyz + l.c.xyz);
+}
+
+fn quad_light_sample(l: Light, p: vec3f, ns: vec3f, u_in: vec2f, method: u32) -> LightSample {
     if !quad_light_faces(l, p) {
         return no_light_sample();
     }
-    if method == LIGHT_SAMPLING_SOLID_ANGLE {
+    var u = u_in;
+    if light_sampling_solid_angle(method) {
         let rect = sph_rect_new(p, l.a.xyz, l.b.xyz, l.c.xyz);
         if rect.ok && spherical_ok(rect.solid_angle) {
+            var warp_pdf = 1.0;
+            if light_sampling_warps(method, ns) {
+                let w = quad_cosine_weights(l, p, ns);
+                u = sample_bilinear(u, w);
+                warp_pdf = bilinear_pdf(u, w);
+            }
             let y = sph_rect_sample(rect, u);
             var s = area_sample(p, y, l.d.xyz, 1.0 / l.le.w, l.le.xyz);
-            s.pdf = 1.0 / rect.solid_angle;
+            s.pdf = warp_pdf / rect.solid_angle;
             return s;
         }
     }
@@ -41,13 +55,16 @@ fn quad_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSample {
     return area_sample(p, y, l.d.xyz, 1.0 / l.le.w, l.le.xyz);
 }
 
-fn quad_light_pdf(l: Light, p: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
+fn quad_light_pdf(l: Light, p: vec3f, ns: vec3f, wi: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
     if !quad_light_faces(l, p) {
         return 0.0;
     }
-    if method == LIGHT_SAMPLING_SOLID_ANGLE {
+    if light_sampling_solid_angle(method) {
         let rect = sph_rect_new(p, l.a.xyz, l.b.xyz, l.c.xyz);
         if rect.ok && spherical_ok(rect.solid_angle) {
+            if light_sampling_warps(method, ns) {
+                return bilinear_pdf(sph_rect_invert(rect, y), quad_cosine_weights(l, p, ns)) / rect.solid_angle;
+            }
             return 1.0 / rect.solid_angle;
         }
     }

@@ -161,3 +161,23 @@ fn sph_rect_sample(r: SphericalRectangle, u: vec2f) -> vec3f {
     let t = clamp((yv - r.y0) / r.eyl, 0.0, 1.0);
     return r.corner + s * r.edge_u + t * r.edge_v;
 }
+
+// `SphericalRectangle::invert`: the u that samples `point` (on the rectangle).
+fn sph_rect_invert(r: SphericalRectangle, point: vec3f) -> vec2f {
+    // Parallelogram coordinates (s, t) by the 2×2 normal equations.
+    let d = point - r.corner;
+    let uu = dot(r.edge_u, r.edge_u);
+    let uv = dot(r.edge_u, r.edge_v);
+    let vv = dot(r.edge_v, r.edge_v);
+    let ru = dot(d, r.edge_u);
+    let rv = dot(d, r.edge_v);
+    let det = uu * vv - uv * uv;
+    let s = clamp((ru * vv - rv * uv) / det, 0.0, 1.0);
+    let t = clamp((rv * uu - ru * uv) / det, 0.0, 1.0);
+    let u0 = sph_rect_partial_solid_angle(r, s * r.exl) / r.solid_angle;
+    let xu = r.x0 + s * r.exl;
+    let yv = r.y0 + t * r.eyl;
+    let dd2 = xu * xu + r.z0 * r.z0;
+    let u1 = sph_rect_h_diff(r.y0, yv, dd2) / sph_rect_h_diff(r.y0, r.y1, dd2);
+    return clamp(vec2f(u0, u1), vec2f(0.0), vec2f(1.0));
+}

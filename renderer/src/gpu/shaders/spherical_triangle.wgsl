@@ -16,6 +16,44 @@ fn solid_angle_from_vectors(triple_abs: f32, a: vec3f, b: vec3f, c: vec3f) -> f3
     return 2.0 * atan2_precise(triple_abs, den);
 }
 
+// `spherical_triangle_corners` + `cosine_corner_weights`: the weights of a cosine warp in front of
+// `sample_spherical_triangle`, whose corners (0,0), (1,0), (0,1), (1,1) go to v1, v1, v0, v2.
+fn spherical_triangle_cosine_weights(v0: vec3f, v1: vec3f, v2: vec3f, p: vec3f, ns: vec3f) -> vec4f {
+    return cosine_corner_weights(ns, v1 - p, v1 - p, v0 - p, v2 - p);
+}
+
+// `invert_spherical_triangle`: the u that samples direction w_in from p (inside the spherical
+// triangle); (0.5, 0.5) for degenerate inputs.
+fn invert_spherical_triangle(v0: vec3f, v1: vec3f, v2: vec3f, p: vec3f, w_in: vec3f) -> vec2f {
+    let a = normalize_or_zero(v0 - p);
+    let b = normalize_or_zero(v1 - p);
+    let c = normalize_or_zero(v2 - p);
+    let triple = dot(a, cross(b - a, c - a));
+    if triple == 0.0 {
+        return vec2f(0.5);
+    }
+    let area = 2.0 * atan2_precise(abs(triple), 1.0 + dot(a, b) + dot(b, c) + dot(c, a));
+    if !(area > 0.0 && is_finite_f(area)) {
+        return vec2f(0.5);
+    }
+    let w = normalize_or_zero(w_in);
+    // c' is where the great circle through b and w crosses the arc a→c.
+    let n_bw = cross(b, w - b);
+    let n_ca = cross(c, a - c);
+    var cp = normalize_or_zero(cross(n_bw, n_ca));
+    if all(cp == vec3f(0.0)) {
+        return vec2f(0.5, 0.0);
+    }
+    if dot(cp, a + c) < 0.0 {
+        cp = -cp;
+    }
+    let u0 = spherical_triangle_area(a, b, cp) / area;
+    let bw = w - b;
+    let bc = cp - b;
+    let u1 = dot(bw, bw) / dot(bc, bc);
+    return clamp(vec2f(u0, u1), vec2f(0.0), vec2f(1.0));
+}
+
 struct SphericalTriangleSample {
     dir: vec3f,
     barycentrics: vec3f,

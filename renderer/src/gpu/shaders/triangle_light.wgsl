@@ -1,4 +1,5 @@
-// Emitting triangles, the twin of `lights/triangle.rs`: uniform by area, or by solid angle (Arvo).
+// Emitting triangles, the twin of `lights/triangle.rs`: uniform by area, or by solid angle (Arvo),
+// optionally through the cosine warp.
 
 fn triangle_solid_angle(v0: vec3f, v1: vec3f, v2: vec3f, p: vec3f) -> f32 {
     return spherical_triangle_area(normalize_or_zero(v0 - p), normalize_or_zero(v1 - p), normalize_or_zero(v2 - p));
@@ -8,14 +9,21 @@ fn triangle_light_faces(l: Light, p: vec3f) -> bool {
     return dot(p - l.a.xyz, l.d.xyz) > 0.0;
 }
 
-fn triangle_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSample {
+fn triangle_light_sample(l: Light, p: vec3f, ns: vec3f, u_in: vec2f, method: u32) -> LightSample {
     if !triangle_light_faces(l, p) {
         return no_light_sample();
     }
     let v0 = l.a.xyz;
     let v1 = l.b.xyz;
     let v2 = l.c.xyz;
-    if method == LIGHT_SAMPLING_SOLID_ANGLE && spherical_ok(triangle_solid_angle(v0, v1, v2, p)) {
+    var u = u_in;
+    if light_sampling_solid_angle(method) && spherical_ok(triangle_solid_angle(v0, v1, v2, p)) {
+        var warp_pdf = 1.0;
+        if light_sampling_warps(method, ns) {
+            let w = spherical_triangle_cosine_weights(v0, v1, v2, p, ns);
+            u = sample_bilinear(u, w);
+            warp_pdf = bilinear_pdf(u, w);
+        }
         let s = sample_spherical_triangle(v0, v1, v2, p, u);
         if !s.ok {
             return no_light_sample();
@@ -23,7 +31,7 @@ fn triangle_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSamp
         let b = s.barycentrics;
         let y = b.x * v0 + b.y * v1 + b.z * v2;
         let err = gamma(6.0) * (abs(b.x * v0) + abs(b.y * v1) + abs(b.z * v2));
-        return LightSample(y, err, l.d.xyz, s.dir, s.pdf, l.le.xyz, false, true, b.yz);
+        return LightSample(y, err, l.d.xyz, s.dir, s.pdf * warp_pdf, l.le.xyz, false, true, b.yz);
     }
     let b = sample_uniform_triangle(u);
     let y = b.x * v0 + b.y * v1 + b.z * v2;
@@ -32,13 +40,17 @@ fn triangle_light_sample(l: Light, p: vec3f, u: vec2f, method: u32) -> LightSamp
     return s;
 }
 
-fn triangle_light_pdf(l: Light, p: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
+fn triangle_light_pdf(l: Light, p: vec3f, ns: vec3f, wi: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
     if !triangle_light_faces(l, p) {
         return 0.0;
     }
-    if method == LIGHT_SAMPLING_SOLID_ANGLE {
+    if light_sampling_solid_angle(method) {
         let omega = triangle_solid_angle(l.a.xyz, l.b.xyz, l.c.xyz, p);
         if spherical_ok(omega) {
+            if light_sampling_warps(method, ns) {
+                let w = spherical_triangle_cosine_weights(l.a.xyz, l.b.xyz, l.c.xyz, p, ns);
+                return bilinear_pdf(invert_spherical_triangle(l.a.xyz, l.b.xyz, l.c.xyz, p, wi), w) / omega;
+            }
             return 1.0 / omega;
         }
     }
