@@ -71,7 +71,7 @@ pub enum LightSamplingArg {
 pub enum SamplerArg {
     /// Independent uniforms (a PCG stream per pixel sample).
     Independent,
-    /// Owen-scrambled Sobol points, pixels in Morton order (CPU backend only).
+    /// Owen-scrambled Sobol points, pixels in Morton order (either backend).
     Sobol,
 }
 
@@ -109,7 +109,7 @@ pub struct EstimatorOptions {
     /// Override the scene's max_depth (-1 = unlimited).
     #[arg(long, allow_negative_numbers = true)]
     pub max_depth: Option<i32>,
-    /// Where the random numbers come from (`sobol`: CPU backend only).
+    /// Where the random numbers come from (either backend).
     #[arg(long, value_enum, default_value = "independent")]
     pub sampler: SamplerArg,
 }

@@ -17,8 +17,8 @@
 //! | `light_pdf:KIND` | the pdf of lights of `KIND` (`triangle`, `polygon`, `quad`, `disk`, `sphere`, `background`) × 1.03, in sampling and evaluation alike |
 //! | `bsdf_pdf:KIND` | the non-delta pdf of materials of `KIND` (`diffuse`, `conductor`, `plastic`) × 1.03 (weights ÷ 1.03) |
 //! | `plastic_eval` | the plastic's f (both lobes, non-delta) × 1.03, in eval and sample alike |
-//! | `sampler:light_camera` | the light sample draws the camera's dimensions (ZSobol; CPU only) |
-//! | `sampler:shared_bounces` | every bounce's BSDF direction draws bounce 0's dimensions (ZSobol; CPU only) |
+//! | `sampler:light_camera` | the light sample draws the camera's dimensions (ZSobol) |
+//! | `sampler:shared_bounces` | every bounce's BSDF direction draws bounce 0's dimensions (ZSobol) |
 //!
 //! On the GPU the same points are constants of the generated WGSL prelude
 //! (`gpu::prelude::mutant_constants`, built with the feature), so a mutant reaches both backends; a value ending

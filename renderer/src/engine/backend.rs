@@ -29,8 +29,7 @@ pub enum AnyProgressive {
 }
 
 impl AnyProgressive {
-    /// A new, empty render on `backend` (GPU: the default adapter, or [`GpuError::NoAdapter`];
-    /// [`GpuError::Sampler`] for a sampler the GPU does not have).
+    /// A new, empty render on `backend` (GPU: the default adapter, or [`GpuError::NoAdapter`]).
     pub fn new(
         backend: Backend,
         scene: Arc<Scene>,
@@ -53,8 +52,6 @@ impl AnyProgressive {
         Ok(match backend {
             Backend::Cpu => AnyProgressive::Cpu(Progressive::new(scene, settings, seed)),
             Backend::Gpu => {
-                // Before any device is made, so that the error does not depend on having one.
-                crate::gpu::check_settings(&settings)?;
                 let ctx = match gpu {
                     Some(c) => c.clone(),
                     None => gpu.insert(GpuContext::new()?).clone(),

@@ -10,7 +10,8 @@
 //! * `kernel` (with the `testing` feature): runs WGSL snippets against the scene on many inputs
 //!   (the parity tests).
 //!
-//! The CPU is the reference: the GPU draws the same random streams (same PCG), evaluates the same
+//! The CPU is the reference: the GPU draws the same random numbers (the same PCG streams or the
+//! same Owen-scrambled Sobol points, `sampler.wgsl`), evaluates the same
 //! materials, lights, strategies and Russian roulette, and its film reads back into a
 //! [`crate::engine::Film`] so the CPU's metrics and statistical tests apply unchanged.
 
@@ -47,45 +48,11 @@ pub enum GpuError {
     /// The scene exceeds what the GPU's limits allow.
     #[error("the scene does not fit the GPU: {0}")]
     TooLarge(String),
-    /// The settings ask for a sampler the GPU backend does not have.
-    #[error(
-        "the GPU backend has only the independent sampler, not `{0}`; use the CPU backend \
-         (--backend cpu) or --sampler independent"
-    )]
-    Sampler(&'static str),
-}
-
-/// Refuses settings the GPU backend cannot render (today: any sampler but the independent one,
-/// whose PCG streams `rng.wgsl` reproduces).
-pub fn check_settings(settings: &crate::integrator::Settings) -> Result<(), GpuError> {
-    match settings.sampler {
-        crate::sampler::SamplerKind::Independent => Ok(()),
-        other @ crate::sampler::SamplerKind::Sobol => Err(GpuError::Sampler(other.name())),
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The one error for a sampler the GPU lacks names it and both ways out; the independent
-    /// sampler passes.
-    #[test]
-    fn sobol_sampler_is_refused_with_one_clear_error() {
-        use crate::integrator::Settings;
-        use crate::sampler::SamplerKind;
-        let sobol = Settings {
-            sampler: SamplerKind::Sobol,
-            ..Settings::default()
-        };
-        let e = check_settings(&sobol).unwrap_err();
-        assert_eq!(
-            e.to_string(),
-            "the GPU backend has only the independent sampler, not `sobol`; use the CPU backend \
-             (--backend cpu) or --sampler independent"
-        );
-        assert!(check_settings(&Settings::default()).is_ok());
-    }
 
     #[test]
     fn no_adapter_message_is_clear() {

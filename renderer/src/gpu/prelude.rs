@@ -12,12 +12,14 @@
 
 use super::scene::{
     BVH2_STACK_SIZE, CWBVH_STACK_SIZE, ChannelTag, FilterTag, FresnelTag, HeuristicTag,
-    LightSamplingTag, LightTag, MaterialTag, ShapeTag, StrategyTag, TextureTag, WrapTag, textures,
+    LightSamplingTag, LightTag, MaterialTag, SamplerTag, ShapeTag, StrategyTag, TextureTag,
+    WrapTag, textures,
 };
 use crate::camera::filter;
 use crate::geometry::{mesh_attributes, primitive, ray, wide_bvh};
 use crate::lights::{polygon, sphere};
 use crate::materials::{coat_albedo, ggx, mix, plastic_textured};
+use crate::sampler::{dim, owen, sobol, zsobol};
 use crate::sampling::{self, spherical_rectangle};
 use crate::textures::LUMINANCE_WEIGHTS;
 
@@ -28,6 +30,8 @@ pub enum Value {
     F32(f32),
     /// `u32`.
     U32(u32),
+    /// `array<u32, N>`: a table (WGSL indexes a `const` array with a runtime index).
+    U32Array(&'static [u32]),
 }
 
 /// One `const NAME: TYPE = VALUE;` of the prelude.
@@ -50,6 +54,16 @@ impl Constant {
                 format!("const {}: f32 = {v:e}f;", self.name)
             }
             Value::U32(v) => format!("const {}: u32 = {v}u;", self.name),
+            Value::U32Array(a) => {
+                let items: Vec<String> = a.iter().map(|v| format!("{v}u")).collect();
+                format!(
+                    "const {}: array<u32, {}> = array<u32, {}>({});",
+                    self.name,
+                    a.len(),
+                    a.len(),
+                    items.join(", ")
+                )
+            }
         }
     }
 }
@@ -110,6 +124,13 @@ fn u32c(name: &'static str, v: u32) -> Constant {
     }
 }
 
+fn u32a(name: &'static str, v: &'static [u32]) -> Constant {
+    Constant {
+        name,
+        value: Value::U32Array(v),
+    }
+}
+
 fn tags<T: Copy + Into<u32>>(all: &[(T, &'static str)]) -> impl Iterator<Item = Constant> {
     all.iter().map(|&(t, name)| u32c(name, t.into()))
 }
@@ -140,13 +161,31 @@ pub fn constants() -> Vec<Constant> {
             const { count(plastic_textured::GRID_SIZE) },
         ),
         f32c("COAT_GRID_LN_FIRST", plastic_textured::ln_first()),
-        // Mixes: SplitMix64's constants as (lo, hi) u32 halves.
+        // Mixes: SplitMix64's increment as (lo, hi) u32 halves.
         u32c("MIX_GOLDEN_LO", mix::GOLDEN as u32),
         u32c("MIX_GOLDEN_HI", (mix::GOLDEN >> 32) as u32),
-        u32c("MIX64_M1_LO", mix::MIX64_M1 as u32),
-        u32c("MIX64_M1_HI", (mix::MIX64_M1 >> 32) as u32),
-        u32c("MIX64_M2_LO", mix::MIX64_M2 as u32),
-        u32c("MIX64_M2_HI", (mix::MIX64_M2 >> 32) as u32),
+        // The samplers (and the mixes' finaliser, `owen::mix64`): 64-bit constants as halves.
+        u32c("MIX64_M1_LO", owen::MIX64_M1 as u32),
+        u32c("MIX64_M1_HI", (owen::MIX64_M1 >> 32) as u32),
+        u32c("MIX64_M2_LO", owen::MIX64_M2 as u32),
+        u32c("MIX64_M2_HI", (owen::MIX64_M2 >> 32) as u32),
+        u32c("OWEN_LK_MUL_A", owen::LK_MUL_A),
+        u32c("OWEN_LK_MUL_B", owen::LK_MUL_B),
+        u32c("OWEN_LK_MUL_C", owen::LK_MUL_C),
+        u32a("SOBOL_1_COLUMNS", &sobol::SOBOL_1_COLUMNS),
+        u32a("ZSOBOL_PERMUTATIONS", &zsobol::PERMUTATION_WORDS),
+        u32c("ZSOBOL_EPOCH_LOG2", zsobol::EPOCH_LOG2),
+        u32c("ZSOBOL_TILE_LOG2", zsobol::TILE_LOG2),
+        u32c("ZSOBOL_INDEX_DIGITS", zsobol::INDEX_DIGITS),
+        u32c("DIM_CAMERA", dim::CAMERA),
+        u32c("DIM_FIRST_BOUNCE", dim::FIRST_BOUNCE),
+        u32c("DIM_PER_BOUNCE", dim::PER_BOUNCE),
+        u32c("DIM_MIXTURE", dim::MIXTURE),
+        u32c("DIM_LIGHT_SELECT", dim::LIGHT_SELECT),
+        u32c("DIM_LIGHT", dim::LIGHT),
+        u32c("DIM_BSDF_LOBE", dim::BSDF_LOBE),
+        u32c("DIM_BSDF", dim::BSDF),
+        u32c("DIM_RR", dim::RR),
         // Lights and their warps.
         f32c("SMALL_CONE_SIN2", sphere::SMALL_CONE_SIN2),
         f32c("MAX_EDGE_COS", spherical_rectangle::MAX_EDGE_COS),
@@ -192,6 +231,7 @@ pub fn constants() -> Vec<Constant> {
     c.extend(tags(WrapTag::ALL));
     c.extend(tags(ChannelTag::ALL));
     c.extend(tags(FilterTag::ALL));
+    c.extend(tags(SamplerTag::ALL));
     #[cfg(feature = "mutants")]
     c.extend(mutant_constants(crate::mutants::active()));
     c
@@ -217,6 +257,15 @@ pub fn mutant_constants(m: &crate::mutants::Mutant) -> Vec<Constant> {
         u32c("MUTANT_LIGHT_PDF_TAG", light),
         u32c("MUTANT_BSDF_PDF_TAG", bsdf),
         f32c("MUTANT_PLASTIC_EVAL", plastic),
+        // Booleans as 0 or 1: the sampler's dimension-allocation bugs (`sampler.wgsl`).
+        u32c(
+            "MUTANT_SAMPLER_LIGHT_CAMERA",
+            u32::from(*m == Mutant::SamplerLightCamera),
+        ),
+        u32c(
+            "MUTANT_SAMPLER_SHARED_BOUNCES",
+            u32::from(*m == Mutant::SamplerSharedBounces),
+        ),
     ]
 }
 
@@ -235,18 +284,27 @@ mod tests {
     use super::*;
     use wgpu::naga;
 
-    /// The prelude as naga reads it: each constant's name and literal.
-    fn parsed(src: &str) -> Vec<(String, naga::Literal)> {
+    /// The prelude as naga reads it: each constant's name and literals (one for a scalar, the
+    /// elements of an array in order).
+    fn parsed(src: &str) -> Vec<(String, Vec<naga::Literal>)> {
         let module = naga::front::wgsl::parse_str(src).unwrap_or_else(|e| panic!("{e}\n{src}"));
+        let literal =
+            |h: naga::Handle<naga::Expression>, name: &str| match module.global_expressions[h] {
+                naga::Expression::Literal(l) => l,
+                ref e => panic!("{name}: not a literal: {e:?}"),
+            };
         module
             .constants
             .iter()
             .map(|(_, c)| {
                 let name = c.name.clone().expect("named");
-                match module.global_expressions[c.init] {
-                    naga::Expression::Literal(l) => (name, l),
-                    ref e => panic!("{name}: not a literal: {e:?}"),
-                }
+                let lits = match &module.global_expressions[c.init] {
+                    naga::Expression::Compose { components, .. } => {
+                        components.iter().map(|&h| literal(h, &name)).collect()
+                    }
+                    _ => vec![literal(c.init, &name)],
+                };
+                (name, lits)
             })
             .collect()
     }
@@ -256,13 +314,23 @@ mod tests {
         let table = constants();
         let got = parsed(&source(&table));
         assert_eq!(got.len(), table.len());
-        for (c, (name, lit)) in table.iter().zip(&got) {
+        for (c, (name, lits)) in table.iter().zip(&got) {
             assert_eq!(c.name, name);
-            match (c.value, *lit) {
-                (Value::F32(want), naga::Literal::F32(v)) => {
+            match (c.value, lits.as_slice()) {
+                (Value::F32(want), [naga::Literal::F32(v)]) => {
                     assert_eq!(v.to_bits(), want.to_bits(), "{name}: {v:e} vs {want:e}")
                 }
-                (Value::U32(want), naga::Literal::U32(v)) => assert_eq!(v, want, "{name}"),
+                (Value::U32(want), [naga::Literal::U32(v)]) => assert_eq!(*v, want, "{name}"),
+                (Value::U32Array(want), got) => {
+                    let got: Vec<u32> = got
+                        .iter()
+                        .map(|l| match l {
+                            naga::Literal::U32(v) => *v,
+                            l => panic!("{name}: {l:?} in a u32 table"),
+                        })
+                        .collect();
+                    assert_eq!(got, want, "{name}");
+                }
                 (want, got) => panic!("{name}: {got:?} for {want:?}"),
             }
         }
@@ -341,6 +409,14 @@ mod tests {
             ("FILTER_MAX_STEPS", Value::U32(filter::MAX_STEPS)),
             ("FILTER_TOLERANCE", Value::F32(filter::TOLERANCE)),
             ("FILTER_GAUSSIAN", Value::U32(1)),
+            ("SAMPLER_INDEPENDENT", Value::U32(0)),
+            ("SAMPLER_SOBOL", Value::U32(1)),
+            ("ZSOBOL_EPOCH_LOG2", Value::U32(12)),
+            ("ZSOBOL_INDEX_DIGITS", Value::U32(12)),
+            ("DIM_FIRST_BOUNCE", Value::U32(2)),
+            ("DIM_PER_BOUNCE", Value::U32(8)),
+            ("DIM_RR", Value::U32(7)),
+            ("OWEN_LK_MUL_A", Value::U32(0x3d20_adea)),
         ] {
             assert_eq!(value(name), want, "{name}");
         }
@@ -364,5 +440,6 @@ mod tests {
         check(WrapTag::ALL);
         check(ChannelTag::ALL);
         check(FilterTag::ALL);
+        check(SamplerTag::ALL);
     }
 }

@@ -112,7 +112,6 @@ impl GpuProgressive {
         settings: Settings,
         seed: u32,
     ) -> Result<GpuProgressive, GpuError> {
-        super::check_settings(&settings)?;
         let ctx = gpu.context().clone();
         let device = &ctx.device;
         let source = path_tracer_source(&gpu.features())?;
@@ -243,11 +242,9 @@ impl GpuProgressive {
     }
 
     /// Drops the accumulation and starts over with new settings (same scene and seed). The
-    /// program does not depend on the settings, so nothing is recompiled. Settings that
-    /// [`super::check_settings`] refuses are a logic error here (front ends check them when they
-    /// create the render, where the error can be reported): the sampler is then ignored.
+    /// program does not depend on the settings (the sampler too is a parameter), so nothing is
+    /// recompiled.
     pub fn restart(&mut self, settings: Settings) {
-        debug_assert!(super::check_settings(&settings).is_ok());
         self.settings = settings;
         self.clear();
     }

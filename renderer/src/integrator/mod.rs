@@ -57,7 +57,7 @@ pub struct Settings {
     pub max_depth: Option<i32>,
     /// Path length (in segments) from which Russian roulette may end paths.
     pub rr_depth: u32,
-    /// Where the random numbers come from (the GPU backend has only the independent sampler).
+    /// Where the random numbers come from (either backend has every sampler).
     pub sampler: SamplerKind,
 }
 

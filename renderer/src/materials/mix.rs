@@ -11,9 +11,10 @@
 //! probability of the second material is `w` to within 2^-24, exactly 0 at `w ≤ 0` and 1 at
 //! `w ≥ 1`. A mix is resolved before textures, so it holds material indices, not materials.
 //!
-//! WGSL twin: `mix.wgsl` (the hash bit for bit, with u64 emulated in u32 pairs, and the resolve
-//! loop of `Scene::resolve_mix`).
+//! WGSL twin: `mix.wgsl` (the hash bit for bit and the resolve loop of `Scene::resolve_mix`),
+//! `u64.wgsl` (the u64 arithmetic, emulated in u32 pairs).
 
+use crate::sampler::owen;
 use crate::textures::Texture;
 use glam::{Vec2, Vec3};
 
@@ -48,13 +49,9 @@ pub fn choice(w: f32, u: f32) -> usize {
     usize::from(u < w)
 }
 
-/// The golden-ratio constant of SplitMix64: the hash's seed and [`mix64`]'s increment (public
-/// for the GPU's twin, `gpu/shaders/mix.wgsl`, whose prelude holds its halves).
+/// The golden-ratio constant of SplitMix64: the hash's seed and [`splitmix64`]'s increment
+/// (public for the GPU's twin, `gpu/shaders/mix.wgsl`, whose prelude holds its halves).
 pub const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
-/// [`mix64`]'s first multiplier (public for the GPU's twin).
-pub const MIX64_M1: u64 = 0xbf58_476d_1ce4_e5b9;
-/// [`mix64`]'s second multiplier (public for the GPU's twin).
-pub const MIX64_M2: u64 = 0x94d0_49bb_1331_11eb;
 
 /// A value in [0, 1) on a grid of 2^-24, a hash of the bits of `p`, `t` and `salt`.
 /// WGSL twin: `mix_hash_unit` in `gpu/shaders/mix.wgsl` (u64 emulated in u32 pairs).
@@ -62,19 +59,17 @@ pub const MIX64_M2: u64 = 0x94d0_49bb_1331_11eb;
 pub fn hash_unit(p: Vec3, t: f32, salt: u32) -> f32 {
     let mut h = GOLDEN ^ salt as u64;
     for word in [p.x.to_bits(), p.y.to_bits(), p.z.to_bits(), t.to_bits()] {
-        h = mix64(h ^ word as u64);
+        h = splitmix64(h ^ word as u64);
     }
     (h >> 40) as f32 * (1.0 / (1u32 << 24) as f32)
 }
 
-/// The 64-bit finaliser of SplitMix64 (Stafford's "Mix13"): every input bit flips each output
-/// bit with probability about ½, so neighbouring floats hash to unrelated values.
+/// One SplitMix64 step: the golden increment, then the 64-bit finaliser (Stafford's "Mix13",
+/// the sampler's [`owen::mix64`]): every input bit flips each output bit with probability about
+/// ½, so neighbouring floats hash to unrelated values.
 #[inline]
-fn mix64(mut z: u64) -> u64 {
-    z = z.wrapping_add(GOLDEN);
-    z = (z ^ (z >> 30)).wrapping_mul(MIX64_M1);
-    z = (z ^ (z >> 27)).wrapping_mul(MIX64_M2);
-    z ^ (z >> 31)
+fn splitmix64(z: u64) -> u64 {
+    owen::mix64(z.wrapping_add(GOLDEN))
 }
 
 #[cfg(test)]

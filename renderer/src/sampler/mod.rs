@@ -39,6 +39,12 @@
 //! **Tests and QMC.** The image tests' block z-test uses the per-pixel sample variance, which for
 //! scrambled nets overestimates the error of the mean (the samples are negatively correlated), so
 //! the test is conservative for noise but still detects bias (`tests/sobol_sampler.rs`).
+//!
+//! **GPU.** Both samplers run on the GPU backend too, bit for bit: the sampler's tag travels in
+//! the per-dispatch parameters ([`crate::gpu::scene::SamplerTag`]) and `sampler.wgsl` switches on
+//! it (`tests/gpu_parity_sampler.rs` compares every named dimension; `tests/gpu_sobol_images.rs`
+//! whole renders).
+//! WGSL twin: `sampler.wgsl`.
 
 pub mod independent;
 pub mod morton;

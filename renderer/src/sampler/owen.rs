@@ -8,13 +8,22 @@
 //! (additions and multiplications carry only upwards), reverse back. The mixing constants are
 //! Nathan Vegdahl's ("Building a better LK hash", 2021), as pbrt-v4's `FastOwenScrambler` uses.
 //! Every step is invertible; [`owen_unscramble`] undoes them in reverse order.
+//!
+//! [`mix64`] is also the finaliser of the material mixes' SplitMix64 hash
+//! ([`crate::materials::mix`]), so the two share one definition on each side.
+//! WGSL twin: `owen.wgsl`, `u64.wgsl` (the u64 arithmetic, emulated on u32 pairs).
+
+/// [`mix64`]'s first multiplier (public for the GPU's twin, whose prelude holds its halves).
+pub const MIX64_M1: u64 = 0xbf58_476d_1ce4_e5b9;
+/// [`mix64`]'s second multiplier (public for the GPU's twin).
+pub const MIX64_M2: u64 = 0x94d0_49bb_1331_11eb;
 
 /// SplitMix64's finaliser (Stafford's "Mix13"): every input bit affects every
 /// output bit, so the sampler's seeds of nearby pixels, samples and dimensions are unrelated.
 #[inline]
 pub fn mix64(mut v: u64) -> u64 {
-    v = (v ^ (v >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    v = (v ^ (v >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    v = (v ^ (v >> 30)).wrapping_mul(MIX64_M1);
+    v = (v ^ (v >> 27)).wrapping_mul(MIX64_M2);
     v ^ (v >> 31)
 }
 
@@ -25,10 +34,13 @@ pub fn hash3(a: u32, b: u32, c: u64) -> u32 {
     (mix64(mix64(((a as u64) << 32) | b as u64) ^ c) >> 32) as u32
 }
 
-/// Constants of the Laine–Karras-style permutation (even multipliers: `x ^ x·c` is invertible).
-const LK_MUL_A: u32 = 0x3d20_adea;
-const LK_MUL_B: u32 = 0x0552_6c56;
-const LK_MUL_C: u32 = 0x53a2_2864;
+/// First constant of the Laine–Karras-style permutation (even multipliers: `x ^ x·c` is
+/// invertible); public, as the next two, for the GPU's twin.
+pub const LK_MUL_A: u32 = 0x3d20_adea;
+/// Second constant of the Laine–Karras-style permutation.
+pub const LK_MUL_B: u32 = 0x0552_6c56;
+/// Third constant of the Laine–Karras-style permutation.
+pub const LK_MUL_C: u32 = 0x53a2_2864;
 
 /// Nested uniform (Owen) scramble of the 32-bit fixed-point value `v` with `seed`.
 #[inline]

@@ -18,6 +18,9 @@
 //! Everything else — the seed, the tile's position and the epoch (`sample >> 12`) — goes into the
 //! hash that seeds the permutations and scrambles, so tiles and epochs are independent
 //! randomisations of the same construction.
+//!
+//! WGSL twin: `zsobol.wgsl` (its layout constants and [`PERMUTATION_WORDS`] reach it through the
+//! prelude).
 
 use super::morton::morton_encode;
 use super::owen::{hash3, mix64, owen_scramble};
@@ -31,7 +34,7 @@ pub const EPOCH_LOG2: u32 = 12;
 /// log2 of a tile's side in pixels.
 pub const TILE_LOG2: u32 = 6;
 /// Base-4 digits of the Sobol index.
-const INDEX_DIGITS: u32 = (EPOCH_LOG2 + 2 * TILE_LOG2) / 2;
+pub const INDEX_DIGITS: u32 = (EPOCH_LOG2 + 2 * TILE_LOG2) / 2;
 
 /// The 24 permutations of the digits {0, 1, 2, 3}, in lexicographic order.
 const PERMUTATIONS: [[u8; 4]; 24] = {
@@ -54,6 +57,22 @@ const PERMUTATIONS: [[u8; 4]; 24] = {
         a += 1;
     }
     table
+};
+
+/// [`PERMUTATIONS`] for the GPU's twin: permutation `k` as one word, digit `d` mapping to bits
+/// `2d` and `2d + 1` (WGSL has no u8 arrays; `zsobol.wgsl` unpacks the digit it needs).
+pub const PERMUTATION_WORDS: [u32; 24] = {
+    let mut words = [0u32; 24];
+    let mut k = 0;
+    while k < 24 {
+        let mut d = 0;
+        while d < 4 {
+            words[k] |= (PERMUTATIONS[k][d] as u32) << (2 * d);
+            d += 1;
+        }
+        k += 1;
+    }
+    words
 };
 
 /// Which of [`PERMUTATIONS`] digit `position` uses, given the digits above it (`higher`).
@@ -162,6 +181,17 @@ mod tests {
             q.sort();
             q == [0, 1, 2, 3]
         }));
+    }
+
+    /// The GPU's packed table unpacks to the Rust one (so `zsobol.wgsl`'s digit lookup reads the
+    /// same permutations).
+    #[test]
+    fn packed_permutations_unpack_to_the_table() {
+        for (k, p) in PERMUTATIONS.iter().enumerate() {
+            for (d, &v) in p.iter().enumerate() {
+                assert_eq!((PERMUTATION_WORDS[k] >> (2 * d)) & 3, v as u32, "{k} {d}");
+            }
+        }
     }
 
     /// `unpermute_index` undoes `permute_index` on every 12-bit index and a spread of 24-bit

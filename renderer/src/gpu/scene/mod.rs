@@ -26,7 +26,7 @@ pub use bvh::{BVH2_STACK_SIZE, CWBVH_STACK_SIZE};
 pub use lights::{GpuLight, LightTag};
 pub use materials::{FresnelTag, GpuMaterial, MaterialTag};
 pub use params::{
-    FilterTag, GpuParams, HeuristicTag, LightSamplingTag, PARAMS_STRIDE, StrategyTag,
+    FilterTag, GpuParams, HeuristicTag, LightSamplingTag, PARAMS_STRIDE, SamplerTag, StrategyTag,
 };
 pub use shapes::{GpuPrim, ShapeTag};
 pub use textures::{ChannelTag, TextureTag, WrapTag};

@@ -7,6 +7,7 @@ use crate::geometry::primitive::NONE;
 use crate::gpu::prelude::gpu_tags;
 use crate::integrator::{Heuristic, Settings, Strategy};
 use crate::lights::LightSampling;
+use crate::sampler::SamplerKind;
 use bytemuck::{Pod, Zeroable};
 
 /// The per-sample uniform (`Params` in `bindings.wgsl`).
@@ -61,9 +62,11 @@ pub struct GpuParams {
     pub filter_stddev: f32,
     /// The filter's support half-width in pixels ([`PixelFilter::radius`]).
     pub filter_radius: f32,
-    /// Rounds the struct to a multiple of 16 bytes, the size WGSL gives a uniform struct with
-    /// vec4 members (`pad` in `Params`).
-    pub pad: u32,
+    /// The sampler ([`SamplerTag`]). A uniform like the strategy rather than a specialisation:
+    /// switching samplers (the viewer) then needs no new pipeline, and the one `switch` per draw
+    /// in `sampler.wgsl` is cheap next to the Sobol draw itself. It also takes the slot that
+    /// rounded the struct to a multiple of 16 bytes, so the size is unchanged.
+    pub sampler: u32,
 }
 
 /// Uniform slots are this far apart (the largest `min_uniform_buffer_offset_alignment` wgpu
@@ -128,6 +131,26 @@ impl LightSamplingTag {
 }
 
 gpu_tags! {
+    /// [`GpuParams::sampler`], in the variant order of [`SamplerKind`].
+    pub enum SamplerTag {
+        /// [`SamplerKind::Independent`].
+        Independent => "SAMPLER_INDEPENDENT",
+        /// [`SamplerKind::Sobol`].
+        Sobol => "SAMPLER_SOBOL",
+    }
+}
+
+impl SamplerTag {
+    /// The tag of `k`.
+    pub fn of(k: SamplerKind) -> SamplerTag {
+        match k {
+            SamplerKind::Independent => SamplerTag::Independent,
+            SamplerKind::Sobol => SamplerTag::Sobol,
+        }
+    }
+}
+
+gpu_tags! {
     /// [`GpuParams::pixel_filter`], in the variant order of [`PixelFilter`].
     pub enum FilterTag {
         /// [`PixelFilter::Box`].
@@ -187,7 +210,7 @@ impl GpuScene {
             pixel_filter: filter.gpu_tag(),
             filter_stddev,
             filter_radius,
-            pad: 0,
+            sampler: SamplerTag::of(settings.sampler).gpu_tag(),
         }
     }
 }
@@ -247,12 +270,23 @@ mod tests {
             ("pixel_filter", offset_of!(GpuParams, pixel_filter)),
             ("filter_stddev", offset_of!(GpuParams, filter_stddev)),
             ("filter_radius", offset_of!(GpuParams, filter_radius)),
-            ("pad", offset_of!(GpuParams, pad)),
+            ("sampler", offset_of!(GpuParams, sampler)),
         ];
         let wgsl: Vec<(&str, usize)> = members
             .iter()
             .map(|m| (m.name.as_deref().unwrap(), m.offset as usize))
             .collect();
         assert_eq!(wgsl, rust);
+    }
+
+    /// The sampler tags follow [`SamplerKind`]'s variant order (and the prelude's tags are
+    /// consecutive from 0, `prelude.rs`), so `sampler.wgsl`'s cases are `SamplerKind`'s.
+    #[test]
+    fn sampler_tags_follow_the_variant_order() {
+        for (i, &(tag, _)) in SamplerTag::ALL.iter().enumerate() {
+            let kind = [SamplerKind::Independent, SamplerKind::Sobol][i];
+            assert_eq!(SamplerTag::of(kind), tag);
+            assert_eq!(kind as u32, tag.gpu_tag());
+        }
     }
 }

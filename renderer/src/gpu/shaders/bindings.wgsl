@@ -31,12 +31,13 @@ struct Params {
     // Where the mesh attribute arrays start in `vertex_data` (triangles, meshes, normals, uvs).
     attr: vec4<u32>,
     // The camera's pixel filter (FILTER_*) and the gaussian's σ and radius in pixels
-    // (`filter.wgsl`); `pad` rounds the struct to the 16 bytes a uniform's size is a multiple of,
-    // as `GpuParams` does.
+    // (`filter.wgsl`).
     pixel_filter: u32,
     filter_stddev: f32,
     filter_radius: f32,
-    pad: u32,
+    // The sampler (SAMPLER_*, `sampler.wgsl`, which fails an unknown one); also rounds the
+    // struct to the 16 bytes a uniform's size is a multiple of, as `GpuParams` does.
+    sampler: u32,
 }
 
 // The camera's pixel filter (`film_position` in `filter.wgsl`; an unknown tag fails there).

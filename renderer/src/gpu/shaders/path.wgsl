@@ -2,7 +2,8 @@
 // strategies, Mitsuba's max_depth, Russian roulette from rr_depth, transmission through
 // dielectrics under HAS_DIELECTRIC only, so a scene without glass runs the reflection-only
 // program, shading normals under HAS_SHADING_NORMALS only, textured materials and emission under
-// HAS_TEXTURES only), and the render kernel: one invocation per pixel draws one sample per dispatch and folds
+// HAS_TEXTURES only, every random number from its named sampler dimension, `sampler.wgsl`), and
+// the render kernel: one invocation per pixel draws one sample per dispatch and folds
 // it into the accumulation with Welford's update (stable variance in f32; the film reads back Σx
 // and Σx² from it).
 
@@ -122,6 +123,8 @@ fn radiance(camera_ray: Ray) -> vec3f {
     var depth = 0;
     loop {
         depth += 1;
+        // The sampler's bounce: 0 at the camera ray's hit.
+        let bounce = u32(depth - 1);
         let hit = scene_intersect(ray);
         if hit.prim == NONE {
 // #if HAS_BACKGROUND
@@ -237,7 +240,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
                     p_bsdf = 0.0;
                 }
                 case STRATEGY_MIXTURE: {
-                    if rng_next_f32() < params.mix_weight {
+                    if sampler_mixture_1d(bounce) < params.mix_weight {
                         do_nee = true;
                         nee_mixture_w = params.mix_weight;
                         rule = EW_ZERO;
@@ -253,8 +256,8 @@ fn radiance(camera_ray: Ray) -> vec3f {
             }
         }
         if do_nee {
-            let u_light = rng_next_f32();
-            let u = rng_next_2d();
+            let u_light = sampler_light_select_1d(bounce);
+            let u = sampler_light_2d(bounce);
 // #if HAS_SHADING_NORMALS
             l += beta * direct_light(hit, n, frame, wo, m, u_light, u, nee_mixture_w, shading);
 // #else
@@ -264,8 +267,8 @@ fn radiance(camera_ray: Ray) -> vec3f {
 // #endif
 
         // Continue the path by BSDF sampling.
-        let u_lobe = rng_next_f32();
-        let bs = material_sample(m, wo, u_lobe, rng_next_2d());
+        let u_lobe = sampler_bsdf_lobe_1d(bounce);
+        let bs = material_sample(m, wo, u_lobe, sampler_bsdf_2d(bounce));
         if !bs.ok {
             break;
         }
@@ -297,7 +300,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
 // #else
             let q = min(max_component(beta), 0.95);
 // #endif
-            if rng_next_f32() >= q {
+            if sampler_rr_1d(bounce) >= q {
                 break;
             }
             beta /= q;
@@ -326,11 +329,13 @@ fn render(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let pixel = gid.y * params.width + gid.x;
     let s = params.sample + gid.z;
-    rng_init(params.seed, pixel, s);
+    // `Sampler::new`, as the CPU's render loop makes it (`engine.rs`); an unknown sampler tag
+    // flags the sample there.
+    sampler_init(params.sampler, params.seed, gid.x, gid.y, params.width, s);
     check_param_tags(params);
     // `Camera::film_position`: the box filter's jitter over the pixel or the gaussian's film
-    // position, from the stream's first two numbers either way.
-    let film = film_position(params_filter(), rng_next_2d(), gid.x, gid.y, params.width, params.height);
+    // position, from the camera's 2-D sample either way.
+    let film = film_position(params_filter(), sampler_camera_2d(), gid.x, gid.y, params.width, params.height);
     var x = radiance(camera_ray(film.x, film.y));
     if unknown_tag_seen {
         // A record or parameter with a tag no `switch` knows (`tags.wgsl`): a NaN sample.

@@ -21,9 +21,14 @@ fn rng_next_u32() -> u32 {
     return (word >> 22u) ^ word;
 }
 
+// `unit_f32`: the top 24 of 32 random bits as k/2^24, exact, never 1 (the samplers' too).
+fn unit_f32(bits: u32) -> f32 {
+    return f32(bits >> 8u) * (1.0 / 16777216.0);
+}
+
 // Uniform in [0, 1): 24 random bits, never 1.
 fn rng_next_f32() -> f32 {
-    return f32(rng_next_u32() >> 8u) * (1.0 / 16777216.0);
+    return unit_f32(rng_next_u32());
 }
 
 fn rng_next_2d() -> vec2f {
