@@ -23,6 +23,8 @@ const GRID: (u32, u32) = (64, 48);
 /// One call's inputs.
 struct Input {
     p: Vec3,
+    /// The hit's geometric normal, facing the camera (the cosine warp's receiver normal).
+    ns: Vec3,
     u: Vec2,
 }
 
@@ -44,8 +46,14 @@ fn inputs(scene: &Scene) -> Vec<Input> {
             let ray = cam.ray((x as f32 + 0.5) * sx, (y as f32 + 0.5) * sy);
             if let Some(hit) = scene.accel.intersect(&ray) {
                 let mut rng = Rng::new(5, y * GRID.0 + x, 0);
+                let ns = if hit.n.dot(ray.d) < 0.0 {
+                    hit.n
+                } else {
+                    -hit.n
+                };
                 out.push(Input {
                     p: hit.p,
+                    ns,
                     u: rng.next_2d(),
                 });
             }
@@ -89,14 +97,18 @@ fn light_sampling(c: &mut Criterion) {
         for (method_name, method) in [
             ("area", LightSampling::Area),
             ("solid_angle", LightSampling::SolidAngle),
+            ("solid_angle_cosine", LightSampling::SolidAngleCosine),
         ] {
-            if shape == "disk" && method == LightSampling::SolidAngle {
+            // Disks sample by area under every method; spheres are not warped.
+            if (shape == "disk" && method != LightSampling::Area)
+                || (shape == "sphere" && method == LightSampling::SolidAngleCosine)
+            {
                 continue;
             }
             group.bench_function(format!("{shape}/{method_name}"), |b| {
                 b.iter(|| {
                     inputs.iter().fold(0.0f32, |acc, x| {
-                        match light.sample(black_box(x.p), x.u, method) {
+                        match light.sample(black_box(x.p), x.ns, x.u, method) {
                             Some(s) => acc + s.pdf,
                             None => acc,
                         }
