@@ -15,12 +15,10 @@ mod gpu_common;
 use common::{
     LOCAL_BIAS_MATERIALS, STRATEGIES, check_unbiased, data_dir, reference, scene_with_scaled_albedo,
 };
-use gpu_common::images::{cpu_render, gpu_render};
-use lumis::engine::Film;
+use gpu_common::images::{cpu_render, film_image_z_test, gpu_render};
 use lumis::image_io::Image;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSampling;
-use lumis::metrics::{BlockTest, ImageWithVariance, block_z_test};
 use lumis::scene::Scene;
 use std::sync::Arc;
 use std::time::Instant;
@@ -43,26 +41,6 @@ fn variance_image(img: &Image) -> Vec<[f64; 3]> {
         .iter()
         .map(|c| [c.x as f64, c.y as f64, c.z as f64])
         .collect()
-}
-
-/// The block z-test of a film against an image with a per-pixel variance of its mean.
-fn z_test(film: &Film, other: &[glam::Vec3], other_var: &[[f64; 3]], block: u32) -> BlockTest {
-    let mean = film.mean();
-    let var = film.variance_of_mean();
-    block_z_test(
-        film.width,
-        film.height,
-        &ImageWithVariance {
-            mean: &mean,
-            var: &var,
-        },
-        &ImageWithVariance {
-            mean: other,
-            var: other_var,
-        },
-        block,
-        0.01,
-    )
 }
 
 /// GPU samples per pixel per scene and strategy.
@@ -111,7 +89,7 @@ fn check_scene(name: &str, light_sampling: LightSampling, strategies: &[Strategy
         let what = format!("gpu {name} {strategy:?} {light_sampling:?} ({n} spp, {seconds:.1} s)");
         assert_eq!(film.nonfinite, 0, "{what}: non-finite samples");
         let block = block_size(name, strategy, light_sampling);
-        let t = z_test(&film, &reference_img.data, &reference_var, block);
+        let t = film_image_z_test(&film, &reference_img.data, &reference_var, block);
         if let Err(msg) = check_unbiased(&format!("{what} vs reference"), &t) {
             failures.push(msg);
         }
@@ -125,7 +103,7 @@ fn check_scene(name: &str, light_sampling: LightSampling, strategies: &[Strategy
             // Against the CPU with the same settings (its own noise as the other variance).
             let cpu = cpu_render(&scene, s, n / 2, 3000 + i as u32);
             let cpu_var = cpu.variance_of_mean();
-            let t = z_test(&film, &cpu.mean(), &cpu_var, block);
+            let t = film_image_z_test(&film, &cpu.mean(), &cpu_var, block);
             if let Err(msg) = check_unbiased(&format!("{what} vs cpu"), &t) {
                 failures.push(msg);
             }
@@ -228,7 +206,7 @@ fn glass_error_is_detected() {
     };
     let reference_img = reference("glass_room.exr");
     let var = variance_image(&reference("glass_room.var.exr"));
-    let t = z_test(
+    let t = film_image_z_test(
         &film,
         &reference_img.data,
         &var,
@@ -288,7 +266,7 @@ fn envmap_error_is_detected() {
             return;
         };
         let block = block_size("envmap_objects", mis, LightSampling::SolidAngle);
-        let t = z_test(&film, &reference_img.data, &var, block);
+        let t = film_image_z_test(&film, &reference_img.data, &var, block);
         assert!(
             check_unbiased(&format!("gpu envmap_objects MIS, {key} {value}"), &t).is_err(),
             "the envmap's {key} at {value} went undetected on the GPU"
@@ -311,7 +289,7 @@ fn local_bias_is_detected() {
         };
         let reference_img = reference(&format!("{name}.exr"));
         let var = variance_image(&reference(&format!("{name}.var.exr")));
-        let t = z_test(
+        let t = film_image_z_test(
             &film,
             &reference_img.data,
             &var,

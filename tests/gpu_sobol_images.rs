@@ -12,11 +12,9 @@ mod common;
 mod gpu_common;
 
 use common::{STRATEGIES, check_unbiased, data_dir, reference};
-use gpu_common::images::{cpu_render, gpu_render};
-use lumis::engine::Film;
+use gpu_common::images::{cpu_render, film_image_z_test, gpu_render};
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSampling;
-use lumis::metrics::{ImageWithVariance, block_z_test};
 use lumis::sampler::SamplerKind;
 use lumis::scene::Scene;
 use std::sync::Arc;
@@ -97,31 +95,6 @@ fn sobol_same_seed_gives_the_cpu_image() {
     assert!(worst < 1e-5, "relMSE against the CPU up to {worst:e}");
 }
 
-/// The block z-test of `film` against an image with a per-pixel variance of its mean.
-fn z_test(
-    film: &Film,
-    other: &[glam::Vec3],
-    other_var: &[[f64; 3]],
-    block: u32,
-) -> lumis::metrics::BlockTest {
-    let mean = film.mean();
-    let var = film.variance_of_mean();
-    block_z_test(
-        film.width,
-        film.height,
-        &ImageWithVariance {
-            mean: &mean,
-            var: &var,
-        },
-        &ImageWithVariance {
-            mean: other,
-            var: other_var,
-        },
-        block,
-        0.01,
-    )
-}
-
 /// `seed_cornell` on the GPU with the Sobol sampler, every strategy of `gpu_images.rs` (16 spp,
 /// BSDF-only 32, as there), agrees with the stored independent reference (and its variance
 /// image), and the light-only and MIS (power) renders with a CPU Sobol render of half the
@@ -155,7 +128,7 @@ fn gpu_sobol_seed_cornell_is_unbiased() {
         let what = format!("gpu sobol seed_cornell {strategy:?} ({n} spp)");
         assert_eq!(film.nonfinite, 0, "{what}: non-finite samples");
         if strategy != Strategy::Light {
-            let t = z_test(&film, &reference_img.data, &reference_var, 32);
+            let t = film_image_z_test(&film, &reference_img.data, &reference_var, 32);
             if let Err(msg) = check_unbiased(&format!("{what} vs reference"), &t) {
                 failures.push(msg);
             }
@@ -168,7 +141,7 @@ fn gpu_sobol_seed_cornell_is_unbiased() {
                 }
         ) {
             let cpu = cpu_render(&scene, s, n / 2, 4200 + i as u32);
-            let t = z_test(&film, &cpu.mean(), &cpu.variance_of_mean(), 32);
+            let t = film_image_z_test(&film, &cpu.mean(), &cpu.variance_of_mean(), 32);
             if let Err(msg) = check_unbiased(&format!("{what} vs cpu sobol"), &t) {
                 failures.push(msg);
             }

@@ -6,7 +6,7 @@ use super::context;
 use lumis::engine::{Film, Progressive};
 use lumis::gpu::GpuProgressive;
 use lumis::integrator::Settings;
-use lumis::metrics::BlockTest;
+use lumis::metrics::{BlockTest, ImageWithVariance, block_z_test};
 use lumis::scene::Scene;
 use std::sync::Arc;
 
@@ -34,4 +34,31 @@ pub fn cpu_render(scene: &Arc<Scene>, settings: Settings, spp: u32, seed: u32) -
 /// each with its own per-pixel variance of the mean.
 pub fn film_z_test(film: &Film, other: &Film, block: u32) -> BlockTest {
     film.z_test(other, block, 0.01)
+}
+
+/// The block z-test (`block`×`block` pixels, family-wise α = 0.01) of `film` against an image
+/// `other` with the per-pixel variance of its mean `other_var` (a reference and its variance
+/// image, or a CPU film's mean and variance).
+pub fn film_image_z_test(
+    film: &Film,
+    other: &[glam::Vec3],
+    other_var: &[[f64; 3]],
+    block: u32,
+) -> BlockTest {
+    let mean = film.mean();
+    let var = film.variance_of_mean();
+    block_z_test(
+        film.width,
+        film.height,
+        &ImageWithVariance {
+            mean: &mean,
+            var: &var,
+        },
+        &ImageWithVariance {
+            mean: other,
+            var: other_var,
+        },
+        block,
+        0.01,
+    )
 }
