@@ -7,7 +7,7 @@
 //! pdf too (the harness's 1% test), as are malformed samples and `∫pdf` against the fraction of
 //! samples drawn.
 //!
-//! **Cases** (92):
+//! **Cases** (104):
 //! * warps: the cosine hemisphere (`sample_cosine_hemisphere`). WGSL has no bare uniform-cone
 //!   warp; the sphere light's solid-angle sampling is one (uniform in the cone it subtends), and
 //!   runs here through both of its branches: the ordinary cone (near) and the sin²θ form of tiny
@@ -21,7 +21,9 @@
 //! * `light_sample` of every shape of `stats::suite` (triangle, hexagon, concave star polygon,
 //!   quad, disk, sphere) from the suite's near and grazing points, by area and by solid angle;
 //!   with the cosine warp (issue 19, receiver normal +z) the triangle, polygons and quad from the
-//!   near point and with half the light below the horizon.
+//!   near point and with half the light below the horizon; adaptive sampling (issue 19 item 4)
+//!   of the same shapes from the near point (spherical; a polygon's triangle picked by its
+//!   estimated solid angle), the far point (by area) and half below the horizon.
 //! * the one-sample strategy mixture (w = ½) of a plastic under a quad light, composed from
 //!   `light_sample`, `material_sample`, `material_pdf` and a traced `light_pdf` as
 //!   `stats::Mixture` composes their Rust twins.
@@ -31,7 +33,7 @@
 //!
 //! **Budget:** 500,000 samples per case (half the CPU suite's 1M), which keeps the file near a
 //! minute on lavapipe on two cores (measured: 40 s, of which the dielectric cases 14 s).
-//! **Significance:** family-wise α = 0.01, Šidák-corrected over the 92 cases (per test ≈ 1.1e-4).
+//! **Significance:** family-wise α = 0.01, Šidák-corrected over the 104 cases (per test ≈ 9.7e-5).
 //! **Control:** a deliberately broken GPU sampler (the conductor sampled at α·1.1, i.e. 0.33,
 //! against the α 0.3 density) must be rejected by the χ² statistic at the same per-test level
 //! (so must a dielectric whose lobe choice sees η·1.1: all 36 of its cases fail, checked by hand).
@@ -181,6 +183,7 @@ fn wgsl_method(method: LightSampling) -> &'static str {
         LightSampling::Area => "LIGHT_SAMPLING_AREA",
         LightSampling::SolidAngle => "LIGHT_SAMPLING_SOLID_ANGLE",
         LightSampling::SolidAngleCosine => "LIGHT_SAMPLING_SOLID_ANGLE_COSINE",
+        LightSampling::Adaptive => "LIGHT_SAMPLING_ADAPTIVE",
     }
 }
 
@@ -436,7 +439,7 @@ fn gpu_samples_pass_chi_square() {
 
     // The cosine warp (issue 19) where it changes the samples, also with half the light below
     // the horizon; last, so that the earlier cases keep the seeds they were calibrated with.
-    for shape in suite::COSINE_WARPED_SHAPES {
+    for shape in suite::PLANAR_SPHERICAL_SHAPES {
         for placement in [Placement::Near, Placement::BelowHorizon] {
             light_case(
                 &mut scenes,
@@ -449,8 +452,23 @@ fn gpu_samples_pass_chi_square() {
         }
     }
 
+    // Adaptive light sampling (issue 19 item 4): near (spherical, a polygon's triangle picked by
+    // its estimate), far (by area) and half below the horizon.
+    for shape in suite::PLANAR_SPHERICAL_SHAPES {
+        for placement in [Placement::Near, Placement::Far, Placement::BelowHorizon] {
+            light_case(
+                &mut scenes,
+                &mut cases,
+                shape,
+                placement,
+                &[LightSampling::Adaptive],
+                "light",
+            );
+        }
+    }
+
     let tests = cases.len();
-    assert_eq!(tests, 92, "update the doc comment's case count");
+    assert_eq!(tests, 104, "update the doc comment's case count");
     let gpus: Vec<GpuScene> = scenes
         .iter()
         .map(|s| GpuScene::new(ctx.clone(), Arc::clone(s)).expect("upload"))

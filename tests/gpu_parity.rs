@@ -1136,10 +1136,11 @@ fn dielectric_matches() {
 }
 
 /// Every light-sampling method, in the order of `lights_match`'s inputs.
-const METHODS: [LightSampling; 3] = [
+const METHODS: [LightSampling; 4] = [
     LightSampling::Area,
     LightSampling::SolidAngle,
     LightSampling::SolidAngleCosine,
+    LightSampling::Adaptive,
 ];
 
 /// How closely the GPU's and the CPU's sampled light directions agree where the geometry is

@@ -64,6 +64,9 @@ pub enum LightSamplingArg {
     /// Solid angle, warped towards the receiver's cos θ for triangles, quads and polygons
     /// (Hart et al. 2020).
     SolidAngleCosine,
+    /// Per light and shading point: by area where a triangle, quad or polygon looks small, by
+    /// solid angle elsewhere (a polygon's triangle picked by its estimated solid angle).
+    Adaptive,
 }
 
 /// Samplers (`lumis::sampler`).
@@ -141,6 +144,7 @@ impl EstimatorOptions {
             LightSamplingArg::Area => LightSampling::Area,
             LightSamplingArg::SolidAngle => LightSampling::SolidAngle,
             LightSamplingArg::SolidAngleCosine => LightSampling::SolidAngleCosine,
+            LightSamplingArg::Adaptive => LightSampling::Adaptive,
         };
         Ok(Settings {
             strategy,

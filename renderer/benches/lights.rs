@@ -98,10 +98,15 @@ fn light_sampling(c: &mut Criterion) {
             ("area", LightSampling::Area),
             ("solid_angle", LightSampling::SolidAngle),
             ("solid_angle_cosine", LightSampling::SolidAngleCosine),
+            ("adaptive", LightSampling::Adaptive),
         ] {
-            // Disks sample by area under every method; spheres are not warped.
+            // Disks sample by area under every method; spheres are neither warped nor adaptive.
+            let planar_only = matches!(
+                method,
+                LightSampling::SolidAngleCosine | LightSampling::Adaptive
+            );
             if (shape == "disk" && method != LightSampling::Area)
-                || (shape == "sphere" && method == LightSampling::SolidAngleCosine)
+                || (shape == "sphere" && planar_only)
             {
                 continue;
             }

@@ -30,6 +30,7 @@ fn sampling_name(s: LightSampling) -> &'static str {
         LightSampling::Area => "area (env. map: uniform)",
         LightSampling::SolidAngle => "solid angle (env. map: importance)",
         LightSampling::SolidAngleCosine => "solid angle × cos warp (Hart 2020)",
+        LightSampling::Adaptive => "adaptive: area where small, else solid angle",
     }
 }
 
@@ -149,6 +150,7 @@ impl ViewerApp {
                 LightSampling::Area,
                 LightSampling::SolidAngle,
                 LightSampling::SolidAngleCosine,
+                LightSampling::Adaptive,
             ],
             |s| sampling_name(s).into(),
         );

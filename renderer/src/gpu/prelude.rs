@@ -206,6 +206,10 @@ pub fn constants() -> Vec<Constant> {
             const { count(polygon::MAX_SOLID_ANGLE_TRIANGLES) },
         ),
         f32c("MIN_COSINE_WEIGHT", sampling::MIN_COSINE_WEIGHT),
+        f32c(
+            "ADAPTIVE_MIN_SOLID_ANGLE",
+            crate::lights::ADAPTIVE_MIN_SOLID_ANGLE,
+        ),
         // Rays and BVHs.
         f32c("SHADOW_EPSILON", ray::SHADOW_EPSILON),
         f32c("MAX_INV", wide_bvh::MAX_INV),
@@ -399,6 +403,7 @@ mod tests {
             ("HEURISTIC_POWER", Value::U32(1)),
             ("LIGHT_SAMPLING_SOLID_ANGLE", Value::U32(1)),
             ("LIGHT_SAMPLING_SOLID_ANGLE_COSINE", Value::U32(2)),
+            ("LIGHT_SAMPLING_ADAPTIVE", Value::U32(3)),
             ("MIN_COSINE_WEIGHT", Value::F32(0.01)),
             ("FRESNEL_TINT", Value::U32(1)),
             ("TEXTURE_CHECKERBOARD", Value::U32(2)),

@@ -54,6 +54,34 @@ pub enum LightSampling {
     /// factor of the integrand is then mostly sampled away. Without a receiver normal (a zero
     /// `ns`), and for disks, spheres and infinite lights, the same as `SolidAngle`.
     SolidAngleCosine,
+    /// Per light and shading point, whichever of area and solid-angle sampling pays: a planar
+    /// light (triangle, quad, polygon) is sampled by area where it looks small from the shading
+    /// point ([`planar_solid_angle_estimate`] below [`ADAPTIVE_MIN_SOLID_ANGLE`]), since there
+    /// the area density is nearly uniform in solid angle already and costs a fraction of the
+    /// spherical warp, and by its spherical warp elsewhere. A polygon then samples one spherical
+    /// triangle of its triangulation, picked in proportion to that triangle's estimated solid
+    /// angle, instead of computing every triangle's exact solid angle per sample and per pdf.
+    /// Disks, spheres and infinite lights as with `SolidAngle`.
+    Adaptive,
+}
+
+/// [`LightSampling::Adaptive`] samples a planar light by area where its
+/// [`planar_solid_angle_estimate`] is below this many steradians. At that size the area density
+/// seen from the shading point varies by a few percent over the light (as `(1 ± r/d)²` for a light
+/// of radius `r` at distance `d`, with `π r²/d² ≈ 0.05`), so area sampling loses little variance,
+/// while solid-angle sampling costs several times as much (`docs/performance.md`, "Adaptive light
+/// sampling", where this value was chosen among those measured).
+pub const ADAPTIVE_MIN_SOLID_ANGLE: f32 = 0.05;
+
+/// The solid angle (sr) a planar light of area `area`, centroid `c` and unit normal `n` would
+/// subtend from `p` if it were small: `area · |cos θ| / d²` with `d` the distance to the centroid
+/// and `θ` the angle there between `n` and the direction to `p` (the area density at the centroid
+/// converted to solid angle, inverted). Infinite or NaN where `p` is at the centroid.
+#[inline(always)]
+pub fn planar_solid_angle_estimate(p: Vec3, c: Vec3, n: Vec3, area: f32) -> f32 {
+    let d = p - c;
+    let d2 = d.length_squared();
+    area * n.dot(d).abs() / (d2 * d2.sqrt())
 }
 
 impl LightSampling {
@@ -61,6 +89,23 @@ impl LightSampling {
     #[inline(always)]
     pub fn solid_angle(self) -> bool {
         self != LightSampling::Area
+    }
+
+    /// Whether a planar light of area `area`, centroid `c` and unit normal `n` is sampled from
+    /// `p` by its spherical warp (where that warp is accurate) rather than by area: always for
+    /// `SolidAngle` and `SolidAngleCosine`, never for `Area`, and for `Adaptive` where the light's
+    /// [`planar_solid_angle_estimate`] reaches [`ADAPTIVE_MIN_SOLID_ANGLE`] (`sample` and `pdf`
+    /// decide alike, from the same `p`).
+    #[inline(always)]
+    pub fn spherical_for(self, p: Vec3, c: Vec3, n: Vec3, area: f32) -> bool {
+        match self {
+            LightSampling::Area => false,
+            LightSampling::SolidAngle | LightSampling::SolidAngleCosine => true,
+            // NaN (p at the centroid) compares false: area, as for any method there.
+            LightSampling::Adaptive => {
+                planar_solid_angle_estimate(p, c, n, area) >= ADAPTIVE_MIN_SOLID_ANGLE
+            }
+        }
     }
 
     /// Whether spherical samples are warped towards the cosine for a receiver with shading

@@ -7,6 +7,12 @@
 //! pdf `1 / Σ Ω_i`. With the cosine warp ([`LightSampling::SolidAngleCosine`]) the chosen
 //! spherical triangle is sampled through its own bilinear warp, so the pdf is
 //! `B_i(u) / Σ Ω_i` with `B_i` the warp's density in triangle `i` (the one holding the point).
+//!
+//! [`LightSampling::Adaptive`] samples by area where the polygon looks small, and elsewhere picks
+//! triangle `i` with probability `q_i = e_i / Σ e_j` by the cheap estimate `e_i` of its solid angle
+//! ([`super::planar_solid_angle_estimate`]) and samples its spherical triangle: pdf `q_i / Ω_i`,
+//! one exact solid angle per sample or pdf instead of one per triangle (or, where that triangle's
+//! solid angle does not suit the warp, by area within it: `q_i d² / (A_i |cos θ_y|)`).
 //! WGSL twin: `polygon_light.wgsl`.
 
 use super::triangle::spherical_ok;
@@ -33,6 +39,10 @@ pub struct PolygonLight {
     pub origin: Vec3,
     /// Total area.
     pub area: f32,
+    /// Area-weighted centroid ([`LightSampling::spherical_for`]).
+    pub centroid: Vec3,
+    /// Each triangle's area.
+    pub triangle_areas: Vec<f32>,
     /// Emitted radiance (a textured light's selection radiance: see the module doc of
     /// [`super`]).
     pub le: Vec3,
@@ -66,8 +76,14 @@ impl PolygonLight {
             .map(crate::geometry::triangle::triangle_area)
             .collect();
         let by_area = DiscreteDistribution::new(&areas)?;
-        let area = areas.iter().sum();
+        let area: f32 = areas.iter().sum();
         let origin = triangles.first()?[0];
+        let centroid = triangles
+            .iter()
+            .zip(&areas)
+            .map(|(t, &a)| a * (t[0] + t[1] + t[2]))
+            .sum::<Vec3>()
+            / (3.0 * area);
         Some(PolygonLight {
             vertices,
             indices,
@@ -75,6 +91,8 @@ impl PolygonLight {
             n,
             origin,
             area,
+            centroid,
+            triangle_areas: areas,
             le,
             texture: crate::geometry::primitive::NONE,
             by_area,
@@ -162,6 +180,9 @@ impl PolygonLight {
         if !self.faces(p) {
             return None;
         }
+        if method == LightSampling::Adaptive {
+            return self.sample_adaptive(p, u);
+        }
         let picked = if method.solid_angle() {
             self.with_solid_angles(p, |dirs, omegas, total| {
                 let (i, ux) = pick(omegas, total, u.x)?;
@@ -192,15 +213,104 @@ impl PolygonLight {
                 b: Vec2::new(b[1], b[2]),
             });
         }
+        self.sample_by_area(p, u)
+    }
+
+    /// Area sampling: a triangle by area, then uniform in it.
+    fn sample_by_area(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
         let (i, _, ux) = self.by_area.sample(u.x);
+        self.sample_in_triangle(p, i, Vec2::new(ux, u.y), 1.0 / self.area)
+    }
+
+    /// A uniform point of triangle `i` for `u`, with area density `pdf_area`.
+    fn sample_in_triangle(&self, p: Vec3, i: usize, u: Vec2, pdf_area: f32) -> Option<LightSample> {
         let v = &self.triangles[i];
-        let b = sample_uniform_triangle(Vec2::new(ux, u.y));
+        let b = sample_uniform_triangle(u);
         let y = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
-        let s = area_sample(p, y, self.n, 1.0 / self.area, self.le)?;
+        let s = area_sample(p, y, self.n, pdf_area, self.le)?;
         Some(LightSample {
             b: Vec2::new(b[1], b[2]),
             ..s
         })
+    }
+
+    /// The estimated solid angle `e_i` of triangle `i` from `p` ([`LightSampling::Adaptive`]).
+    #[inline]
+    fn triangle_estimate(&self, i: usize, p: Vec3) -> f32 {
+        let [a, b, c] = self.triangles[i];
+        super::planar_solid_angle_estimate(p, (a + b + c) / 3.0, self.n, self.triangle_areas[i])
+    }
+
+    /// `Σ e_i` from `p` where [`LightSampling::Adaptive`] samples by triangle estimates there, `None`
+    /// where it samples the whole polygon by area (the polygon looks small, or an estimate is not
+    /// finite because `p` is almost on the plane).
+    fn adaptive_total(&self, p: Vec3) -> Option<f32> {
+        if !LightSampling::Adaptive.spherical_for(p, self.centroid, self.n, self.area) {
+            return None;
+        }
+        let total: f32 = (0..self.triangles.len())
+            .map(|i| self.triangle_estimate(i, p))
+            .sum();
+        (total > 0.0 && total.is_finite()).then_some(total)
+    }
+
+    /// [`LightSampling::Adaptive`]'s sample (see the module doc).
+    fn sample_adaptive(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
+        let Some(total) = self.adaptive_total(p) else {
+            return self.sample_by_area(p, u);
+        };
+        // `pick` without an array: the estimates are cheap to compute again.
+        let goal = u.x * total;
+        let mut acc = 0.0;
+        let mut chosen = None;
+        for i in 0..self.triangles.len() {
+            let e = self.triangle_estimate(i, p);
+            if e <= 0.0 {
+                continue;
+            }
+            let ux = ((goal - acc) / e).clamp(0.0, crate::sampling::ONE_MINUS_EPSILON);
+            chosen = Some((i, e, ux));
+            if goal < acc + e {
+                break;
+            }
+            acc += e;
+        }
+        // Rounding past the last positive entry keeps that entry, at the top of its interval.
+        let (i, e, ux) = chosen?;
+        let q = e / total;
+        let v = &self.triangles[i];
+        let omega = super::triangle::triangle_solid_angle(v, p);
+        if !spherical_ok(omega) {
+            return self.sample_in_triangle(p, i, Vec2::new(ux, u.y), q / self.triangle_areas[i]);
+        }
+        let s = crate::sampling::sample_spherical_triangle(v, p, Vec2::new(ux, u.y))?;
+        let b = s.barycentrics;
+        let y = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
+        let err = gamma(6) * ((b[0] * v[0]).abs() + (b[1] * v[1]).abs() + (b[2] * v[2]).abs());
+        Some(LightSample {
+            p: y,
+            p_error: err,
+            n: self.n,
+            wi: s.dir,
+            pdf: q / omega,
+            le: self.le,
+            infinite: false,
+            b: Vec2::new(b[1], b[2]),
+        })
+    }
+
+    /// [`LightSampling::Adaptive`]'s pdf of hitting `y` (normal `ny`) from `p`.
+    fn pdf_adaptive(&self, p: Vec3, y: Vec3, ny: Vec3) -> f32 {
+        let Some(total) = self.adaptive_total(p) else {
+            return area_to_solid_angle(1.0 / self.area, p, y, ny);
+        };
+        let i = self.triangle_holding(y);
+        let q = self.triangle_estimate(i, p) / total;
+        let omega = super::triangle::triangle_solid_angle(&self.triangles[i], p);
+        if !spherical_ok(omega) {
+            return area_to_solid_angle(q / self.triangle_areas[i], p, y, ny);
+        }
+        q / omega
     }
 
     /// Solid-angle pdf of hitting `y` (normal `ny`) from `p` (shading normal `ns`) along `wi`.
@@ -215,6 +325,9 @@ impl PolygonLight {
     ) -> f32 {
         if !self.faces(p) {
             return 0.0;
+        }
+        if method == LightSampling::Adaptive {
+            return self.pdf_adaptive(p, y, ny);
         }
         if method.solid_angle()
             && let Some(total) = self.with_solid_angles(p, |_, _, total| total)

@@ -1,6 +1,7 @@
 //! Emitting parallelograms: area sampling, or solid-angle sampling of the spherical rectangle
 //! (Ureña, Fajardo & King 2013) when the quad is a rectangle, optionally through the cosine warp
-//! ([`LightSampling::SolidAngleCosine`]).
+//! ([`LightSampling::SolidAngleCosine`]), or the one that pays from the shading point
+//! ([`LightSampling::Adaptive`]).
 //! WGSL twin: `quad_light.wgsl`.
 
 use super::triangle::spherical_ok;
@@ -71,7 +72,13 @@ impl QuadLight {
         (p - self.corner).dot(self.n) > 0.0
     }
 
-    fn spherical(&self, p: Vec3) -> Option<SphericalRectangle> {
+    /// The spherical rectangle seen from `p`, where `method` samples by it
+    /// ([`LightSampling::spherical_for`]) and it suits the warp.
+    fn spherical(&self, p: Vec3, method: LightSampling) -> Option<SphericalRectangle> {
+        let center = self.corner + 0.5 * (self.edge_u + self.edge_v);
+        if !method.spherical_for(p, center, self.n, self.area) {
+            return None;
+        }
         SphericalRectangle::new(p, self.corner, self.edge_u, self.edge_v)
             .filter(|r| spherical_ok(r.solid_angle()))
     }
@@ -94,9 +101,7 @@ impl QuadLight {
         if !self.faces(p) {
             return None;
         }
-        if method.solid_angle()
-            && let Some(rect) = self.spherical(p)
-        {
+        if let Some(rect) = self.spherical(p, method) {
             let (u, warp_pdf) = method.warp(p, ns, self.corners(), u);
             let y = rect.sample(u);
             let mut s = area_sample(p, y, self.n, 1.0 / self.area, self.le)?;
@@ -120,9 +125,7 @@ impl QuadLight {
         if !self.faces(p) {
             return 0.0;
         }
-        if method.solid_angle()
-            && let Some(rect) = self.spherical(p)
-        {
+        if let Some(rect) = self.spherical(p, method) {
             return method.warp_pdf(p, ns, self.corners(), || rect.invert(y)) / rect.solid_angle();
         }
         area_to_solid_angle(1.0 / self.area, p, y, ny)

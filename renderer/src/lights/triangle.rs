@@ -1,6 +1,7 @@
 //! Emitting triangles: area sampling (uniform barycentrics) or solid-angle sampling of the
 //! spherical triangle (Arvo 1995), optionally through the cosine warp
-//! ([`LightSampling::SolidAngleCosine`]).
+//! ([`LightSampling::SolidAngleCosine`]), or the one that pays from the shading point
+//! ([`LightSampling::Adaptive`]).
 //! WGSL twin: `triangle_light.wgsl`.
 
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
@@ -53,12 +54,20 @@ impl TriangleLight {
         (p - self.v[0]).dot(self.n) > 0.0
     }
 
+    /// Whether `method` samples this triangle from `p` by its spherical warp
+    /// ([`LightSampling::spherical_for`]).
+    #[inline]
+    fn spherical(&self, p: Vec3, method: LightSampling) -> bool {
+        let centroid = (self.v[0] + self.v[1] + self.v[2]) / 3.0;
+        method.spherical_for(p, centroid, self.n, self.area)
+    }
+
     /// Samples a point as seen from `p` (shading normal `ns`: [`super::Light::sample`]).
     pub fn sample(&self, p: Vec3, ns: Vec3, u: Vec2, method: LightSampling) -> Option<LightSample> {
         if !self.faces(p) {
             return None;
         }
-        if method.solid_angle() && spherical_ok(triangle_solid_angle(&self.v, p)) {
+        if self.spherical(p, method) && spherical_ok(triangle_solid_angle(&self.v, p)) {
             let (u, warp_pdf) = method.warp(p, ns, spherical_triangle_corners(&self.v), u);
             let s = sample_spherical_triangle(&self.v, p, u)?;
             let b = s.barycentrics;
@@ -98,7 +107,7 @@ impl TriangleLight {
         if !self.faces(p) {
             return 0.0;
         }
-        if method.solid_angle() {
+        if self.spherical(p, method) {
             let omega = triangle_solid_angle(&self.v, p);
             if spherical_ok(omega) {
                 let corners = spherical_triangle_corners(&self.v);

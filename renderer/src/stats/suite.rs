@@ -202,9 +202,10 @@ pub fn light_sampler(shape: Shape, placement: Placement, method: LightSampling) 
     }
 }
 
-/// The shapes whose solid-angle samples the cosine warp changes
-/// ([`LightSampling::SolidAngleCosine`]; disks and spheres sample as with `SolidAngle`).
-pub const COSINE_WARPED_SHAPES: [Shape; 4] =
+/// The planar shapes with a spherical warp, whose samples the cosine warp
+/// ([`LightSampling::SolidAngleCosine`]) and [`LightSampling::Adaptive`] change (disks and spheres
+/// sample with them as with `SolidAngle`).
+pub const PLANAR_SPHERICAL_SHAPES: [Shape; 4] =
     [Shape::Triangle, Shape::Hexagon, Shape::Star, Shape::Quad];
 
 /// The warps.
@@ -270,14 +271,16 @@ pub fn dielectric_cases() -> Vec<Case> {
         .collect()
 }
 
-/// Every light shape × placement × method (the cosine warp for the shapes it changes).
+/// Every light shape × placement × method (the cosine warp and adaptive sampling for the shapes
+/// they change).
 pub fn light_cases() -> Vec<Case> {
     let mut out = Vec::new();
     for shape in SHAPES {
         for placement in PLACEMENTS {
             let mut methods = vec![LightSampling::Area, LightSampling::SolidAngle];
-            if COSINE_WARPED_SHAPES.contains(&shape) {
+            if PLANAR_SPHERICAL_SHAPES.contains(&shape) {
                 methods.push(LightSampling::SolidAngleCosine);
+                methods.push(LightSampling::Adaptive);
             }
             for method in methods {
                 let name = format!("light/{shape:?}/{placement:?}/{method:?}").to_lowercase();

@@ -74,7 +74,8 @@ fn cdf(weights: &[f32]) -> Vec<f32> {
 }
 
 /// The records of `scene`'s lights; polygon lights append their triangles to `vertex_data` (three
-/// vec4 each, the first two w's holding the triangle's interval of the by-area CDF), an
+/// vec4 each, the first two w's holding the triangle's interval of the by-area CDF, the third its
+/// area), an
 /// environment map its sampling tables to `tables`. `emission[i]` is the texture id of the
 /// scene's emission texture `i` (`textures::encode`), which textured area lights name.
 pub(super) fn encode(
@@ -122,9 +123,10 @@ pub(super) fn encode(
                     for (i, t) in p.triangles.iter().enumerate() {
                         vertex_data.push(v4(t[0], c[i]));
                         vertex_data.push(v4(t[1], c[i + 1]));
-                        vertex_data.push(v4(t[2], 0.0));
+                        vertex_data.push(v4(t[2], p.triangle_areas[i]));
                     }
                     g.a = v4(p.origin, 0.0);
+                    g.b = v4(p.centroid, 0.0);
                     g.d = v4(p.n, 0.0);
                     g.le = v4(p.le, p.area);
                 }

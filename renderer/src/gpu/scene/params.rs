@@ -116,6 +116,8 @@ gpu_tags! {
         SolidAngle => "LIGHT_SAMPLING_SOLID_ANGLE",
         /// [`LightSampling::SolidAngleCosine`].
         SolidAngleCosine => "LIGHT_SAMPLING_SOLID_ANGLE_COSINE",
+        /// [`LightSampling::Adaptive`].
+        Adaptive => "LIGHT_SAMPLING_ADAPTIVE",
     }
 }
 
@@ -126,6 +128,7 @@ impl LightSamplingTag {
             LightSampling::Area => LightSamplingTag::Area,
             LightSampling::SolidAngle => LightSamplingTag::SolidAngle,
             LightSampling::SolidAngleCosine => LightSamplingTag::SolidAngleCosine,
+            LightSampling::Adaptive => LightSamplingTag::Adaptive,
         }
     }
 }

@@ -82,8 +82,23 @@ fn light_sampling_warps(method: u32, ns: vec3f) -> bool {
     return method == LIGHT_SAMPLING_SOLID_ANGLE_COSINE && any(ns != vec3f(0.0));
 }
 
-// `SolidAngle` or `SolidAngleCosine` (`LightSampling::solid_angle`).
+// `SolidAngle`, `SolidAngleCosine` or `Adaptive` (`LightSampling::solid_angle`).
 fn light_sampling_solid_angle(method: u32) -> bool {
+    return method != LIGHT_SAMPLING_AREA;
+}
+
+// `planar_solid_angle_estimate`: area · |cos θ| / d² of a planar light (centroid c, normal n).
+fn planar_solid_angle_estimate(p: vec3f, c: vec3f, n: vec3f, area: f32) -> f32 {
+    let d = p - c;
+    let d2 = dot(d, d);
+    return area * abs(dot(n, d)) / (d2 * sqrt(d2));
+}
+
+// `LightSampling::spherical_for`: whether a planar light is sampled from p by its spherical warp.
+fn light_sampling_spherical_for(method: u32, p: vec3f, c: vec3f, n: vec3f, area: f32) -> bool {
+    if method == LIGHT_SAMPLING_ADAPTIVE {
+        return planar_solid_angle_estimate(p, c, n, area) >= ADAPTIVE_MIN_SOLID_ANGLE;
+    }
     return method != LIGHT_SAMPLING_AREA;
 }
 

@@ -3,6 +3,9 @@
 // is uniform over the whole polygon's solid angle. The per-triangle solid angles are summed twice
 // (total, then the pick) instead of being kept in an array: private arrays are costly on GPUs.
 // With the cosine warp, the chosen spherical triangle is sampled through its own bilinear warp.
+// `Adaptive`: by area where the polygon looks small from p, else a triangle picked by its
+// estimated solid angle, then Arvo in it. The record's b holds the centroid, each triangle's third
+// vertex's w its area.
 
 fn polygon_light_faces(l: Light, p: vec3f) -> bool {
     return dot(p - l.a.xyz, l.d.xyz) > 0.0;
@@ -52,13 +55,106 @@ fn polygon_triangle_holding(l: Light, y: vec3f) -> u32 {
     return best;
 }
 
+// `PolygonLight::triangle_estimate`: the estimated solid angle of triangle t (absolute index).
+fn polygon_tri_estimate(l: Light, t: u32, p: vec3f) -> f32 {
+    let c = (vertex_data[3u * t].xyz + vertex_data[3u * t + 1u].xyz + vertex_data[3u * t + 2u].xyz) / 3.0;
+    return planar_solid_angle_estimate(p, c, l.d.xyz, vertex_data[3u * t + 2u].w);
+}
+
+// `PolygonLight::adaptive_total`: Σ e_i where `Adaptive` picks by triangle estimates, else -1.
+fn polygon_adaptive_total(l: Light, p: vec3f) -> f32 {
+    if !light_sampling_spherical_for(LIGHT_SAMPLING_ADAPTIVE, p, l.b.xyz, l.d.xyz, l.le.w) {
+        return -1.0;
+    }
+    var total = 0.0;
+    for (var i = 0u; i < l.h.z; i++) {
+        total += polygon_tri_estimate(l, l.h.y + i, p);
+    }
+    // Not NaN nor infinite (p almost on the plane).
+    if total > 0.0 && total < 3.4028235e38 {
+        return total;
+    }
+    return -1.0;
+}
+
+// A uniform point of triangle t (absolute index) for u, with area density pdf_area.
+fn polygon_sample_in_triangle(l: Light, t: u32, p: vec3f, u: vec2f, pdf_area: f32) -> LightSample {
+    let v0 = vertex_data[3u * t].xyz;
+    let v1 = vertex_data[3u * t + 1u].xyz;
+    let v2 = vertex_data[3u * t + 2u].xyz;
+    let b = sample_uniform_triangle(u);
+    let y = b.x * v0 + b.y * v1 + b.z * v2;
+    var s = area_sample(p, y, l.d.xyz, pdf_area, l.le.xyz);
+    s.b = b.yz;
+    return s;
+}
+
+// `PolygonLight::sample_adaptive` where `polygon_adaptive_total` gave total > 0.
+fn polygon_light_sample_adaptive(l: Light, p: vec3f, u: vec2f, total: f32) -> LightSample {
+    let goal = u.x * total;
+    var acc = 0.0;
+    var chosen = NONE;
+    var e_chosen = 0.0;
+    var ux = ONE_MINUS_EPSILON;
+    for (var i = 0u; i < l.h.z; i++) {
+        let e = polygon_tri_estimate(l, l.h.y + i, p);
+        if e <= 0.0 {
+            continue;
+        }
+        chosen = i;
+        e_chosen = e;
+        ux = clamp((goal - acc) / e, 0.0, ONE_MINUS_EPSILON);
+        if goal < acc + e {
+            break;
+        }
+        acc += e;
+    }
+    if chosen == NONE {
+        return no_light_sample();
+    }
+    let q = e_chosen / total;
+    let t = l.h.y + chosen;
+    let v0 = vertex_data[3u * t].xyz;
+    let v1 = vertex_data[3u * t + 1u].xyz;
+    let v2 = vertex_data[3u * t + 2u].xyz;
+    let omega = polygon_tri_solid_angle(t, p);
+    if !spherical_ok(omega) {
+        return polygon_sample_in_triangle(l, t, p, vec2f(ux, u.y), q / vertex_data[3u * t + 2u].w);
+    }
+    let s = sample_spherical_triangle(v0, v1, v2, p, vec2f(ux, u.y));
+    if !s.ok {
+        return no_light_sample();
+    }
+    let b = s.barycentrics;
+    let y = b.x * v0 + b.y * v1 + b.z * v2;
+    let err = gamma(6.0) * (abs(b.x * v0) + abs(b.y * v1) + abs(b.z * v2));
+    return LightSample(y, err, l.d.xyz, s.dir, q / omega, l.le.xyz, false, true, b.yz);
+}
+
+// `PolygonLight::pdf_adaptive` where `polygon_adaptive_total` gave total > 0.
+fn polygon_light_pdf_adaptive(l: Light, p: vec3f, y: vec3f, ny: vec3f, total: f32) -> f32 {
+    let t = l.h.y + polygon_triangle_holding(l, y);
+    let q = polygon_tri_estimate(l, t, p) / total;
+    let omega = polygon_tri_solid_angle(t, p);
+    if !spherical_ok(omega) {
+        return area_to_solid_angle(q / vertex_data[3u * t + 2u].w, p, y, ny);
+    }
+    return q / omega;
+}
+
 fn polygon_light_sample(l: Light, p: vec3f, ns: vec3f, u: vec2f, method: u32) -> LightSample {
     if !polygon_light_faces(l, p) {
         return no_light_sample();
     }
     let first = l.h.y;
     let count = l.h.z;
-    if light_sampling_solid_angle(method) {
+    if method == LIGHT_SAMPLING_ADAPTIVE {
+        let total = polygon_adaptive_total(l, p);
+        if total > 0.0 {
+            return polygon_light_sample_adaptive(l, p, u, total);
+        }
+    }
+    if light_sampling_solid_angle(method) && method != LIGHT_SAMPLING_ADAPTIVE {
         let total = polygon_total_solid_angle(l, p);
         if total > 0.0 {
             // `pick`: an entry in proportion to its solid angle, u.x remapped within it.
@@ -130,6 +226,13 @@ fn polygon_light_sample(l: Light, p: vec3f, ns: vec3f, u: vec2f, method: u32) ->
 fn polygon_light_pdf(l: Light, p: vec3f, ns: vec3f, wi: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
     if !polygon_light_faces(l, p) {
         return 0.0;
+    }
+    if method == LIGHT_SAMPLING_ADAPTIVE {
+        let total = polygon_adaptive_total(l, p);
+        if total > 0.0 {
+            return polygon_light_pdf_adaptive(l, p, y, ny, total);
+        }
+        return area_to_solid_angle(1.0 / l.le.w, p, y, ny);
     }
     if light_sampling_solid_angle(method) {
         let total = polygon_total_solid_angle(l, p);

@@ -1,6 +1,6 @@
 // Emitting parallelograms, the twin of `lights/quad.rs`: by area, or by solid angle (spherical
 // rectangle) when the quad is a rectangle and its solid angle suits the warp, optionally through
-// the cosine warp.
+// the cosine warp, or by whichever pays from p (`Adaptive`).
 
 fn quad_light_faces(l: Light, p: vec3f) -> bool {
     return dot(p - l.a.xyz, l.d.xyz) > 0.0;
@@ -36,7 +36,7 @@ fn quad_light_sample(l: Light, p: vec3f, ns: vec3f, u_in: vec2f, method: u32) ->
         return no_light_sample();
     }
     var u = u_in;
-    if light_sampling_solid_angle(method) {
+    if light_sampling_spherical_for(method, p, l.a.xyz + 0.5 * (l.b.xyz + l.c.xyz), l.d.xyz, l.le.w) {
         let rect = sph_rect_new(p, l.a.xyz, l.b.xyz, l.c.xyz);
         if rect.ok && spherical_ok(rect.solid_angle) {
             var warp_pdf = 1.0;
@@ -59,7 +59,7 @@ fn quad_light_pdf(l: Light, p: vec3f, ns: vec3f, wi: vec3f, y: vec3f, ny: vec3f,
     if !quad_light_faces(l, p) {
         return 0.0;
     }
-    if light_sampling_solid_angle(method) {
+    if light_sampling_spherical_for(method, p, l.a.xyz + 0.5 * (l.b.xyz + l.c.xyz), l.d.xyz, l.le.w) {
         let rect = sph_rect_new(p, l.a.xyz, l.b.xyz, l.c.xyz);
         if rect.ok && spherical_ok(rect.solid_angle) {
             if light_sampling_warps(method, ns) {

@@ -1,5 +1,5 @@
 // Emitting triangles, the twin of `lights/triangle.rs`: uniform by area, or by solid angle (Arvo),
-// optionally through the cosine warp.
+// optionally through the cosine warp, or the one that pays from p (`Adaptive`).
 
 fn triangle_solid_angle(v0: vec3f, v1: vec3f, v2: vec3f, p: vec3f) -> f32 {
     return spherical_triangle_area(normalize_or_zero(v0 - p), normalize_or_zero(v1 - p), normalize_or_zero(v2 - p));
@@ -17,7 +17,8 @@ fn triangle_light_sample(l: Light, p: vec3f, ns: vec3f, u_in: vec2f, method: u32
     let v1 = l.b.xyz;
     let v2 = l.c.xyz;
     var u = u_in;
-    if light_sampling_solid_angle(method) && spherical_ok(triangle_solid_angle(v0, v1, v2, p)) {
+    let spherical = light_sampling_spherical_for(method, p, (v0 + v1 + v2) / 3.0, l.d.xyz, l.le.w);
+    if spherical && spherical_ok(triangle_solid_angle(v0, v1, v2, p)) {
         var warp_pdf = 1.0;
         if light_sampling_warps(method, ns) {
             let w = spherical_triangle_cosine_weights(v0, v1, v2, p, ns);
@@ -44,7 +45,7 @@ fn triangle_light_pdf(l: Light, p: vec3f, ns: vec3f, wi: vec3f, y: vec3f, ny: ve
     if !triangle_light_faces(l, p) {
         return 0.0;
     }
-    if light_sampling_solid_angle(method) {
+    if light_sampling_spherical_for(method, p, (l.a.xyz + l.b.xyz + l.c.xyz) / 3.0, l.d.xyz, l.le.w) {
         let omega = triangle_solid_angle(l.a.xyz, l.b.xyz, l.c.xyz, p);
         if spherical_ok(omega) {
             if light_sampling_warps(method, ns) {
