@@ -2,7 +2,7 @@
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use lumis::integrator::{Heuristic, Settings, Strategy};
-use lumis::lights::LightSampling;
+use lumis::lights::{LightSampling, LightSelection};
 use lumis::sampler::SamplerKind;
 use std::path::PathBuf;
 
@@ -66,6 +66,15 @@ pub enum LightSamplingArg {
     SolidAngleCosine,
 }
 
+/// Light selection rules (`lumis::lights::LightSelection`).
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightSelectionArg {
+    /// In proportion to emitted power.
+    Power,
+    /// By importance at the receiver (power, distance, orientation) in a light BVH.
+    Bvh,
+}
+
 /// Samplers (`lumis::sampler`).
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SamplerArg {
@@ -106,6 +115,9 @@ pub struct EstimatorOptions {
     /// How points on lights are chosen.
     #[arg(long, value_enum, default_value = "solid-angle")]
     pub light_sampling: LightSamplingArg,
+    /// How next-event estimation chooses a light.
+    #[arg(long, value_enum, default_value = "power")]
+    pub light_selection: LightSelectionArg,
     /// Override the scene's max_depth (-1 = unlimited).
     #[arg(long, allow_negative_numbers = true)]
     pub max_depth: Option<i32>,
@@ -142,9 +154,14 @@ impl EstimatorOptions {
             LightSamplingArg::SolidAngle => LightSampling::SolidAngle,
             LightSamplingArg::SolidAngleCosine => LightSampling::SolidAngleCosine,
         };
+        let light_selection = match self.light_selection {
+            LightSelectionArg::Power => LightSelection::Power,
+            LightSelectionArg::Bvh => LightSelection::Bvh,
+        };
         Ok(Settings {
             strategy,
             light_sampling,
+            light_selection,
             max_depth: self.max_depth,
             sampler: match self.sampler {
                 SamplerArg::Independent => SamplerKind::Independent,
