@@ -159,20 +159,17 @@ fn gpu_cosine_warp_matches_reference() {
     assert_none(failures);
 }
 
-/// Light selection by the light BVH (issue 19 item 3, `LightSelection::Bvh`) on the scenes with
-/// several lights: light-only and MIS (power), against the reference and the CPU.
+/// Light selection by the light BVH (issue 19 item 3, `LightSelection::Bvh`) on Veach's scene
+/// of four sphere lights: light-only and MIS (power), against the reference and the CPU (~20 s on
+/// lavapipe; `seed_cornell` too would add 45 s, so the CPU's `light_bvh_images` covers it).
 #[test]
 fn gpu_light_bvh_matches_reference() {
-    let mut failures = Vec::new();
-    for name in ["veach_mis", "seed_cornell"] {
-        failures.extend(check_scene_with(
-            name,
-            LightSampling::SolidAngle,
-            LightSelection::Bvh,
-            &[STRATEGIES[0], STRATEGIES[3]],
-        ));
-    }
-    assert_none(failures);
+    assert_none(check_scene_with(
+        "veach_mis",
+        LightSampling::SolidAngle,
+        LightSelection::Bvh,
+        &[STRATEGIES[0], STRATEGIES[3]],
+    ));
 }
 
 #[test]

@@ -1261,7 +1261,8 @@ fn light_selection_matches() {
 /// down ~10 levels; the CPU and GPU round them independently). A u within rounding of a branch
 /// boundary may choose the neighbour: one in 1000 choices may differ; a receiver on the edge of
 /// a node's bounding sphere (where the importance switches formula, not continuously) may see
-/// another pmf: one in 2000 pmfs may differ. Pmfs below 1e-7 are compared absolutely (1e-7).
+/// another pmf: one in 2000 pmfs may differ, by 1% at most. Pmfs below 1e-7 are compared
+/// absolutely (1e-7).
 #[test]
 fn light_bvh_selection_matches() {
     let Some(ctx) = context() else {
@@ -1297,8 +1298,9 @@ fn light_bvh_selection_matches() {
         1,
     )
     .unwrap_or_else(|e| panic!("{e}"));
-    let mut index = Compare::new("light BVH choice", 0.0, 0.0);
-    let mut pmf = Compare::new("light BVH pmf", 1e-4, 1e-7);
+    // Choices are counted here: a different light is no small error a cap could bound.
+    let (mut choices, mut other_choices) = (0usize, Vec::new());
+    let mut pmf = Compare::new("light BVH pmf", 1e-4, 1e-7).outliers_within(1e-2, 1e-6);
     for (i, o) in inputs.chunks(2).zip(&out) {
         let (p, n, u) = (
             Vec3::from_slice(&i[0][..3]),
@@ -1306,9 +1308,13 @@ fn light_bvh_selection_matches() {
             i[0][3],
         );
         let other = i[1][3] as usize;
-        match bvh.sample(p, n, u) {
-            Some((light, _)) => index.scalar(o[0], light as f32, "index"),
-            None => index.scalar(o[1], 0.0, "no light"),
+        let cpu = bvh.sample(p, n, u).map(|(light, _)| light);
+        let gpu_choice = (o[1] > 0.0).then_some(o[0] as usize);
+        choices += 1;
+        if cpu != gpu_choice {
+            other_choices.push(format!(
+                "p {p}, n {n}, u {u}: cpu {cpu:?}, gpu {gpu_choice:?}"
+            ));
         }
         if o[1] > 0.0 {
             let gpu_light = o[0] as usize;
@@ -1318,8 +1324,16 @@ fn light_bvh_selection_matches() {
         }
         pmf.scalar(o[3], bvh.pmf(p, n, other), "pmf() of another light");
     }
-    let allowed = index.n / 1000;
-    index.finish(allowed);
+    eprintln!(
+        "light BVH choice: {} of {choices} differ",
+        other_choices.len()
+    );
+    assert!(
+        other_choices.len() <= choices / 1000,
+        "{} of {choices} choices differ:\n  {}",
+        other_choices.len(),
+        other_choices[..other_choices.len().min(10)].join("\n  ")
+    );
     let allowed = pmf.n / 2000;
     pmf.finish(allowed);
 }

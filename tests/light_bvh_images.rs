@@ -1,7 +1,7 @@
 //! Light selection by the light BVH (`LightSelection::Bvh`, issue 19 item 3) in whole renders:
 //! unbiased against the stored references of the independent renderer on the scenes with
-//! several lights (`veach_mis`: four spheres of very different sizes and powers, and a small
-//! one; `seed_cornell`: a hexagon and two disks), for light-only sampling (the selection pmf
+//! several lights (`veach_mis`: four spheres of equal power and radii 0.033 to 0.9 in a row;
+//! `seed_cornell`: a hexagon and two disks), for light-only sampling (the selection pmf
 //! divides every sample) and MIS (whose weights need the BSDF-sampled hits' pmf at the previous
 //! vertex to be the one the light sample used). The selection's own distribution is checked by
 //! the unit tests of `lights::light_bvh` and, composed with light sampling, by

@@ -163,6 +163,14 @@ fn angle_sub(cos_a: f32, sin_a: f32, cos_b: f32, sin_b: f32) -> (f32, f32) {
 /// The smallest cone holding the cones `(wa, cos θa)` and `(wb, cos θb)` (pbrt-v4's
 /// `DirectionCone::Union`); `cos θ = −1` is the whole sphere.
 fn cone_union(wa: Vec3, cos_a: f32, wb: Vec3, cos_b: f32) -> (Vec3, f32) {
+    // Without trigonometry when one cone is a single direction inside the other (most unions
+    // of a build: planar lights into a node's cone); θd ≤ θa ⇔ cos θd ≥ cos θa.
+    if cos_b == 1.0 && wa.dot(wb) >= cos_a {
+        return (wa, cos_a);
+    }
+    if cos_a == 1.0 && wa.dot(wb) >= cos_b {
+        return (wb, cos_b);
+    }
     let theta_a = cos_a.clamp(-1.0, 1.0).acos();
     let theta_b = cos_b.clamp(-1.0, 1.0).acos();
     let theta_d = angle_between(wa, wb);

@@ -145,7 +145,7 @@ impl LightBvh {
             let (c0, c1) = (index + 1, node.child_or_light as usize);
             let w0 = self.nodes[c0].bounds.importance(p, n);
             let w1 = self.nodes[c1].bounds.importance(p, n);
-            if !(w0 + w1 > 0.0) {
+            if !positive(w0 + w1) {
                 return None;
             }
             let p0 = w0 / (w0 + w1);
@@ -161,7 +161,7 @@ impl LightBvh {
             node = &self.nodes[index];
         }
         // A lone light is chosen only where it can reach p (inside the tree the importances did).
-        if index == 0 && !(root.bounds.importance(p, n) > 0.0) {
+        if index == 0 && !positive(root.bounds.importance(p, n)) {
             return None;
         }
         Some((node.child_or_light as usize, pmf))
@@ -182,7 +182,7 @@ impl LightBvh {
             let (c0, c1) = (index + 1, node.child_or_light as usize);
             let w0 = self.nodes[c0].bounds.importance(p, n);
             let w1 = self.nodes[c1].bounds.importance(p, n);
-            if !(w0 + w1 > 0.0) {
+            if !positive(w0 + w1) {
                 return 0.0;
             }
             if trail & 1 == 0 {
@@ -195,7 +195,7 @@ impl LightBvh {
             trail >>= 1;
             node = &self.nodes[index];
         }
-        if index == 0 && !(root.bounds.importance(p, n) > 0.0) {
+        if index == 0 && !positive(root.bounds.importance(p, n)) {
             return 0.0;
         }
         pmf
@@ -257,9 +257,10 @@ fn split(items: &mut [(u32, LightBounds)], bounds: &LightBounds, depth: u32) -> 
         ((t * BUCKETS as f32) as usize).min(BUCKETS - 1)
     };
     let mut best: Option<(f32, usize, usize)> = None;
-    if depth < COST_DEPTH {
+    // Two lights split one way whatever the cost says.
+    if depth < COST_DEPTH && n > 2 {
         for axis in 0..3 {
-            if !(extent[axis] > 0.0) {
+            if !positive(extent[axis]) {
                 continue;
             }
             let mut buckets: [Option<LightBounds>; BUCKETS] = [None; BUCKETS];
@@ -267,14 +268,29 @@ fn split(items: &mut [(u32, LightBounds)], bounds: &LightBounds, depth: u32) -> 
                 let k = bucket(b.centroid(), axis);
                 buckets[k] = Some(buckets[k].map_or(*b, |a| a.union(b)));
             }
-            let union_of = |s: &[Option<LightBounds>]| {
-                s.iter().flatten().fold(None, |a: Option<LightBounds>, b| {
-                    Some(a.map_or(*b, |a| a.union(b)))
-                })
+            // Unions of the buckets below and above each cut, by two sweeps.
+            let join = |a: Option<LightBounds>, b: &Option<LightBounds>| match (a, b) {
+                (Some(a), Some(b)) => Some(a.union(b)),
+                (a, b) => a.or(*b),
             };
+            let mut below = [None; BUCKETS];
+            let mut above = [None; BUCKETS];
+            let mut acc = None;
+            for (slot, b) in below.iter_mut().zip(&buckets) {
+                acc = join(acc, b);
+                *slot = acc;
+            }
+            acc = None;
+            for (slot, b) in above.iter_mut().zip(&buckets).rev() {
+                acc = join(acc, b);
+                *slot = acc;
+            }
             for cut in 1..BUCKETS {
-                let (Some(a), Some(b)) = (union_of(&buckets[..cut]), union_of(&buckets[cut..]))
-                else {
+                // A cut above an empty bucket splits as the one below it does.
+                if buckets[cut - 1].is_none() {
+                    continue;
+                }
+                let (Some(a), Some(b)) = (below[cut - 1], above[cut]) else {
                     continue;
                 };
                 let cost = split_cost(&a, diag, axis) + split_cost(&b, diag, axis);
@@ -310,6 +326,12 @@ fn partition(items: &mut [(u32, LightBounds)], left: impl Fn(&LightBounds) -> bo
         }
     }
     k
+}
+
+/// Whether `x` is positive (NaN is not): where an importance can choose something.
+#[inline(always)]
+fn positive(x: f32) -> bool {
+    x > 0.0
 }
 
 // The median split keeps depth below COST_DEPTH + 32 ≤ MAX_DEPTH.

@@ -30,7 +30,7 @@ fn traverse(b: &LightBvh, p: Vec3, n: Vec3, lights: usize) -> (Vec<f64>, f64) {
     fn go(b: &LightBvh, k: usize, mass: f64, p: Vec3, n: Vec3, out: &mut Vec<f64>, dead: &mut f64) {
         let node = &b.nodes()[k];
         if node.leaf {
-            if k == 0 && !(node.bounds.importance(p, n) > 0.0) {
+            if k == 0 && !positive(node.bounds.importance(p, n)) {
                 *dead += mass;
             } else {
                 out[node.child_or_light as usize] += mass;
@@ -40,7 +40,7 @@ fn traverse(b: &LightBvh, p: Vec3, n: Vec3, lights: usize) -> (Vec<f64>, f64) {
         let c1 = node.child_or_light as usize;
         let w0 = b.nodes()[k + 1].bounds.importance(p, n) as f64;
         let w1 = b.nodes()[c1].bounds.importance(p, n) as f64;
-        if !(w0 + w1 > 0.0) {
+        if (w0 + w1).partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
             *dead += mass;
             return;
         }

@@ -37,21 +37,28 @@ impl DirectionalSampler for SelectedLightDirections {
         let s = self
             .scene
             .sample_light(i, self.p, self.ns, u, self.method)?;
-        // This light's share only: the harness compares it with `pdf`, which checks the
-        // sampler's pmf against `light_pmf` where (as in the scenes below, seen from the
-        // origin) no two lights share a direction.
+        // The chosen light's share from the sampler's own pmf, the other lights' from
+        // `light_pmf`: the harness compares this with `pdf`, which checks the sampler's pmf
+        // against `light_pmf` (the lights at infinity share every direction with the others).
         Some(DirectionSample {
             w: s.wi,
-            pdf: pmf * s.pdf,
+            pdf: pmf * s.pdf + self.density(s.wi, Some(i)),
             delta: false,
         })
     }
 
     fn pdf(&self, w: Vec3) -> f32 {
+        self.density(w, None)
+    }
+}
+
+impl SelectedLightDirections {
+    /// `Σ_l pmf(l) · pdf_l(w)` over the lights but `skip`.
+    fn density(&self, w: Vec3, skip: Option<usize>) -> f32 {
         let scene = &self.scene;
         let mut pdf = 0.0;
         for (i, l) in scene.lights.iter().enumerate() {
-            if l.is_infinite() {
+            if l.is_infinite() && Some(i) != skip {
                 let pmf = scene.light_pmf(self.selection, self.p, self.ns, i);
                 pdf += pmf * l.pdf(self.p, self.ns, w, Vec3::ZERO, Vec3::ZERO, self.method);
             }
@@ -64,7 +71,7 @@ impl DirectionalSampler for SelectedLightDirections {
                 break;
             };
             let light = scene.accel.primitives()[hit.prim as usize].light;
-            if light != crate::geometry::primitive::NONE {
+            if light != crate::geometry::primitive::NONE && Some(light as usize) != skip {
                 let l = &scene.lights[light as usize];
                 if l.radiance(hit.n, w) != Vec3::ZERO {
                     let pmf = scene.light_pmf(self.selection, self.p, self.ns, light as usize);
@@ -104,7 +111,8 @@ fn scene_of(shapes: Vec<Value>, background: Option<f32>) -> Arc<Scene> {
 
 /// Five lights about a receiver at the origin with normal +z, of different kinds, sizes,
 /// powers, orientations and distances: a small bright quad overhead, a large dim disk far off
-/// to the side and tilted, a sphere, a triangle seen at a grazing angle, and a quad below the
+/// to the side and tilted, a sphere, a triangle facing away (never sampled: the BVH's
+/// orientation bound gives it no share, power selection wastes its share), and a quad below the
 /// receiver's plane facing it (only a transmitting receiver sees it; its share shows whether
 /// the normal term is |cos|). With `background`, a constant background too.
 pub fn several_lights_scene(background: bool) -> Arc<Scene> {
