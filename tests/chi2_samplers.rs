@@ -37,7 +37,7 @@ use rayon::prelude::*;
 /// Family-wise significance level.
 const ALPHA: f64 = 0.01;
 /// Number of χ² tests in the family (every case of the suite).
-const N_TESTS: usize = 392;
+const N_TESTS: usize = 397;
 
 /// Runs every case with `samples` samples and asserts that all pass; prints one line per case
 /// and the smallest p-value.
@@ -98,6 +98,21 @@ fn chi2_lights() {
 #[test]
 fn chi2_envmaps() {
     run_cases("envmaps", suite::envmap_cases(), 1_000_000, 6000);
+}
+
+/// Light selection (issue 19: the light BVH, and power selection beside it) composed with
+/// solid-angle light sampling over five lights of different kinds, sizes, orientations and
+/// distances, one below the receiver (`suite::light_selection_cases`); 500k samples each, seed
+/// 5000. Catches a `pmf` that is not the probability `sample` uses (the reported pdf disagrees
+/// with `pdf(w)`) and a selection whose frequencies are not its pmf (χ²).
+#[test]
+fn chi2_light_selection() {
+    run_cases(
+        "light selection",
+        suite::light_selection_cases(),
+        500_000,
+        5000,
+    );
 }
 
 #[test]

@@ -1254,6 +1254,91 @@ fn light_selection_matches() {
     c.finish(0);
 }
 
+/// Light selection by the light BVH (`LightBvh::sample` and `pmf` against `light_bvh.wgsl`) on
+/// 300 scattered lights of four kinds with a background (`scattered_lights_scene`, seed 21), at
+/// N random receivers (a quarter without a normal) and uniforms: the same light, and for the
+/// light the GPU chose, and for another random light, the CPU's pmf at 1e-4 relative (the
+/// importances are products and quotients of ~20 f32 operations, sqrt among them, multiplied
+/// down ~10 levels; the CPU and GPU round them independently). A u within rounding of a branch
+/// boundary may choose the neighbour: one in 1000 choices may differ; a receiver on the edge of
+/// a node's bounding sphere (where the importance switches formula, not continuously) may see
+/// another pmf: one in 2000 pmfs may differ, by 1% at most. Pmfs below 1e-7 are compared
+/// absolutely (1e-7).
+#[test]
+fn light_bvh_selection_matches() {
+    let Some(ctx) = context() else {
+        return;
+    };
+    let scene = lumis::stats::selected_lights::scattered_lights_scene(300, 21, true);
+    let gpu = GpuScene::new(ctx, scene.clone()).expect("upload");
+    let bvh = scene.light_bvh.as_ref().unwrap();
+    let n_lights = scene.lights.len();
+    let mut r = Rng::new(21, 0, 0);
+    let inputs: Vec<[f32; 4]> = (0..N)
+        .flat_map(|k| {
+            let p = Vec3::new(r.next_f32(), r.next_f32(), r.next_f32()) * 10.0 - 5.0;
+            let n = if k % 4 == 0 { Vec3::ZERO } else { unit(&mut r) };
+            let other = ((r.next_f32() * n_lights as f32) as usize).min(n_lights - 1);
+            [f4(p, r.next_f32()), f4(n, other as f32)]
+        })
+        .collect();
+    let settings = Settings {
+        light_selection: lumis::lights::LightSelection::Bvh,
+        ..Settings::default()
+    };
+    let out = run_snippet(
+        &gpu,
+        &settings,
+        "let p = inp(0u); let n = inp(1u);
+         let c = light_select(p.xyz, n.xyz, p.w);
+         let other = u32(n.w);
+         outp(0u, vec4f(f32(c.index), c.pmf, light_select_pmf(p.xyz, n.xyz, c.index),
+             light_select_pmf(p.xyz, n.xyz, other)));",
+        &inputs,
+        2,
+        1,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    // Choices are counted here: a different light is no small error a cap could bound.
+    let (mut choices, mut other_choices) = (0usize, Vec::new());
+    let mut pmf = Compare::new("light BVH pmf", 1e-4, 1e-7).outliers_within(1e-2, 1e-6);
+    for (i, o) in inputs.chunks(2).zip(&out) {
+        let (p, n, u) = (
+            Vec3::from_slice(&i[0][..3]),
+            Vec3::from_slice(&i[1][..3]),
+            i[0][3],
+        );
+        let other = i[1][3] as usize;
+        let cpu = bvh.sample(p, n, u).map(|(light, _)| light);
+        let gpu_choice = (o[1] > 0.0).then_some(o[0] as usize);
+        choices += 1;
+        if cpu != gpu_choice {
+            other_choices.push(format!(
+                "p {p}, n {n}, u {u}: cpu {cpu:?}, gpu {gpu_choice:?}"
+            ));
+        }
+        if o[1] > 0.0 {
+            let gpu_light = o[0] as usize;
+            let want = bvh.pmf(p, n, gpu_light);
+            pmf.scalar(o[1], want, "pmf of the GPU's choice");
+            pmf.scalar(o[2], want, "pmf() of the GPU's choice");
+        }
+        pmf.scalar(o[3], bvh.pmf(p, n, other), "pmf() of another light");
+    }
+    eprintln!(
+        "light BVH choice: {} of {choices} differ",
+        other_choices.len()
+    );
+    assert!(
+        other_choices.len() <= choices / 1000,
+        "{} of {choices} choices differ:\n  {}",
+        other_choices.len(),
+        other_choices[..other_choices.len().min(10)].join("\n  ")
+    );
+    let allowed = pmf.n / 2000;
+    pmf.finish(allowed);
+}
+
 /// Closest hit and occlusion through the CWBVH against the CPU's `Accel`: random rays through the
 /// scene, rays leaving surfaces (spawned with the error-bounded offsets), and shadow rays between
 /// surface points. Same primitive and t to 1e-5 relative; same occlusion answer.

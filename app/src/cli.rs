@@ -2,7 +2,7 @@
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use lumis::integrator::{Heuristic, Settings, Strategy};
-use lumis::lights::LightSampling;
+use lumis::lights::{LightSampling, LightSelection};
 use lumis::sampler::SamplerKind;
 use std::path::PathBuf;
 
@@ -69,6 +69,15 @@ pub enum LightSamplingArg {
     Adaptive,
 }
 
+/// Light selection rules (`lumis::lights::LightSelection`).
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightSelectionArg {
+    /// In proportion to emitted power.
+    Power,
+    /// By importance at the receiver (power, distance, orientation) in a light BVH.
+    Bvh,
+}
+
 /// Samplers (`lumis::sampler`).
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SamplerArg {
@@ -109,6 +118,9 @@ pub struct EstimatorOptions {
     /// How points on lights are chosen.
     #[arg(long, value_enum, default_value = "solid-angle")]
     pub light_sampling: LightSamplingArg,
+    /// How next-event estimation chooses a light.
+    #[arg(long, value_enum, default_value = "power")]
+    pub light_selection: LightSelectionArg,
     /// Override the scene's max_depth (-1 = unlimited).
     #[arg(long, allow_negative_numbers = true)]
     pub max_depth: Option<i32>,
@@ -146,9 +158,14 @@ impl EstimatorOptions {
             LightSamplingArg::SolidAngleCosine => LightSampling::SolidAngleCosine,
             LightSamplingArg::Adaptive => LightSampling::Adaptive,
         };
+        let light_selection = match self.light_selection {
+            LightSelectionArg::Power => LightSelection::Power,
+            LightSelectionArg::Bvh => LightSelection::Bvh,
+        };
         Ok(Settings {
             strategy,
             light_sampling,
+            light_selection,
             max_depth: self.max_depth,
             sampler: match self.sampler {
                 SamplerArg::Independent => SamplerKind::Independent,

@@ -54,6 +54,7 @@ pub fn view(args: &ViewArgs) -> anyhow::Result<()> {
             HeuristicArg::Power => Heuristic::Power,
         },
         light_sampling: settings.light_sampling,
+        light_selection: settings.light_selection,
         max_depth: settings.max_depth,
         sampler: settings.sampler,
         spp_limit: args.spp_limit,

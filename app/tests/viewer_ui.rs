@@ -118,6 +118,12 @@ fn estimator_sliders_and_menus_change_their_setting_and_restart() {
     let lane = h.state().output().lanes[0].settings;
     assert_eq!(lane.light_sampling, lumis::lights::LightSampling::Area);
 
+    assert_restarts(&mut h, "light selection", |h| {
+        pick_combo(h, "Light selection", "bvh")
+    });
+    let lane = h.state().output().lanes[0].settings;
+    assert_eq!(lane.light_selection, lumis::lights::LightSelection::Bvh);
+
     assert_restarts(&mut h, "max depth", |h| set_slider(h, "Max depth", 3.0));
     assert_eq!(h.state().output().lanes[0].settings.max_depth, Some(3));
 

@@ -5,7 +5,7 @@ use super::app::ViewerApp;
 use super::params::StrategyKind;
 use lumis::engine::Backend;
 use lumis::integrator::Heuristic;
-use lumis::lights::LightSampling;
+use lumis::lights::{LightSampling, LightSelection};
 use std::path::PathBuf;
 
 /// Largest spp limit the slider offers (0 = no limit).
@@ -153,6 +153,13 @@ impl ViewerApp {
                 LightSampling::Adaptive,
             ],
             |s| sampling_name(s).into(),
+        );
+        changed |= combo(
+            ui,
+            "Light selection",
+            &mut p.light_selection,
+            &[LightSelection::Power, LightSelection::Bvh],
+            |s| s.name().into(),
         );
         let mut depth = p.max_depth.unwrap_or(0);
         let scene_depth = self.desc.as_ref().map_or(0, |d| d.max_depth);

@@ -4,7 +4,7 @@
 use super::worker::LaneSpec;
 use lumis::engine::Backend;
 use lumis::integrator::{Heuristic, Settings, Strategy};
-use lumis::lights::LightSampling;
+use lumis::lights::{LightSampling, LightSelection};
 use lumis::sampler::SamplerKind;
 
 /// A direct-lighting strategy without its parameters (for menus).
@@ -53,6 +53,8 @@ pub struct RenderParams {
     pub heuristic: Heuristic,
     /// How points on lights are chosen.
     pub light_sampling: LightSampling,
+    /// How next-event estimation chooses a light.
+    pub light_selection: LightSelection,
     /// Overrides the scene's maximum path depth.
     pub max_depth: Option<i32>,
     /// Where the random numbers come from (`--sampler`).
@@ -75,6 +77,7 @@ impl Default for RenderParams {
             mix_weight: 0.5,
             heuristic: Heuristic::Power,
             light_sampling: LightSampling::SolidAngle,
+            light_selection: LightSelection::Power,
             max_depth: None,
             sampler: SamplerKind::Independent,
             spp_limit: 0,
@@ -101,6 +104,7 @@ impl RenderParams {
         Settings {
             strategy,
             light_sampling: self.light_sampling,
+            light_selection: self.light_selection,
             max_depth: self.max_depth,
             sampler: self.sampler,
             ..Settings::default()

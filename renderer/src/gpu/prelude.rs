@@ -12,8 +12,8 @@
 
 use super::scene::{
     BVH2_STACK_SIZE, CWBVH_STACK_SIZE, ChannelTag, FilterTag, FresnelTag, HeuristicTag,
-    LightSamplingTag, LightTag, MaterialTag, SamplerTag, ShapeTag, StrategyTag, TextureTag,
-    WrapTag, textures,
+    LightSamplingTag, LightSelectionTag, LightTag, MaterialTag, SamplerTag, ShapeTag, StrategyTag,
+    TextureTag, WrapTag, textures,
 };
 use crate::camera::filter;
 use crate::geometry::{mesh_attributes, primitive, ray, wide_bvh};
@@ -236,6 +236,7 @@ pub fn constants() -> Vec<Constant> {
     c.extend(tags(ChannelTag::ALL));
     c.extend(tags(FilterTag::ALL));
     c.extend(tags(SamplerTag::ALL));
+    c.extend(tags(LightSelectionTag::ALL));
     #[cfg(feature = "mutants")]
     c.extend(mutant_constants(crate::mutants::active()));
     c
@@ -446,5 +447,6 @@ mod tests {
         check(ChannelTag::ALL);
         check(FilterTag::ALL);
         check(SamplerTag::ALL);
+        check(LightSelectionTag::ALL);
     }
 }

@@ -61,6 +61,7 @@ const MODULES: &[Module] = &[
     module!("dielectric.wgsl"),
     module!("light.wgsl"),
     module!("light_sampler.wgsl"),
+    module!("light_bvh.wgsl"),
     module!("triangle_light.wgsl"),
     module!("polygon_light.wgsl"),
     module!("quad_light.wgsl"),
@@ -281,7 +282,10 @@ impl Features {
     fn wants(&self, name: &str) -> bool {
         let lights = self.has_lights;
         match name {
-            "spherical_triangle.wgsl" | "light_sampler.wgsl" | "bilinear.wgsl" => lights,
+            "spherical_triangle.wgsl"
+            | "light_sampler.wgsl"
+            | "light_bvh.wgsl"
+            | "bilinear.wgsl" => lights,
             "spherical_rectangle.wgsl" | "quad_light.wgsl" => lights && self.has_quad_light,
             "triangle_light.wgsl" => lights && self.has_triangle_light,
             "polygon_light.wgsl" => lights && self.has_polygon_light,

@@ -6,7 +6,7 @@ pub mod path;
 pub use mis::Heuristic;
 pub use path::{radiance, radiance_specialised};
 
-use crate::lights::LightSampling;
+use crate::lights::{LightSampling, LightSelection};
 use crate::sampler::SamplerKind;
 
 /// How each path vertex estimates the light arriving directly from emitters.
@@ -53,6 +53,9 @@ pub struct Settings {
     pub strategy: Strategy,
     /// How lights are sampled.
     pub light_sampling: LightSampling,
+    /// How next-event estimation chooses the light to sample (power, or a light BVH that
+    /// weighs the receiver's position and normal).
+    pub light_selection: LightSelection,
     /// Overrides the scene's `max_depth` (`-1` = unlimited) when set.
     pub max_depth: Option<i32>,
     /// Path length (in segments) from which Russian roulette may end paths.
@@ -68,6 +71,7 @@ impl Default for Settings {
                 heuristic: Heuristic::Power,
             },
             light_sampling: LightSampling::SolidAngle,
+            light_selection: LightSelection::Power,
             max_depth: None,
             rr_depth: 5,
             sampler: SamplerKind::Independent,

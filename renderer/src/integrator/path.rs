@@ -77,7 +77,7 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
         let Some(hit) = scene.accel.intersect(&ray) else {
             if let Some(bg) = scene.background_light {
                 let light = &scene.lights[bg as usize];
-                let w = emission_weight(scene, weight_rule, bg, || {
+                let w = emission_weight(scene, settings, weight_rule, bg, prev_p, prev_ns, || {
                     light.pdf(
                         prev_p,
                         prev_ns,
@@ -96,16 +96,24 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
             let light = &scene.lights[prim.light as usize];
             let le = scene.emitted(prim.light, &hit, ray.d);
             if le != Vec3::ZERO {
-                let w = emission_weight(scene, weight_rule, prim.light, || {
-                    light.pdf(
-                        prev_p,
-                        prev_ns,
-                        ray.d.normalize(),
-                        hit.p,
-                        hit.n,
-                        settings.light_sampling,
-                    )
-                });
+                let w = emission_weight(
+                    scene,
+                    settings,
+                    weight_rule,
+                    prim.light,
+                    prev_p,
+                    prev_ns,
+                    || {
+                        light.pdf(
+                            prev_p,
+                            prev_ns,
+                            ray.d.normalize(),
+                            hit.p,
+                            hit.n,
+                            settings.light_sampling,
+                        )
+                    },
+                );
                 l += beta * le * w;
             }
         }
@@ -251,20 +259,20 @@ fn same_side(w: Vec3, n: Vec3, local_z: f32) -> bool {
 
 /// Weight of emission from light `light` found by a BSDF-sampled ray; `light_pdf` is the
 /// solid-angle pdf with which light sampling at the previous vertex would have chosen the same
-/// direction (light selection not included).
+/// direction (light selection not included); `prev_p` and `prev_ns` are that vertex's point and
+/// shading normal, which the selection probability depends on (with the light BVH).
 #[inline]
+#[allow(clippy::too_many_arguments)]
 fn emission_weight(
     scene: &Scene,
+    settings: &Settings,
     rule: EmissionWeight,
     light: u32,
+    prev_p: Vec3,
+    prev_ns: Vec3,
     light_pdf: impl FnOnce() -> f32,
 ) -> f32 {
-    let pmf = || {
-        scene
-            .light_sampler
-            .as_ref()
-            .map_or(0.0, |s| s.pmf(light as usize))
-    };
+    let pmf = || scene.light_pmf(settings.light_selection, prev_p, prev_ns, light as usize);
     match rule {
         EmissionWeight::One => 1.0,
         EmissionWeight::Zero => 0.0,
@@ -280,7 +288,7 @@ fn emission_weight(
     }
 }
 
-/// Next-event estimation: picks a light by power, samples it, traces a shadow ray, and returns the
+/// Next-event estimation: picks a light (by power or by the light BVH at the hit), samples it, traces a shadow ray, and returns the
 /// contribution (without the path throughput). `mixture` holds the mixture's light probability
 /// when this is the light branch of the one-sample mixture; `transmits` lets the light lie below
 /// the surface.
@@ -299,10 +307,10 @@ fn direct_light<const TRANSMISSION: bool>(
     transmits: bool,
     shading: bool,
 ) -> Vec3 {
-    let Some(sampler) = &scene.light_sampler else {
+    let Some((index, pmf)) = scene.select_light(settings.light_selection, hit.p, frame.n, u_light)
+    else {
         return Vec3::ZERO;
     };
-    let (index, pmf) = sampler.sample(u_light);
     let Some(ls) = scene.sample_light(index, hit.p, frame.n, u, settings.light_sampling) else {
         return Vec3::ZERO;
     };

@@ -14,8 +14,8 @@ use crate::geometry::sphere::Sphere;
 use crate::geometry::{Accel, polygon};
 use crate::lights::light_sampler::selection_radiance;
 use crate::lights::{
-    BackgroundLight, DiskLight, EmissionTexture, EnvmapLight, Light, LightSampler, PolygonLight,
-    QuadLight, SphereLight, TriangleLight,
+    BackgroundLight, DiskLight, EmissionTexture, EnvmapLight, Light, LightBvh, LightSampler,
+    PolygonLight, QuadLight, SphereLight, TriangleLight,
 };
 use crate::materials::textured::MaterialTextures;
 use crate::materials::{Conductor, ConductorFresnel, Dielectric, Diffuse, Material, Mix, Plastic};
@@ -46,6 +46,9 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Power-proportional light selection; `None` when nothing emits.
     pub light_sampler: Option<LightSampler>,
+    /// Light selection by importance at the receiver ([`crate::lights::LightSelection::Bvh`]);
+    /// `None` exactly where `light_sampler` is.
+    pub light_bvh: Option<LightBvh>,
     /// Index of the background light, if the background is not black.
     pub background_light: Option<u32>,
     /// Shading normals and texture coordinates of the triangles that have them.
@@ -537,6 +540,7 @@ impl Scene {
             lights.len() as u32 - 1
         });
         let light_sampler = LightSampler::new(&lights);
+        let light_bvh = LightBvh::new(&lights);
         Ok(Scene {
             camera,
             max_depth: desc.max_depth,
@@ -546,6 +550,7 @@ impl Scene {
             material_names,
             lights,
             light_sampler,
+            light_bvh,
             background_light,
             attributes,
             material_textures,

@@ -21,6 +21,7 @@ mod parse_mesh;
 mod parse_mesh_file;
 mod parse_shapes;
 mod parse_texture;
+mod select_light;
 pub mod surface;
 mod walk;
 

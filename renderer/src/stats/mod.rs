@@ -8,7 +8,8 @@
 //! * [`gamma`]: the regularized incomplete gamma function and the χ² tail.
 //! * [`chi2`]: the test itself, [`ChiSquareTest`].
 //! * [`histogram_image`]: observed | expected | residual pictures.
-//! * Adapters: [`warp_sampler`], [`bsdf_sampler`], [`light_directions`], [`mixture_sampler`].
+//! * Adapters: [`warp_sampler`], [`bsdf_sampler`], [`light_directions`], [`mixture_sampler`],
+//!   [`selected_lights`] (light selection composed with light sampling).
 //! * [`suite`]: every sampler of the project, by name.
 
 pub mod bsdf_sampler;
@@ -21,6 +22,7 @@ pub mod mixture_sampler;
 pub mod precomputed;
 pub mod quadrature;
 pub mod sampler;
+pub mod selected_lights;
 pub mod suite;
 pub mod warp_sampler;
 
@@ -32,4 +34,5 @@ pub use light_directions::LightDirections;
 pub use mixture_sampler::Mixture;
 pub use precomputed::Precomputed;
 pub use sampler::{DirectionSample, DirectionalSampler};
+pub use selected_lights::SelectedLightDirections;
 pub use warp_sampler::Warp;

@@ -11,6 +11,7 @@ use super::bsdf_sampler::BsdfSampler;
 use super::light_directions::LightDirections;
 use super::mixture_sampler::Mixture;
 use super::sampler::DirectionalSampler;
+use super::selected_lights::{self, SelectedLightDirections};
 use super::warp_sampler::Warp;
 use crate::lights::LightSampling;
 use crate::materials::{Conductor, ConductorFresnel, Dielectric, Diffuse, Material, Plastic};
@@ -291,6 +292,36 @@ pub fn light_cases() -> Vec<Case> {
     out
 }
 
+/// Light selection composed with light sampling on [`selected_lights::several_lights_scene`]
+/// from the origin: the BVH with the receiver normal +z, tilted, and none, with a transmitting
+/// receiver's view of the light below (the |cos| normal term; same +z normal, the light below
+/// counts because the sampler does not know the BSDF), with a background (the infinite lights'
+/// share), and power selection for comparison.
+pub fn light_selection_cases() -> Vec<Case> {
+    use crate::lights::LightSelection::{Bvh, Power};
+    let tilted = Vec3::new(0.6, -0.3, 0.74).normalize();
+    let setups = [
+        ("bvh/normal_z", Bvh, Vec3::Z, false),
+        ("bvh/normal_tilted", Bvh, tilted, false),
+        ("bvh/no_normal", Bvh, Vec3::ZERO, false),
+        ("bvh/background", Bvh, Vec3::Z, true),
+        ("power/normal_z", Power, Vec3::Z, false),
+    ];
+    setups
+        .into_iter()
+        .map(|(name, selection, ns, background)| {
+            let sampler = SelectedLightDirections {
+                scene: selected_lights::several_lights_scene(background),
+                selection,
+                p: Vec3::ZERO,
+                ns,
+                method: LightSampling::SolidAngle,
+            };
+            case(format!("light_selection/{name}"), sampler)
+        })
+        .collect()
+}
+
 /// A test environment map: name, width, height, texels (row 0 at the zenith).
 pub type TestMap = (&'static str, usize, usize, Vec<Vec3>);
 
@@ -395,6 +426,7 @@ pub fn all_cases() -> Vec<Case> {
     v.extend(light_cases());
     v.extend(envmap_cases());
     v.extend(mixture_cases());
+    v.extend(light_selection_cases());
     v
 }
 

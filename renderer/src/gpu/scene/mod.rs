@@ -26,7 +26,8 @@ pub use bvh::{BVH2_STACK_SIZE, CWBVH_STACK_SIZE};
 pub use lights::{GpuLight, LightTag};
 pub use materials::{FresnelTag, GpuMaterial, MaterialTag};
 pub use params::{
-    FilterTag, GpuParams, HeuristicTag, LightSamplingTag, PARAMS_STRIDE, SamplerTag, StrategyTag,
+    FilterTag, GpuParams, HeuristicTag, LightSamplingTag, LightSelectionTag, PARAMS_STRIDE,
+    SamplerTag, StrategyTag,
 };
 pub use shapes::{GpuPrim, ShapeTag};
 pub use textures::{ChannelTag, TextureTag, WrapTag};
@@ -59,6 +60,7 @@ pub struct GpuScene {
     texels_view: wgpu::TextureView,
     light_cdf: u32,
     light_pmf: u32,
+    light_bvh: u32,
     attr: AttrOffsets,
     textures: u32,
     layout: wgpu::BindGroupLayout,
@@ -77,6 +79,8 @@ pub(crate) struct Records {
     pub(crate) tables: Vec<f32>,
     pub(crate) light_cdf: u32,
     pub(crate) light_pmf: u32,
+    /// Offset of the light BVH in `tables`, or `NONE`.
+    pub(crate) light_bvh: u32,
     /// Where the attribute arrays start in `vertex_data`.
     pub(crate) attr: AttrOffsets,
     /// Where the texture records start in `vertex_data`.
@@ -109,6 +113,12 @@ impl Records {
             &scene_textures.emission,
         );
         let (light_cdf, light_pmf) = lights::selection(scene, &mut tables);
+        let light_bvh = scene
+            .light_bvh
+            .as_ref()
+            .map_or(crate::geometry::primitive::NONE, |b| {
+                b.append_tables(&mut tables)
+            });
         let attr = attributes::encode(&scene.attributes, &mut vertex_data);
         let textures = vertex_data.len() as u32;
         vertex_data.extend_from_slice(&scene_textures.records);
@@ -127,6 +137,7 @@ impl Records {
             tables,
             light_cdf,
             light_pmf,
+            light_bvh,
             attr,
             textures,
             texels: scene_textures.texels,
@@ -270,6 +281,7 @@ impl GpuScene {
             texels_view,
             light_cdf: r.light_cdf,
             light_pmf: r.light_pmf,
+            light_bvh: r.light_bvh,
             attr: r.attr,
             textures: r.textures,
             layout,

@@ -6,7 +6,7 @@ use crate::camera::PixelFilter;
 use crate::geometry::primitive::NONE;
 use crate::gpu::prelude::gpu_tags;
 use crate::integrator::{Heuristic, Settings, Strategy};
-use crate::lights::LightSampling;
+use crate::lights::{LightSampling, LightSelection};
 use crate::sampler::SamplerKind;
 use bytemuck::{Pod, Zeroable};
 
@@ -67,6 +67,12 @@ pub struct GpuParams {
     /// in `sampler.wgsl` is cheap next to the Sobol draw itself. It also takes the slot that
     /// rounded the struct to a multiple of 16 bytes, so the size is unchanged.
     pub sampler: u32,
+    /// Light selection ([`LightSelectionTag`]).
+    pub light_selection: u32,
+    /// Offset of the light BVH in the tables (`LightBvh::append_tables`), or `NONE`.
+    pub light_bvh: u32,
+    /// Rounds the struct to the 16 bytes WGSL rounds `Params` to.
+    pub _pad: [u32; 2],
 }
 
 /// Uniform slots are this far apart (the largest `min_uniform_buffer_offset_alignment` wgpu
@@ -129,6 +135,26 @@ impl LightSamplingTag {
             LightSampling::SolidAngle => LightSamplingTag::SolidAngle,
             LightSampling::SolidAngleCosine => LightSamplingTag::SolidAngleCosine,
             LightSampling::Adaptive => LightSamplingTag::Adaptive,
+        }
+    }
+}
+
+gpu_tags! {
+    /// [`GpuParams::light_selection`], in the variant order of [`LightSelection`].
+    pub enum LightSelectionTag {
+        /// [`LightSelection::Power`].
+        Power => "LIGHT_SELECTION_POWER",
+        /// [`LightSelection::Bvh`].
+        Bvh => "LIGHT_SELECTION_BVH",
+    }
+}
+
+impl LightSelectionTag {
+    /// The tag of `s`.
+    pub fn of(s: LightSelection) -> LightSelectionTag {
+        match s {
+            LightSelection::Power => LightSelectionTag::Power,
+            LightSelection::Bvh => LightSelectionTag::Bvh,
         }
     }
 }
@@ -214,6 +240,9 @@ impl GpuScene {
             filter_stddev,
             filter_radius,
             sampler: SamplerTag::of(settings.sampler).gpu_tag(),
+            light_selection: LightSelectionTag::of(settings.light_selection).gpu_tag(),
+            light_bvh: self.light_bvh,
+            _pad: [0; 2],
         }
     }
 }
@@ -274,6 +303,8 @@ mod tests {
             ("filter_stddev", offset_of!(GpuParams, filter_stddev)),
             ("filter_radius", offset_of!(GpuParams, filter_radius)),
             ("sampler", offset_of!(GpuParams, sampler)),
+            ("light_selection", offset_of!(GpuParams, light_selection)),
+            ("light_bvh", offset_of!(GpuParams, light_bvh)),
         ];
         let wgsl: Vec<(&str, usize)> = members
             .iter()
@@ -290,6 +321,17 @@ mod tests {
             let kind = [SamplerKind::Independent, SamplerKind::Sobol][i];
             assert_eq!(SamplerTag::of(kind), tag);
             assert_eq!(kind as u32, tag.gpu_tag());
+        }
+    }
+
+    /// The light-selection tags follow [`LightSelection`]'s variant order, so the `switch`es of
+    /// `light_bvh.wgsl` are its `match`es.
+    #[test]
+    fn light_selection_tags_follow_the_variant_order() {
+        for (i, &(tag, _)) in LightSelectionTag::ALL.iter().enumerate() {
+            let s = [LightSelection::Power, LightSelection::Bvh][i];
+            assert_eq!(LightSelectionTag::of(s), tag);
+            assert_eq!(s as u32, tag.gpu_tag());
         }
     }
 }

@@ -38,6 +38,10 @@ struct Params {
     // The sampler (SAMPLER_*, `sampler.wgsl`, which fails an unknown one); also rounds the
     // struct to the 16 bytes a uniform's size is a multiple of, as `GpuParams` does.
     sampler: u32,
+    // Light selection (LIGHT_SELECTION_*, `light_bvh.wgsl`) and the light BVH's offset in
+    // `tables` (NONE when nothing can be sampled); the struct's size rounds up to 16 bytes.
+    light_selection: u32,
+    light_bvh: u32,
 }
 
 // The camera's pixel filter (`film_position` in `filter.wgsl`; an unknown tag fails there).

@@ -15,8 +15,9 @@ const EW_MIS: u32 = 2u;
 const EW_MIXTURE: u32 = 3u;
 
 // Weight of emission from light `light` found by a BSDF-sampled ray (`emission_weight`);
-// `light_pdf` is the solid-angle pdf light sampling would have had for the direction.
-fn emission_weight(rule: u32, p_bsdf: f32, light: u32, light_pdf: f32) -> f32 {
+// `light_pdf` is the solid-angle pdf light sampling would have had for the direction; `prev_p`,
+// `prev_ns`: the previous vertex, which the light BVH's selection probability depends on.
+fn emission_weight(rule: u32, p_bsdf: f32, light: u32, light_pdf: f32, prev_p: vec3f, prev_ns: vec3f) -> f32 {
     if rule == EW_ONE {
         return 1.0;
     } else if rule == EW_ZERO {
@@ -25,7 +26,7 @@ fn emission_weight(rule: u32, p_bsdf: f32, light: u32, light_pdf: f32) -> f32 {
     var pmf = 0.0;
 // #if HAS_LIGHTS
     if params.light_pmf != NONE {
-        pmf = light_sampler_pmf(params.light_pmf, light);
+        pmf = light_select_pmf(prev_p, prev_ns, light);
     }
 // #endif
     let p_light = pmf * light_pdf;
@@ -57,7 +58,10 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
 // #else
 fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material, u_light: f32, u: vec2f, mixture_w: f32) -> vec3f {
 // #endif
-    let choice = light_sampler_sample(params.light_cdf, params.light_pmf, params.n_lights, u_light);
+    let choice = light_select(hit.p, frame.n, u_light);
+    if !(choice.pmf > 0.0) {
+        return vec3f(0.0);
+    }
     let light = lights[choice.index];
     var ls = light_sample(light, hit.p, frame.n, u, params.light_sampling);
 // #if HAS_TEXTURES
@@ -138,7 +142,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
                     lpdf = light_pdf(bg, prev_p, prev_ns, ray.d, vec3f(0.0), vec3f(0.0), params.light_sampling);
                 }
 // #endif
-                let w = emission_weight(rule, p_bsdf, params.background, lpdf);
+                let w = emission_weight(rule, p_bsdf, params.background, lpdf, prev_p, prev_ns);
                 l += beta * light_radiance(bg, vec3f(0.0), ray.d) * w;
             }
 // #endif
@@ -159,7 +163,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
                     lpdf = light_pdf(light, prev_p, prev_ns, normalize_glam(ray.d), hit.p, hit.n, params.light_sampling);
                 }
 // #endif
-                l += beta * le * emission_weight(rule, p_bsdf, light_index, lpdf);
+                l += beta * le * emission_weight(rule, p_bsdf, light_index, lpdf, prev_p, prev_ns);
             }
         }
         if max_depth >= 0 && depth >= max_depth {
