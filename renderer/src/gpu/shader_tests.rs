@@ -546,3 +546,35 @@ mod texture_specialisation {
         }
     }
 }
+
+/// `check_param_tags` (`bindings.wgsl`) knows every tag `gpu/scene/params.rs` can write.
+mod param_tags {
+    use crate::gpu::scene::params::{HeuristicTag, LightSamplingTag, StrategyTag};
+
+    /// Every tag of the strategy, heuristic and light-sampling enums is a case of the
+    /// validation's `switch`, so a new variant cannot reach the GPU as "unknown" (the shader then
+    /// flags every sample non-finite). Catches the omission that `LightSampling::Adaptive` had
+    /// until 2026-12-03: every GPU render with `--light-sampling adaptive` was NaN, while its
+    /// χ² and parity tests (which call the light functions directly) passed.
+    #[test]
+    fn check_param_tags_accepts_every_tag() {
+        let text = include_str!("shaders/bindings.wgsl");
+        let start = text
+            .find("fn check_param_tags(")
+            .expect("check_param_tags in bindings.wgsl");
+        let body = &text[start..];
+        let body = &body[..body.find("\n}\n").expect("end of check_param_tags")];
+        let names = StrategyTag::ALL
+            .iter()
+            .map(|t| t.1)
+            .chain(HeuristicTag::ALL.iter().map(|t| t.1))
+            .chain(LightSamplingTag::ALL.iter().map(|t| t.1));
+        for name in names {
+            assert!(
+                body.split(|c: char| !c.is_ascii_alphanumeric() && c != '_')
+                    .any(|w| w == name),
+                "check_param_tags does not accept {name}"
+            );
+        }
+    }
+}

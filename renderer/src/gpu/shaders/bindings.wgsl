@@ -65,7 +65,8 @@ fn check_param_tags(p: Params) {
         }
     }
     switch p.light_sampling {
-        case LIGHT_SAMPLING_AREA, LIGHT_SAMPLING_SOLID_ANGLE, LIGHT_SAMPLING_SOLID_ANGLE_COSINE: {}
+        case LIGHT_SAMPLING_AREA, LIGHT_SAMPLING_SOLID_ANGLE, LIGHT_SAMPLING_SOLID_ANGLE_COSINE,
+            LIGHT_SAMPLING_ADAPTIVE: {}
         default: {
             _ = unknown_tag();
         }
