@@ -36,7 +36,7 @@ use lumis::gpu::kernel::run_snippet;
 use lumis::gpu::scene::SamplerTag;
 use lumis::integrator::Settings;
 use lumis::rng::Rng;
-use lumis::sampler::owen::{hash3, mix64, owen_scramble};
+use lumis::sampler::owen::{hash3, hash32, mix64, owen_scramble};
 use lumis::sampler::sobol::sobol_1;
 use lumis::sampler::zsobol::permute_index;
 use lumis::sampler::{Sampler, SamplerKind, morton::morton_encode};
@@ -265,8 +265,8 @@ fn every_dimension_matches_the_cpu_bit_for_bit() {
     );
 }
 
-/// The building blocks on random 32-bit inputs (seed 19), bit for bit: `mix64`, `hash3`,
-/// `owen_scramble`, `sobol_1` (all 32 columns of the prelude's generator matrix are reached),
+/// The building blocks on random 32-bit inputs (seed 19), bit for bit: `mix64`, `hash3`, `hash32`,
+/// `owen_scramble`, `sobol_1` (inputs with each single bit set reach every column),
 /// `morton_encode` and `permute_index` over 12 base-4 digits. A failure here says which block is
 /// wrong where the draws above say only which dimension.
 #[test]
@@ -295,7 +295,7 @@ fn building_blocks_match_bit_for_bit() {
          let m = mix64(a.xy);
          outp(0u, bitcast<vec4f>(vec4<u32>(m, hash3(a.x, a.y, a.zw), owen_scramble(a.x, a.y))));
          outp(1u, bitcast<vec4f>(vec4<u32>(sobol_1(a.x), morton_encode(a.x, a.y),
-             permute_index(a.x & 0xffffffu, 12u, a.zw), 0u)));",
+             permute_index(a.x & 0xffffffu, 12u, a.z), hash32(a.w))));",
         &inputs,
         1,
         2,
@@ -309,8 +309,9 @@ fn building_blocks_match_bit_for_bit() {
         "sobol_1",
         "morton_encode",
         "permute_index",
+        "hash32",
     ];
-    let mut wrong = [0usize; 7];
+    let mut wrong = [0usize; 8];
     let mut examples = Vec::new();
     for (w, o) in words.iter().zip(out.chunks(2)) {
         let key = (w[3] as u64) << 32 | w[2] as u64;
@@ -322,10 +323,11 @@ fn building_blocks_match_bit_for_bit() {
             owen_scramble(w[0], w[1]),
             sobol_1(w[0]),
             morton_encode(w[0], w[1]),
-            permute_index(w[0] & 0xff_ffff, 12, key),
+            permute_index(w[0] & 0xff_ffff, 12, w[2]),
+            hash32(w[3]),
         ];
         let got: Vec<u32> = o.iter().flatten().map(|v| v.to_bits()).collect();
-        for k in 0..7 {
+        for k in 0..8 {
             if got[k] != want[k] {
                 wrong[k] += 1;
                 if examples.len() < 8 {

@@ -19,7 +19,7 @@ use crate::camera::filter;
 use crate::geometry::{mesh_attributes, primitive, ray, wide_bvh};
 use crate::lights::{polygon, sphere};
 use crate::materials::{coat_albedo, ggx, mix, plastic_textured};
-use crate::sampler::{dim, owen, sobol, zsobol};
+use crate::sampler::{dim, owen, zsobol};
 use crate::sampling::{self, spherical_rectangle};
 use crate::textures::LUMINANCE_WEIGHTS;
 
@@ -169,10 +169,11 @@ pub fn constants() -> Vec<Constant> {
         u32c("MIX64_M1_HI", (owen::MIX64_M1 >> 32) as u32),
         u32c("MIX64_M2_LO", owen::MIX64_M2 as u32),
         u32c("MIX64_M2_HI", (owen::MIX64_M2 >> 32) as u32),
+        u32c("HASH32_M1", owen::HASH32_M1),
+        u32c("HASH32_M2", owen::HASH32_M2),
         u32c("OWEN_LK_MUL_A", owen::LK_MUL_A),
         u32c("OWEN_LK_MUL_B", owen::LK_MUL_B),
         u32c("OWEN_LK_MUL_C", owen::LK_MUL_C),
-        u32a("SOBOL_1_COLUMNS", &sobol::SOBOL_1_COLUMNS),
         u32a("ZSOBOL_PERMUTATIONS", &zsobol::PERMUTATION_WORDS),
         u32c("ZSOBOL_EPOCH_LOG2", zsobol::EPOCH_LOG2),
         u32c("ZSOBOL_TILE_LOG2", zsobol::TILE_LOG2),

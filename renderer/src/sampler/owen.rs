@@ -34,6 +34,25 @@ pub fn hash3(a: u32, b: u32, c: u64) -> u32 {
     (mix64(mix64(((a as u64) << 32) | b as u64) ^ c) >> 32) as u32
 }
 
+/// [`hash32`]'s first multiplier (public for the GPU's twin, as the second).
+pub const HASH32_M1: u32 = 0x7feb_352d;
+/// [`hash32`]'s second multiplier.
+pub const HASH32_M2: u32 = 0x846c_a68b;
+
+/// A 32-bit integer hash (Chris Wellons' "lowbias32" from his hash prospector, 2020: two
+/// multiplies, low avalanche bias). A bijection of `u32`. The ZSobol sampler's per-digit
+/// permutation choice uses it, twelve times per dimension, where two [`mix64`] each (on the GPU,
+/// 64-bit arithmetic emulated on `u32` pairs) made Sobol samples much dearer than independent
+/// ones (`docs/performance.md`, "Sobol sampler cost").
+#[inline]
+pub fn hash32(mut x: u32) -> u32 {
+    x ^= x >> 16;
+    x = x.wrapping_mul(HASH32_M1);
+    x ^= x >> 15;
+    x = x.wrapping_mul(HASH32_M2);
+    x ^ (x >> 16)
+}
+
 /// First constant of the Laine–Karras-style permutation (even multipliers: `x ^ x·c` is
 /// invertible); public, as the next two, for the GPU's twin.
 pub const LK_MUL_A: u32 = 0x3d20_adea;

@@ -15,6 +15,15 @@ fn hash3(a: u32, b: u32, c: vec2<u32>) -> u32 {
     return mix64(mix64(vec2<u32>(b, a)) ^ c).y;
 }
 
+// `hash32`: Wellons' lowbias32, multipliers from the prelude.
+fn hash32(v: u32) -> u32 {
+    var x = v ^ (v >> 16u);
+    x *= HASH32_M1;
+    x ^= x >> 15u;
+    x *= HASH32_M2;
+    return x ^ (x >> 16u);
+}
+
 // `owen_scramble`: the nested uniform scramble of the 32-bit fixed-point value v (Laine–Karras
 // style: reverse, a permutation whose carries only flow upwards, reverse back).
 fn owen_scramble(v: u32, seed: u32) -> u32 {

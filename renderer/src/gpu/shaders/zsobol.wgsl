@@ -1,7 +1,8 @@
 // The ZSobol sampler, bit for bit the twin of `sampler/zsobol.rs`: the sample's Sobol index is
 // the pixel's Morton code within its 64×64 tile above the sample's index within its epoch of
 // 4096; the seed, the tile and the epoch go into a 64-bit key (vec2<u32>(lo, hi), `u64.wgsl`)
-// that seeds each dimension's base-4 index permutation and Owen scrambles. The permutation table
+// that seeds each dimension's base-4 index permutation (folded to 32 bits, its digits chosen by
+// `hash32`) and Owen scrambles. The permutation table
 // is the prelude's ZSOBOL_PERMUTATIONS (the Rust table, each permutation packed 2 bits a digit).
 // The inverse (`unpermute_index`) has no twin: only the CPU's tests need it.
 
@@ -10,13 +11,13 @@ var<private> zsobol_key: vec2<u32>;
 var<private> zsobol_index: u32;
 
 // `digit_permutation`, returned packed: digit d maps to bits 2d..2d+1.
-fn zsobol_digit_permutation(higher: u32, position: u32, key: vec2<u32>) -> u32 {
-    return ZSOBOL_PERMUTATIONS[hash3(higher, position, key) % 24u];
+fn zsobol_digit_permutation(higher: u32, position: u32, key: u32) -> u32 {
+    return ZSOBOL_PERMUTATIONS[hash32(((higher << 4u) | position) ^ key) % 24u];
 }
 
 // `permute_index`: the low 2·digits bits of index permuted digit by digit, from the top, each
 // digit's permutation chosen by key, its position and the original digits above it.
-fn permute_index(index: u32, digits: u32, key: vec2<u32>) -> u32 {
+fn permute_index(index: u32, digits: u32, key: u32) -> u32 {
     var out = 0u;
     for (var position = digits; position > 0u; ) {
         position -= 1u;
@@ -40,7 +41,8 @@ fn zsobol_init(seed: u32, x: u32, y: u32, sample: u32) {
 
 // `ZSobolSampler::index_for`.
 fn zsobol_index_for(dim: u32) -> u32 {
-    return permute_index(zsobol_index, ZSOBOL_INDEX_DIGITS, zsobol_key ^ mix64(vec2<u32>(dim, 0u)));
+    let k = zsobol_key ^ mix64(vec2<u32>(dim, 0u));
+    return permute_index(zsobol_index, ZSOBOL_INDEX_DIGITS, k.x ^ k.y);
 }
 
 // `ZSobolSampler::seed_for`.
