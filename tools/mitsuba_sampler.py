@@ -5,6 +5,9 @@ Usage: python3 tools/mitsuba_sampler.py SAMPLER SCENE.json SPP VARIANT OUT.exr S
 SAMPLER: independent, ldsampler, multijitter, orthogonal, stratified (Mitsuba 3 plugin names).
 For issue 19's "Mitsuba with its best sampler" comparison (tools/mitsuba_vs_lumis.sh); the
 converter itself fixes `independent`, the sampler the references were made with.
+With MI_CLOCK=cpu the reported `seconds` are the CPU seconds of the process (all its threads)
+during mi.render instead of wall seconds: on a machine shared with other work, CPU time is what
+both renderers can be compared by (tools/mitsuba_vs_lumis.sh measures lumis' the same way).
 """
 import importlib.util
 import os
@@ -27,5 +30,11 @@ def with_sampler(*args, **kwargs):
 
 
 s2m.scene_to_dict = with_sampler
+if os.environ.get("MI_CLOCK") == "cpu":
+    import time
+    import types
+
+    # The converter times mi.render with time.perf_counter(); give it the process CPU clock.
+    s2m.time = types.SimpleNamespace(perf_counter=time.process_time)
 sys.argv = [CONVERTER] + sys.argv[2:]
 s2m.main()

@@ -1,48 +1,69 @@
 #!/usr/bin/env bash
 # Issue 19's targets: lumis against Mitsuba 3 llvm_ad_rgb on the same cores, alternating runs.
-# Per scene and seed, runs lumis' default MIS, lumis with the options in LUMIS_BEST, and Mitsuba
-# with each sampler of MI_SAMPLERS; prints relMSE against the stored reference, seconds (lumis:
-# the whole `lumis render` process; Mitsuba: mi.render only, as scene_to_mitsuba.py reports) and
-# the equal-error efficiency 1/(relMSE·seconds) relative to Mitsuba's independent sampler.
+# Per scene and seed, runs each lumis configuration of LUMIS_CONFIGS (MIS) and Mitsuba with each
+# sampler of MI_SAMPLERS; prints relMSE against the stored reference, seconds and the equal-error
+# efficiency 1/(relMSE·seconds) relative to Mitsuba's independent sampler.
+# Seconds: lumis the whole `lumis render` process (load, build, render, write); Mitsuba mi.render
+# only, as scene_to_mitsuba.py reports. CLOCK=wall (default) times wall seconds, for an idle
+# machine; CLOCK=cpu the CPU seconds of all threads (lumis: perf stat task-clock of the process;
+# Mitsuba: process time during mi.render), which other work on a shared machine inflates far less.
 # Usage: tools/mitsuba_vs_lumis.sh [SEEDS] [SPP] [OUT_DIR]
-# Needs `pip install mitsuba==3.9.1 numpy`, Debian's libllvm19 and ../shared/tools.
+#   LUMIS_CONFIGS="name:options;name:options" (default: default settings, and the best found)
+#   LUMIS=path/to/lumis (default: build and use target/release/lumis)
+# Needs `pip install mitsuba==3.9.1 numpy`, Debian's libllvm19 and ../shared/tools; CLOCK=cpu
+# needs perf (Debian's linux-perf).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seeds=${1:-3}
 spp=${2:-256}
 out=${3:-out/mitsuba_vs_lumis}
-best=${LUMIS_BEST:---light-selection bvh --light-sampling adaptive}
+clock=${CLOCK:-wall}
+configs=${LUMIS_CONFIGS:-"default:;best:--sampler sobol --light-selection bvh --light-sampling adaptive"}
 samplers=${MI_SAMPLERS:-independent ldsampler multijitter}
+scenes=${SCENES:-seed_cornell veach_mis}
 mkdir -p "$out"
-cargo build --release -q -p lumis-app
-lumis=${CARGO_TARGET_DIR:-target}/release/lumis
+if [ -z "${LUMIS:-}" ]; then
+    cargo build --release -q -p lumis-app
+    LUMIS=${CARGO_TARGET_DIR:-target}/release/lumis
+fi
+export MI_CLOCK=$clock
 rows=$out/rows.txt
 : > "$rows"
-for scene in seed_cornell veach_mis; do
+IFS=';' read -r -a config_list <<< "$configs"
+for scene in $scenes; do
     ref=tests/data/refs/$scene.exr
     # Compile and cache Mitsuba's kernels once, outside the timing.
     python3 tools/mitsuba_sampler.py independent "tests/data/scenes/$scene.json" 4 llvm_ad_rgb "$out/warm.exr" 0 >/dev/null
     for ((seed = 0; seed < seeds; seed++)); do
-        for cfg in "lumis_default:" "lumis_best:$best"; do
-            name=${cfg%%:*}
+        for cfg in "${config_list[@]}"; do
+            name=lumis_${cfg%%:*}
             opts=${cfg#*:}
             img="$out/${scene}_${name}_$seed.exr"
-            t0=$(date +%s.%N)
             # shellcheck disable=SC2086
-            $lumis render "tests/data/scenes/$scene.json" --spp "$spp" --seed "$seed" --strategy mis $opts -o "$img" >/dev/null
-            t1=$(date +%s.%N)
-            r=$($lumis compare "$img" "$ref" | sed 's/relmse=\([^ ]*\).*/\1/')
-            echo "$scene $name $seed $r $(python3 -c "print($t1 - $t0)")" >> "$rows"
+            if [ "$clock" = cpu ]; then
+                secs=$(perf stat -x, -e task-clock "$LUMIS" render "tests/data/scenes/$scene.json" \
+                    --spp "$spp" --seed "$seed" --strategy mis $opts -o "$img" 2>&1 >/dev/null |
+                    grep task-clock | cut -d, -f1 | python3 -c "import sys; print(float(sys.stdin.read()) / 1000)")
+            else
+                t0=$(date +%s.%N)
+                "$LUMIS" render "tests/data/scenes/$scene.json" --spp "$spp" --seed "$seed" \
+                    --strategy mis $opts -o "$img" >/dev/null
+                t1=$(date +%s.%N)
+                secs=$(python3 -c "print($t1 - $t0)")
+            fi
+            r=$("$LUMIS" compare "$img" "$ref" | sed 's/relmse=\([^ ]*\).*/\1/')
+            echo "$scene $name $seed $r $secs" >> "$rows"
         done
         for s in $samplers; do
             img="$out/${scene}_mi_${s}_$seed.exr"
             secs=$(python3 tools/mitsuba_sampler.py "$s" "tests/data/scenes/$scene.json" "$spp" llvm_ad_rgb "$img" "$seed" |
                 python3 -c "import json,sys; print(json.load(sys.stdin)['seconds'])")
-            r=$($lumis compare "$img" "$ref" | sed 's/relmse=\([^ ]*\).*/\1/')
+            r=$("$LUMIS" compare "$img" "$ref" | sed 's/relmse=\([^ ]*\).*/\1/')
             echo "$scene mitsuba_$s $seed $r $secs" >> "$rows"
         done
     done
 done
+echo "clock: $clock; spp $spp; seeds 0..$((seeds - 1)); relMSE the mean, seconds the median"
 python3 - "$rows" <<'PY'
 import collections, statistics, sys
 rows = collections.defaultdict(list)

@@ -2,6 +2,7 @@
 
 mod bench_cmd;
 mod cli;
+mod cpu_check;
 mod export_cmd;
 mod merge_cmd;
 mod render_cmd;
@@ -11,6 +12,10 @@ use clap::Parser;
 use clap::error::ErrorKind;
 
 fn main() {
+    if let Some(e) = cpu_check::check() {
+        eprintln!("lumis: {e}");
+        std::process::exit(1);
+    }
     let args = match cli::Cli::try_parse() {
         Ok(args) => args,
         // --help and --version (stdout, exit 0), and a bare `lumis` (help on stderr, exit 2).
