@@ -389,6 +389,26 @@ fn inspector_shows_the_films_mean_and_standard_error_under_the_cursor() {
     h.get_by_label_contains(&format!("mean {:.4e}", mean.x));
     h.get_by_label_contains(&format!("± {:.4e}", se.x));
     h.get_by_label_contains(&format!("value {:.4e}", data[i].x));
+
+    // Ctrl+click pins the pixel (and selects nothing): hovering elsewhere leaves it.
+    let at = rect.min + egui::vec2(x as f32 + 0.5, y as f32 + 0.5) * s;
+    for pressed in [true, false] {
+        h.event_modifiers(
+            egui::Event::PointerButton {
+                pos: at,
+                button: egui::PointerButton::Primary,
+                pressed,
+                modifiers: egui::Modifiers::COMMAND,
+            },
+            egui::Modifiers::COMMAND,
+        );
+        h.run_steps(1);
+    }
+    assert!(h.state().inspect_pinned);
+    assert_eq!(h.state().selected_material, None);
+    h.hover_at(rect.min + egui::vec2(3.5, 3.5) * s);
+    h.run_steps(2);
+    assert_eq!(h.state().inspect, Some((x, y)), "the pin holds");
 }
 
 /// Equal-error pacing: each lane stops at the first pass whose relMSE (half-buffer estimate)

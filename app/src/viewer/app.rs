@@ -35,6 +35,8 @@ pub struct ViewerApp {
     pub wipe_position: f32,
     /// The pixel the inspector shows (the last hovered; `None`: the image centre).
     pub inspect: Option<(u32, u32)>,
+    /// The inspected pixel stays put while the mouse moves (Ctrl+click, or `--inspect`).
+    pub inspect_pinned: bool,
     /// Whether the pixel inspector panel is open.
     pub show_inspector: bool,
     /// The convergence plot shows efficiency, 1/(relMSE · t), instead of relMSE.
@@ -103,6 +105,7 @@ impl ViewerApp {
             solo: None,
             wipe_position: options.wipe_position,
             inspect: options.inspect,
+            inspect_pinned: options.inspect.is_some(),
             show_inspector: true,
             plot_efficiency: false,
             scene_path: None,
@@ -158,6 +161,11 @@ impl ViewerApp {
                 self.selected_material = None;
                 self.light = None;
                 self.error = None;
+                // Another image: fit it, and inspect its centre unless a pixel is pinned there.
+                self.view.zoom = super::zoom::Zoom::Fit;
+                if !self.inspect_pinned {
+                    self.inspect = None;
+                }
                 // A reference of another scene no longer applies.
                 self.reference = None;
                 self.scene_changed();

@@ -9,6 +9,9 @@ use super::tonemap::Content;
 use super::zoom::Zoom;
 use std::path::PathBuf;
 
+/// Width of the side panel's combo boxes (points).
+const COMBO_WIDTH: f32 = 150.0;
+
 /// Largest spp limit the slider offers (0 = no limit).
 const MAX_SPP_LIMIT: u32 = 1 << 16;
 
@@ -21,7 +24,11 @@ pub(crate) fn combo<T: PartialEq + Copy>(
     name: impl Fn(T) -> String,
 ) -> bool {
     let before = *value;
+    // A fixed width, long names truncated (shown whole in the list), so that the side panel
+    // keeps its width and leaves the room to the image.
     egui::ComboBox::from_label(label)
+        .width(COMBO_WIDTH)
+        .truncate()
         .selected_text(name(*value))
         .show_ui(ui, |ui| {
             for &o in options {
@@ -65,8 +72,10 @@ impl ViewerApp {
     }
 
     pub(crate) fn controls_panel(&mut self, ui: &mut egui::Ui) {
+        // At most this wide unless dragged wider: the image gets the room.
         egui::Panel::left("controls")
             .default_size(300.0)
+            .max_size(320.0)
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| {
                     ui.heading("Render");

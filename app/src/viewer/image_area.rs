@@ -19,19 +19,28 @@ const FOOTER: f32 = 40.0;
 pub enum Pane {
     /// A lane on its own.
     Lane(usize),
+    /// The reference (in the comparison, after the lanes, when one is loaded).
+    Reference,
     /// The wipe's two sides, A left of the divider.
     Wipe([Source; 2]),
 }
 
 impl ViewerApp {
-    /// The panes drawn, in order.
+    /// The panes drawn, in order: the lanes (one alone when `solo`), and in the comparison the
+    /// reference after them when one is loaded.
     pub fn panes(&self) -> Vec<Pane> {
         let n = self.output.lanes.len();
         match self.params.view {
             ViewMode::Wipe => vec![Pane::Wipe(wipe::sources(&self.params.wipe))],
             _ => match self.solo.filter(|&k| k < n) {
                 Some(k) => vec![Pane::Lane(k)],
-                None => (0..n).map(Pane::Lane).collect(),
+                None => {
+                    let mut panes: Vec<Pane> = (0..n).map(Pane::Lane).collect();
+                    if self.params.view == ViewMode::Compare && self.reference.is_some() {
+                        panes.push(Pane::Reference);
+                    }
+                    panes
+                }
             },
         }
     }
@@ -75,6 +84,7 @@ impl ViewerApp {
                     _ => own,
                 }
             }
+            Pane::Reference => self.source_caption(Source::Reference),
             Pane::Wipe([a, b]) => {
                 let sep = if content == Content::Difference {
                     " − "
@@ -164,6 +174,7 @@ impl ViewerApp {
                 let picture = Picture::of(s, content, self.difference_base(s));
                 draw(self, picture, cell);
             }
+            Pane::Reference => draw(self, Picture::Image(Source::Reference), cell),
             Pane::Wipe([a, b]) if content == Content::Difference => {
                 draw(self, Picture::Difference(a, b), cell);
             }
@@ -186,7 +197,15 @@ impl ViewerApp {
         if let Some(p) = resp.hover_pos()
             && let Some(px) = pixel_at(rect, image, p)
         {
-            self.inspect = Some(px);
+            // Ctrl+click pins the pixel under the cursor, or releases the pin.
+            if resp.clicked() && ui.input(|i| i.modifiers.command) {
+                self.inspect_pinned = !(self.inspect_pinned && self.inspect == Some(px));
+                self.inspect = Some(px);
+                return None;
+            }
+            if !self.inspect_pinned {
+                self.inspect = Some(px);
+            }
         }
         gesture_of(ui, &resp, cell, rect, image)
     }
@@ -255,9 +274,9 @@ impl ViewerApp {
         ui.put(
             bottom,
             egui::Label::new(
-                "scroll: zoom · middle/Alt drag: pan image · F fit · 1 1:1 · +/− zoom · \
-                 S single pane · , . next pane · I inspector · drag: orbit · right/Shift drag: \
-                 move · Ctrl+scroll: dolly",
+                "scroll zoom · middle/Alt-drag pan · F fit · 1 1:1 · +/− zoom · S one pane · \
+                 , . next · I inspector · Ctrl+click pin pixel · C colours · drag orbit · \
+                 right/Shift-drag move · Ctrl+scroll dolly",
             )
             .truncate(),
         );

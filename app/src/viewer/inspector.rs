@@ -94,7 +94,16 @@ impl ViewerApp {
                 egui::ScrollArea::vertical().show(ui, |ui| {
                     ui.heading("Pixel inspector (I)");
                     let Some(ins) = self.inspection() else { return };
-                    ui.label(format!("pixel {} {}", ins.pixel.0, ins.pixel.1));
+                    ui.label(format!(
+                        "pixel {} {}{}",
+                        ins.pixel.0,
+                        ins.pixel.1,
+                        if self.inspect_pinned {
+                            " (pinned: Ctrl+click to release)"
+                        } else {
+                            " (Ctrl+click to pin)"
+                        }
+                    ));
                     for (i, l) in ins.lanes.iter().enumerate() {
                         ui.separator();
                         ui.label(format!("{}: {} spp", l.label, l.spp));

@@ -80,7 +80,7 @@ impl ViewerApp {
         let i = self.pane_cells.iter().position(|c| c.contains(pos))?;
         match self.panes().get(i)? {
             super::image_area::Pane::Lane(k) => Some(*k),
-            super::image_area::Pane::Wipe(_) => None,
+            super::image_area::Pane::Wipe(_) | super::image_area::Pane::Reference => None,
         }
     }
 }
