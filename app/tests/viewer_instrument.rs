@@ -55,7 +55,8 @@ fn wait_spp(h: &mut Harness<'static, ViewerApp>, lanes: usize, spp: u32) {
 }
 
 /// The case: Veach's scene (320×180) in three panes of a 1400×900 window, drawn 285
-/// points wide in one row before; the grid draws them at least 1:1 and equal.
+/// points wide in one row before; the grid draws them at least 1:1 and equal. (Deliberate bug
+/// tried: `best_grid` allowed one row only: panes 283 wide, the test failed.)
 #[test]
 fn three_panes_of_veach_fill_a_1400_by_900_window() {
     let mut o = options("veach_mis.json", None, "layout");
@@ -79,9 +80,9 @@ fn three_panes_of_veach_fill_a_1400_by_900_window() {
 
 /// Scrolling over one pane zooms every pane about the cursor; the middle button pans them all;
 /// F fits, 1 shows one image pixel per screen pixel; none of it restarts. Zoomed in, each image
-/// pixel is a uniform block on screen (nearest-neighbour; deliberate bug tried: the panes'
-/// textures sampled linearly (`PANE_SAMPLING = TextureOptions::LINEAR`): 100 % of blocks were
-/// not uniform, by up to 90 units).
+/// pixel is a uniform block on screen (nearest-neighbour). Deliberate bugs tried, each failed the
+/// test: the panes' textures magnified linearly (2519 of 2688 blocks not uniform); a zoom that
+/// keeps the centre instead of the point under the cursor.
 #[test]
 fn zoom_and_pan_are_shared_by_every_pane_and_never_restart() {
     let size = 64.0;
@@ -115,7 +116,11 @@ fn zoom_and_pan_are_shared_by_every_pane_and_never_restart() {
     let tol = 0.51 / fit + 0.51 / scale;
     assert!((image_point(rects[1], at) - before).length() < tol);
     for (r, c) in rects.iter().zip(&cells) {
-        assert_eq!(r.size(), rects[1].size());
+        assert!(
+            (r.size() - rects[1].size()).length() < 1e-3,
+            "{r:?} {:?}",
+            rects[1]
+        );
         assert!((image_point(*r, c.center() + offset) - before).length() < tol);
     }
     // Middle drag pans every pane by the drag.
@@ -206,7 +211,8 @@ fn zoom_and_pan_are_shared_by_every_pane_and_never_restart() {
 /// The wipe: light sampling left of the divider, BSDF sampling right, two accumulations of their own;
 /// dragging the divider moves the split and neither restarts nor orbits the camera; the screen
 /// shows lane A's pixels left of the divider and B's right of it, and the difference view
-/// A − B in the cool-warm map.
+/// A − B in the cool-warm map. Deliberate bugs tried, each failed the test: B drawn on both sides
+/// (23.6 % of pixels not their side's lane); the divider's drag ignored (the split stayed at 0.5).
 #[test]
 fn wipe_splits_two_accumulations_with_a_draggable_divider() {
     let size = 48u32;
@@ -324,6 +330,7 @@ fn wipe_handle() -> f32 {
 /// Hovering a pixel shows the film's mean and its standard error there, the spp and the
 /// reference's value: compared with a film rendered here independently with the same scene,
 /// settings, seed and spp (the engine is deterministic), and with the reference file's pixel.
+/// (Deliberate bug tried: the variance shown as the standard error: 0.040 against 0.201, failed.)
 #[test]
 fn inspector_shows_the_films_mean_and_standard_error_under_the_cursor() {
     let size = 32u32;
@@ -412,7 +419,8 @@ fn inspector_shows_the_films_mean_and_standard_error_under_the_cursor() {
 }
 
 /// Equal-error pacing: each lane stops at the first pass whose relMSE (half-buffer estimate)
-/// is at or below the target, and the panel reports the times.
+/// is at or below the target, and the panel reports the times. (Deliberate bug tried: stopping at
+/// 3× the target: BSDF sampling's last error was above the target, failed.)
 #[test]
 fn equal_error_stops_each_pane_at_the_target_and_reports_the_times() {
     let mut o = options("seed_cornell.json", Some(32), "equal_error");

@@ -182,15 +182,18 @@ fn check_viewer_against_cli(backend: &str) {
 
 /// `lumis view SCENE --wipe light,mis`: the window opens on the wipe, both sides accumulate
 /// (two lanes, saved as two images that differ), and the window capture shows the divider: a
-/// light vertical line through the image (deliberate bug tried: the wipe drawn without its
-/// divider: no such column, the test failed).
+/// light vertical line through the image (deliberate bug tried: the divider's line not drawn:
+/// the longest run was 10 pixels, the test failed).
 #[test]
 fn wipe_from_the_command_line_shows_two_accumulations_and_the_divider() {
     if std::env::var_os("LUMIS_SKIP_XVFB_TESTS").is_some() {
         eprintln!("LUMIS_SKIP_XVFB_TESTS is set: skipping a test under Xvfb");
         return;
     }
-    assert!(have_xvfb(), "xvfb-run is not installed (see the module doc)");
+    assert!(
+        have_xvfb(),
+        "xvfb-run is not installed (see the module doc)"
+    );
     let bin = env!("CARGO_BIN_EXE_lumis");
     let shots = scratch("wipe").join("shots");
     let mut viewer = Command::new("xvfb-run");
@@ -227,5 +230,8 @@ fn wipe_from_the_command_line_shows_two_accumulations_and_the_divider() {
         })
         .max()
         .unwrap();
-    assert!(longest >= 200, "no divider in the window (longest run {longest})");
+    assert!(
+        longest >= 200,
+        "no divider in the window (longest run {longest})"
+    );
 }

@@ -4,8 +4,9 @@
 //! every pane. Display only.
 
 use super::app::ViewerApp;
+use super::image_area::Pane;
 use super::textures::Picture;
-use super::tonemap::luminance;
+use super::tonemap::{Content, luminance};
 use super::wipe::Source;
 use super::worker::LaneView;
 use glam::Vec3;
@@ -139,7 +140,13 @@ impl ViewerApp {
         let Some(c) = self.desc.as_ref().map(|d| d.camera.clone()) else {
             return;
         };
-        let picture = Picture::of(source, self.display.content, self.difference_base(source));
+        let picture = match self.panes().first() {
+            // The wipe's difference view is one picture, A − B: every magnifier shows it.
+            Some(&Pane::Wipe([a, b])) if self.display.content == Content::Difference => {
+                Picture::Difference(a, b)
+            }
+            _ => Picture::of(source, self.display.content, self.difference_base(source)),
+        };
         let Some(tex) = self.texture(ui.ctx(), picture) else {
             return;
         };
@@ -187,7 +194,7 @@ mod tests {
             ..crate::viewer::worker::empty_lane_view("mis")
         };
         let reference: Vec<Vec3> = (0..w * h).map(|i| Vec3::splat(-(i as f32))).collect();
-        let ins = inspect(&[lane.clone()], Some(&reference), w, (3, 2));
+        let ins = inspect(std::slice::from_ref(&lane), Some(&reference), w, (3, 2));
         let l = &ins.lanes[0];
         assert_eq!(
             (l.spp, l.mean, l.std_error),

@@ -6,17 +6,19 @@ use super::tonemap::{Content, ERROR_DECADES, difference_colour, error_colour};
 /// Width of the colour bar (points).
 const BAR: f32 = 220.0;
 
+/// The map's colour at a position on the bar.
+type ColourOf = fn(f32) -> [u8; 3];
+
 /// Draws the legend of `content` into `rect` (nothing for the image).
 pub fn legend(ui: &mut egui::Ui, rect: egui::Rect, content: Content, has_reference: bool) {
     let (lo, hi) = ERROR_DECADES;
-    let (colour, range, text): (fn(f32) -> [u8; 3], (f32, f32), String) = match content {
+    let (colour, range, text): (ColourOf, (f32, f32), String) = match content {
         Content::Image => return,
         Content::RelativeError => (
             |t| error_colour(10f32.powf(t)),
             (lo, hi),
             format!(
-                "viridis, log scale: relative error 10^{lo} … 10^{hi} of the luminance, {} \
-                 (grey: unknown yet)",
+                "viridis, log: relative error of luminance 10^{lo}…10^{hi}, {} (grey: unknown)",
                 if has_reference {
                     "against the reference"
                 } else {
@@ -32,8 +34,8 @@ pub fn legend(ui: &mut egui::Ui, rect: egui::Rect, content: Content, has_referen
             },
             (-1.0, 1.0),
             format!(
-                "cool-warm, signed log scale: (A − B)/(|B| + 0.01) of the luminance, \
-                 ±10^{lo} … ±1; blue: B brighter, grey: equal, red: A brighter"
+                "cool-warm, signed log: (A−B)/(|B|+0.01) of luminance, ±10^{lo}…±1; \
+                 red: A brighter, blue: B"
             ),
         ),
     };

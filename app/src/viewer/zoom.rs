@@ -115,7 +115,7 @@ pub fn snap(rect: egui::Rect, ppp: f32) -> egui::Rect {
 /// The image pixel under screen point `p` for an image drawn at `rect`, if any.
 pub fn pixel_at(rect: egui::Rect, image: egui::Vec2, p: egui::Pos2) -> Option<(u32, u32)> {
     let u = (p - rect.min) / rect.size() * image;
-    (u.x >= 0.0 && u.y >= 0.0 && u.x < image.x && u.y < image.y).then(|| (u.x as u32, u.y as u32))
+    (u.x >= 0.0 && u.y >= 0.0 && u.x < image.x && u.y < image.y).then_some((u.x as u32, u.y as u32))
 }
 
 #[cfg(test)]
