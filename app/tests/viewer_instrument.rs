@@ -580,3 +580,29 @@ fn display_only_controls_never_restart() {
     assert_eq!(h.state().wipe_position, 0.8);
     assert_eq!(h.state().restarts, restarts_wipe);
 }
+
+/// The wipe puts the CPU and the GPU side by side (`--wipe mis:cpu,mis:gpu`): two lanes of the
+/// same strategy on the two backends, each accumulating, named by backend.
+#[test]
+fn wipe_puts_the_cpu_and_the_gpu_side_by_side() {
+    if skip_gpu() {
+        return;
+    }
+    let mut o = options("seed_cornell.json", Some(24), "wipe_backends");
+    o.params.view = ViewMode::Wipe;
+    o.params.wipe = [
+        WipeSide::parse("mis:cpu").unwrap(),
+        WipeSide::parse("mis:gpu").unwrap(),
+    ];
+    o.params.spp_limit = 8;
+    let mut h = harness_with(o, [1400.0, 1000.0]);
+    assert!(h.state_mut().wait_for(WAIT, |o| o.error.is_some()
+        || (o.lanes.len() == 2 && o.lanes.iter().all(|l| l.done))));
+    assert_eq!(h.state().output().error, None);
+    h.run_steps(2);
+    let lanes = &h.state().output().lanes;
+    assert_eq!(lanes[0].label, "mis power");
+    assert_eq!(lanes[1].label, "mis power (GPU)");
+    assert!(lanes.iter().all(|l| l.spp == 8 && !l.pixels.is_empty()));
+    h.get_by_label_contains("B mis power (GPU): 8 spp");
+}
