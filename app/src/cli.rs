@@ -224,6 +224,46 @@ fn parse_define(text: &str) -> Result<(String, String), String> {
     }
 }
 
+/// What the viewer's panes show (`lumis_app::viewer::tonemap::Content`).
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShowArg {
+    /// The image.
+    Image,
+    /// The per-pixel relative error in false colour.
+    Error,
+    /// The signed difference in false colour.
+    Difference,
+}
+
+/// A `--wipe` side.
+fn parse_wipe_side(text: &str) -> Result<lumis_app::viewer::wipe::WipeSide, String> {
+    lumis_app::viewer::wipe::WipeSide::parse(text)
+}
+
+/// `--inspect`'s value, `X,Y`.
+fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("`{text}` is not X,Y (two pixel numbers)");
+    let (x, y) = text.split_once(',').ok_or_else(bad)?;
+    Ok((
+        x.trim().parse().map_err(|_| bad())?,
+        y.trim().parse().map_err(|_| bad())?,
+    ))
+}
+
+/// `--window-size`'s value, `WIDTHxHEIGHT`, each 200 to 16384.
+fn parse_window_size(text: &str) -> Result<[f32; 2], String> {
+    let bad = || format!("`{text}` is not WIDTHxHEIGHT (200 to 16384 each)");
+    let (w, h) = text.split_once('x').ok_or_else(bad)?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|v| (200..=16384).contains(v))
+            .ok_or_else(bad)
+    };
+    Ok([parse(w)? as f32, parse(h)? as f32])
+}
+
 /// `--sample-range`'s value, `START..END` (END excluded), non-empty.
 fn parse_sample_range(text: &str) -> Result<std::ops::Range<u32>, String> {
     lumis_app::part_file::parse_range(text)
@@ -367,9 +407,31 @@ pub struct ViewArgs {
     /// Open the comparison view with these 2 or 3 strategies side by side (comma-separated).
     #[arg(long, value_enum, value_delimiter = ',')]
     pub compare: Vec<StrategyArg>,
+    /// Open the wipe: two sides in one image split by a divider, each `STRATEGY`,
+    /// `STRATEGY:cpu`, `STRATEGY:gpu` or `reference` (comma-separated), e.g. `light,mis`,
+    /// `mis:cpu,mis:gpu` or `mis,reference`.
+    #[arg(long, value_delimiter = ',', value_parser = parse_wipe_side, conflicts_with = "compare")]
+    pub wipe: Vec<lumis_app::viewer::wipe::WipeSide>,
+    /// Where the wipe's divider starts, 0 (left) to 1 (right).
+    #[arg(long, default_value_t = 0.5)]
+    pub wipe_position: f32,
     /// Compare at equal render time instead of equal samples per pixel.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "equal_error")]
     pub equal_time: bool,
+    /// Stop each pane when its relMSE reaches this (equal-error comparison: the times to this
+    /// error are reported).
+    #[arg(long, value_name = "RELMSE")]
+    pub equal_error: Option<f64>,
+    /// What the panes show: the image, the per-pixel relative error, or the signed difference
+    /// (A − B in the wipe, else against the reference or the first pane).
+    #[arg(long, value_enum, default_value = "image")]
+    pub show: ShowArg,
+    /// The pixel the inspector shows at first, `X,Y` [default: the image centre].
+    #[arg(long, value_parser = parse_pixel)]
+    pub inspect: Option<(u32, u32)>,
+    /// The window's size in points, `WIDTHxHEIGHT`.
+    #[arg(long, default_value = "1400x900", value_parser = parse_window_size)]
+    pub window_size: [f32; 2],
     /// Stop accumulating at this many samples per pixel (0: never).
     #[arg(long, default_value_t = 0)]
     pub spp_limit: u32,

@@ -1,10 +1,11 @@
 //! `lumis view`: command-line options into the viewer's.
 
-use crate::cli::{BackendArg, HeuristicArg, StrategyArg, ViewArgs};
+use crate::cli::{BackendArg, HeuristicArg, ShowArg, StrategyArg, ViewArgs};
 use anyhow::bail;
 use lumis::engine::Backend;
 use lumis::integrator::Heuristic;
-use lumis_app::viewer::params::{RenderParams, StrategyKind};
+use lumis_app::viewer::params::{Pacing, RenderParams, StrategyKind, ViewMode};
+use lumis_app::viewer::tonemap::Content;
 use lumis_app::viewer::{ViewerOptions, run};
 use std::path::PathBuf;
 
@@ -42,6 +43,21 @@ pub fn view(args: &ViewArgs) -> anyhow::Result<()> {
             args.compare.len()
         );
     }
+    if !args.wipe.is_empty() && args.wipe.len() != 2 {
+        bail!("--wipe takes 2 sides, got {}", args.wipe.len());
+    }
+    if !(0.0..=1.0).contains(&args.wipe_position) {
+        bail!(
+            "--wipe-position must be in [0, 1], got {}",
+            args.wipe_position
+        );
+    }
+    if let Some(e) = args.equal_error
+        && !(e > 0.0 && e.is_finite())
+    {
+        bail!("--equal-error must be a positive relMSE, got {e}");
+    }
+    let defaults = RenderParams::default();
     let params = RenderParams {
         backend: match args.backend {
             BackendArg::Cpu => Backend::Cpu,
@@ -58,13 +74,30 @@ pub fn view(args: &ViewArgs) -> anyhow::Result<()> {
         max_depth: settings.max_depth,
         sampler: settings.sampler,
         spp_limit: args.spp_limit,
-        compare: !args.compare.is_empty(),
+        view: if !args.wipe.is_empty() {
+            ViewMode::Wipe
+        } else if !args.compare.is_empty() {
+            ViewMode::Compare
+        } else {
+            ViewMode::Single
+        },
         compare_strategies: if args.compare.is_empty() {
-            RenderParams::default().compare_strategies
+            defaults.compare_strategies
         } else {
             args.compare.iter().map(|&s| kind(s)).collect()
         },
-        equal_time: args.equal_time,
+        wipe: match args.wipe[..] {
+            [a, b] => [a, b],
+            _ => defaults.wipe,
+        },
+        pacing: if args.equal_error.is_some() {
+            Pacing::EqualError
+        } else if args.equal_time {
+            Pacing::EqualTime
+        } else {
+            Pacing::EqualSamples
+        },
+        target_relmse: args.equal_error.unwrap_or(defaults.target_relmse),
     };
     let scene = args.scene.clone().unwrap_or_else(default_scene);
     lumis_app::scene_file::set_defines(&scene, args.define.clone());
@@ -83,5 +116,13 @@ pub fn view(args: &ViewArgs) -> anyhow::Result<()> {
         log_latency: args.log_latency,
         headless_output: args.output.clone(),
         headless_spp: args.headless_spp,
+        content: match args.show {
+            ShowArg::Image => Content::Image,
+            ShowArg::Error => Content::RelativeError,
+            ShowArg::Difference => Content::Difference,
+        },
+        inspect: args.inspect,
+        window_size: args.window_size,
+        wipe_position: args.wipe_position,
     })
 }

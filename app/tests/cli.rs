@@ -1433,6 +1433,22 @@ fn view_without_a_display_renders_headless_and_says_so() {
             "{p:?}"
         );
     }
+
+    // So does the wipe, one image per rendered side (the reference side renders nothing).
+    let out = dir.path("wipe.png");
+    let o = view_headless(&[
+        scene.as_os_str(),
+        OsStr::new("--wipe"),
+        OsStr::new("light,mis:cpu"),
+        OsStr::new("--spp-limit"),
+        OsStr::new("2"),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    for lane in ["light", "mis_power"] {
+        assert!(dir.path(&format!("wipe-{lane}.png")).exists(), "{lane}");
+    }
 }
 
 #[test]
@@ -1451,6 +1467,23 @@ fn view_errors_are_one_line_and_named() {
         ]),
         &["--compare takes 2 or 3 strategies"],
     );
+    for (opts, needles) in [
+        (&["--wipe", "mis"][..], &["--wipe takes 2 sides"][..]),
+        (&["--wipe", "lite,mis"], &["lite", "reference"]),
+        (&["--wipe", "mis:tpu,mis"], &["tpu", "cpu or gpu"]),
+        (
+            &["--wipe", "light,mis", "--compare", "light,bsdf"],
+            &["--compare"],
+        ),
+        (&["--wipe-position", "1.5"], &["--wipe-position", "1.5"]),
+        (&["--equal-error", "0"], &["--equal-error", "0"]),
+        (&["--inspect", "3"], &["X,Y"]),
+        (&["--window-size", "10x10"], &["WIDTHxHEIGHT"]),
+    ] {
+        let mut args = vec![scene.as_os_str()];
+        args.extend(opts.iter().map(OsStr::new));
+        expect_error(&view_headless(&args), needles);
+    }
     expect_error(
         &view_headless(&[
             scene.as_os_str(),

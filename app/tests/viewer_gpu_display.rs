@@ -36,8 +36,8 @@ fn render_state() -> egui_wgpu::RenderState {
 }
 
 /// Mean sRGB byte per channel over the screen pixels of `region` (inside the pane at `pane`,
-/// pixels): as shown in `img`, and as expected, by sampling the CPU-tonemapped image bilinearly
-/// at each screen pixel's centre (what the GPU's linear filter does to the texture).
+/// pixels): as shown in `img`, and as expected, by sampling the CPU-tonemapped image at each
+/// screen pixel's centre nearest-neighbour (what the pane's sampler does to a magnified texture).
 fn means(
     img: &image::RgbaImage,
     pane: egui::Rect,
@@ -45,28 +45,20 @@ fn means(
     tonemapped: &[[u8; 3]],
     size: u32,
 ) -> ([f64; 3], [f64; 3]) {
-    let texel = |x: i64, y: i64| {
-        let (x, y) = (x.clamp(0, size as i64 - 1), y.clamp(0, size as i64 - 1));
-        tonemapped[(y * size as i64 + x) as usize].map(f64::from)
-    };
     let (mut shown, mut want, mut n) = ([0.0; 3], [0.0; 3], 0.0);
     for y in region.min.y.ceil() as u32..region.max.y.floor() as u32 {
         for x in region.min.x.ceil() as u32..region.max.x.floor() as u32 {
             let p = img.get_pixel(x, y).0;
-            let u = (x as f64 + 0.5 - pane.min.x as f64) / pane.width() as f64 * size as f64 - 0.5;
-            let v = (y as f64 + 0.5 - pane.min.y as f64) / pane.height() as f64 * size as f64 - 0.5;
-            let (x0, y0) = (u.floor() as i64, v.floor() as i64);
-            let (fx, fy) = (u - x0 as f64, v - y0 as f64);
-            let (a, b, c, d) = (
-                texel(x0, y0),
-                texel(x0 + 1, y0),
-                texel(x0, y0 + 1),
-                texel(x0 + 1, y0 + 1),
+            let u = (x as f64 + 0.5 - pane.min.x as f64) / pane.width() as f64 * size as f64;
+            let v = (y as f64 + 0.5 - pane.min.y as f64) / pane.height() as f64 * size as f64;
+            let (tx, ty) = (
+                (u.floor() as i64).clamp(0, size as i64 - 1),
+                (v.floor() as i64).clamp(0, size as i64 - 1),
             );
+            let t = tonemapped[(ty * size as i64 + tx) as usize];
             for k in 0..3 {
                 shown[k] += p[k] as f64;
-                want[k] += (a[k] * (1.0 - fx) + b[k] * fx) * (1.0 - fy)
-                    + (c[k] * (1.0 - fx) + d[k] * fx) * fy;
+                want[k] += t[k] as f64;
             }
             n += 1.0;
         }

@@ -12,88 +12,13 @@ use glam::DVec3;
 use lumis::integrator::Strategy;
 use lumis::scene::{GeometryDesc, MaterialDesc};
 use lumis_app::viewer::light_shape::LightShape;
-use lumis_app::viewer::params::StrategyKind;
+use lumis_app::viewer::params::{Pacing, StrategyKind, ViewMode};
 use lumis_app::viewer::{ViewerApp, ViewerOptions};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::Duration;
 
-const WAIT: Duration = Duration::from_secs(60);
-
-fn asset(name: &str) -> PathBuf {
-    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../assets")).join(name)
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("lumis-viewer-ui-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-/// The viewer on `scene` at `size`×`size` pixels, in a harness big enough for every panel.
-fn harness(scene: &str, size: u32, dir: PathBuf) -> Harness<'static, ViewerApp> {
-    harness_at(asset(scene), size, dir)
-}
-
-/// [`harness`] on a scene file anywhere.
-fn harness_at(scene: PathBuf, size: u32, dir: PathBuf) -> Harness<'static, ViewerApp> {
-    let app = ViewerApp::new(ViewerOptions {
-        scene,
-        width: Some(size),
-        height: Some(size),
-        screenshot_dir: dir,
-        ..ViewerOptions::default()
-    });
-    let mut h = Harness::builder()
-        .with_size([1200.0, 1400.0])
-        .build_ui_state(|ui, app: &mut ViewerApp| app.show(ui), app);
-    h.run_steps(2);
-    h
-}
-
-/// Renders until every lane has `spp` samples, then checks that moving a control with `act`
-/// restarts: a new generation whose curves start from scratch. Returns the app for checks.
-fn assert_restarts(
-    h: &mut Harness<'static, ViewerApp>,
-    what: &str,
-    act: impl FnOnce(&mut Harness<'static, ViewerApp>),
-) {
-    assert!(
-        h.state_mut()
-            .wait_for(WAIT, |o| o.lanes.iter().all(|l| l.spp >= 32)),
-        "{what}: no accumulation before the change"
-    );
-    let restarts = h.state().restarts;
-    act(h);
-    h.run_steps(2);
-    assert!(h.state().restarts > restarts, "{what}: no restart");
-    assert!(
-        h.state_mut().wait_for(WAIT, |o| !o.lanes.is_empty()
-            && o.lanes.iter().all(|l| !l.curve.is_empty())),
-        "{what}: no image after the restart"
-    );
-    for l in &h.state().output().lanes {
-        // Pass sizes at most quadruple, so a fresh film's first error point is at ≤ 5 spp; a
-        // film that kept accumulating would start at ≥ 32.
-        assert!(
-            l.curve[0].spp <= 5,
-            "{what}: accumulation did not restart ({:?})",
-            l.curve[0]
-        );
-    }
-}
-
-fn set_slider(h: &mut Harness<'static, ViewerApp>, label: &str, v: f64) {
-    h.get_by_role_and_label(Role::Slider, label)
-        .set_value_accesskit(v);
-}
-
-fn pick_combo(h: &mut Harness<'static, ViewerApp>, combo: &str, option: &str) {
-    h.get_by_label(combo).click();
-    h.run_steps(2);
-    h.get_by_label(option).click();
-}
+mod viewer_common;
+use viewer_common::*;
 
 fn material(h: &Harness<'static, ViewerApp>, name: &str) -> usize {
     let desc = h.state().desc.as_ref().unwrap();
@@ -334,9 +259,9 @@ fn light_sliders_reshape_resize_and_brighten_the_selected_light() {
 #[test]
 fn comparison_panes_accumulate_independently() {
     let mut h = harness("seed_cornell.json", 24, scratch("compare"));
-    h.get_by_label("Compare strategies").click();
+    h.get_by_label("Side by side").click();
     h.run_steps(2);
-    assert!(h.state().params.compare);
+    assert_eq!(h.state().params.view, ViewMode::Compare);
     assert!(h.state_mut().wait_for(WAIT, |o| o.lanes.len() == 3
         && o.lanes.iter().all(|l| !l.preview && l.spp >= 16)));
     let o = h.state().output().clone();
@@ -354,7 +279,7 @@ fn comparison_panes_accumulate_independently() {
     // Equal time: render time, not samples, is shared out.
     h.get_by_label("Equal time").click();
     h.run_steps(2);
-    assert!(h.state().params.equal_time);
+    assert_eq!(h.state().params.pacing, Pacing::EqualTime);
     assert!(
         h.state_mut()
             .wait_for(WAIT, |o| o.lanes.iter().all(|l| l.render_seconds > 0.5))
@@ -537,19 +462,6 @@ fn drop_file(h: &mut Harness<'static, ViewerApp>, path: &Path) {
         .dropped_files
         .push(Arc::new(Dropped(path.to_path_buf())));
     h.run_steps(2);
-}
-
-/// Waits until the render thread has built and rendered the current description.
-fn wait_for_current_scene(h: &mut Harness<'static, ViewerApp>, what: &str) {
-    let version = h.state().desc_version;
-    assert!(
-        h.state_mut().wait_for(WAIT, |o| o.desc_version == version
-            && o.scene.is_some()
-            && !o.lanes.is_empty()
-            && o.lanes.iter().all(|l| !l.preview && l.spp >= 8)),
-        "{what}: the render thread did not render the current scene"
-    );
-    h.run_steps(1);
 }
 
 #[test]

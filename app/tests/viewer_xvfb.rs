@@ -1,7 +1,8 @@
 //! End to end in a real window under Xvfb: the viewer opens on the seed Cornell box,
 //! accumulates, saves a screenshot through the UI's own screenshot action
 //! (`--screenshot-after`, the code path of Ctrl+S) and closes; the saved image must have the
-//! same mean as a CLI render of the same scene and spp budget, within noise.
+//! same mean as a CLI render of the same scene and spp budget, within noise. `--wipe` opens the
+//! wipe: two accumulations in one image, split by the divider the window capture shows.
 //!
 //! Needs `xvfb-run`, the X client libraries and Mesa (see `.ci/run`). A missing `xvfb-run` is a
 //! failure, not a skip, so that a machine without it cannot pass this test unnoticed;
@@ -176,5 +177,61 @@ fn check_viewer_against_cli(backend: &str) {
         "viewer ({backend}) and CLI disagree: {} blocks fail, worst {:?}",
         test.failures().len(),
         test.worst()
+    );
+}
+
+/// `lumis view SCENE --wipe light,mis`: the window opens on the wipe, both sides accumulate
+/// (two lanes, saved as two images that differ), and the window capture shows the divider: a
+/// light vertical line through the image (deliberate bug tried: the divider's line not drawn:
+/// the longest run was 10 pixels, the test failed).
+#[test]
+fn wipe_from_the_command_line_shows_two_accumulations_and_the_divider() {
+    if std::env::var_os("LUMIS_SKIP_XVFB_TESTS").is_some() {
+        eprintln!("LUMIS_SKIP_XVFB_TESTS is set: skipping a test under Xvfb");
+        return;
+    }
+    assert!(
+        have_xvfb(),
+        "xvfb-run is not installed (see the module doc)"
+    );
+    let bin = env!("CARGO_BIN_EXE_lumis");
+    let shots = scratch("wipe").join("shots");
+    let mut viewer = Command::new("xvfb-run");
+    viewer
+        .args(["-a", "-s", "-screen 0 1600x1000x24", bin, "view"])
+        .arg(scene())
+        .args(["--wipe", "light,mis", "--spp-limit", "8"])
+        .args(["--screenshot-after", "8", "--exit-after-screenshot"])
+        .args(["--window-size", "1400x900", "--screenshot-dir"])
+        .arg(&shots);
+    let (ok, log) = run_with_limit(viewer, Duration::from_secs(300));
+    assert!(ok, "viewer failed: {log}");
+    let a = read(&shots.join("lumis-0001-1-light.exr"));
+    let b = read(&shots.join("lumis-0001-2-mis_power.exr"));
+    assert_eq!((a.width, a.height), (b.width, b.height));
+    assert!(a.data != b.data, "two accumulations of their own");
+    let window = image::open(shots.join("lumis-0001-window.png"))
+        .unwrap()
+        .into_rgb8();
+    assert_eq!(window.dimensions(), (1400, 900));
+    // The divider: the longest vertical run of its grey (235) in any column.
+    let longest = (0..window.width())
+        .map(|x| {
+            let (mut run, mut best) = (0, 0);
+            for y in 0..window.height() {
+                run = if window.get_pixel(x, y).0 == [235, 235, 235] {
+                    run + 1
+                } else {
+                    0
+                };
+                best = best.max(run);
+            }
+            best
+        })
+        .max()
+        .unwrap();
+    assert!(
+        longest >= 200,
+        "no divider in the window (longest run {longest})"
     );
 }

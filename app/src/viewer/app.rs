@@ -1,14 +1,17 @@
-//! The viewer's state and its frame loop: the scene being edited, the parameters, the render
-//! thread's latest output, and the actions every control ends in (restart, load, save). The
-//! panels are drawn by `controls`, `comparison` and `plot`.
+//! The viewer's state and its frame loop: the scene being edited, the parameters, the display
+//! state (zoom, wipe divider, inspected pixel), the render thread's latest output, and the
+//! actions every control ends in (restart, load, save). The panels are drawn by `controls`,
+//! `panes_controls`, `selection`, `image_area`, `inspector` and `plot`.
 
 use super::ViewerOptions;
 use super::edit::LightEdit;
-use super::gpu_display::{GpuDisplay, LiveImage};
+use super::gpu_display::GpuDisplay;
 use super::params::RenderParams;
 use super::screenshot;
-use super::tonemap::{Display, color_image};
+use super::textures::TextureCache;
+use super::tonemap::Display;
 use super::worker::{Job, Output, Worker};
+use super::zoom::ImageView;
 use crate::scene_file::load_scene_warning as load_scene;
 use glam::Vec3;
 use lumis::gpu::GpuContext;
@@ -22,8 +25,22 @@ use std::time::Duration;
 pub struct ViewerApp {
     /// Estimator and comparison parameters.
     pub params: RenderParams,
-    /// Exposure and false colour (no restart needed).
+    /// Exposure and what the panes show (no restart needed).
     pub display: Display,
+    /// The zoom and pan all panes share (display only).
+    pub view: ImageView,
+    /// In the comparison, the one pane shown alone at full size (display only).
+    pub solo: Option<usize>,
+    /// The wipe divider, 0 (left edge) to 1 (right edge) of the pane (display only).
+    pub wipe_position: f32,
+    /// The pixel the inspector shows (the last hovered; `None`: the image centre).
+    pub inspect: Option<(u32, u32)>,
+    /// The inspected pixel stays put while the mouse moves (Ctrl+click, or `--inspect`).
+    pub inspect_pinned: bool,
+    /// Whether the pixel inspector panel is open.
+    pub show_inspector: bool,
+    /// The convergence plot shows efficiency, 1/(relMSE · t), instead of relMSE.
+    pub plot_efficiency: bool,
     /// The scene file shown, if any loaded.
     pub scene_path: Option<PathBuf>,
     /// The scene as edited.
@@ -48,8 +65,11 @@ pub struct ViewerApp {
     pub last_latency: Option<Duration>,
     /// Files written by the last screenshot.
     pub last_saved: Vec<PathBuf>,
-    /// Where each pane's image was drawn in the last frame (points).
+    /// Where each pane's whole image was drawn in the last frame (points; clipped to its cell,
+    /// larger than it when zoomed in).
     pub pane_rects: Vec<egui::Rect>,
+    /// Each pane's cell in the last frame (points).
+    pub pane_cells: Vec<egui::Rect>,
     /// Text of the scene path field.
     pub path_field: String,
     /// Text of the reference path field.
@@ -57,7 +77,7 @@ pub struct ViewerApp {
     pub(crate) options: ViewerOptions,
     pub(crate) worker: Worker,
     pub(crate) output: Output,
-    textures: Vec<((usize, Display), egui::TextureHandle)>,
+    pub(crate) textures: TextureCache,
     /// Whether a real window (not a test harness) draws this, so window captures arrive.
     pub(crate) in_window: bool,
     auto_shot_done: bool,
@@ -68,7 +88,7 @@ pub struct ViewerApp {
     /// The window's wgpu device as a GPU backend context: GPU lanes render on it.
     window_gpu: Option<Arc<GpuContext>>,
     /// Draws GPU lanes straight from their accumulation buffers.
-    gpu_display: Option<GpuDisplay>,
+    pub(crate) gpu_display: Option<GpuDisplay>,
 }
 
 impl ViewerApp {
@@ -79,8 +99,15 @@ impl ViewerApp {
             params,
             display: Display {
                 exposure: options.exposure,
-                false_colour: false,
+                content: options.content,
             },
+            view: ImageView::default(),
+            solo: None,
+            wipe_position: options.wipe_position,
+            inspect: options.inspect,
+            inspect_pinned: options.inspect.is_some(),
+            show_inspector: true,
+            plot_efficiency: false,
             scene_path: None,
             desc: None,
             desc_version: 0,
@@ -94,11 +121,12 @@ impl ViewerApp {
             last_latency: None,
             last_saved: Vec::new(),
             pane_rects: Vec::new(),
+            pane_cells: Vec::new(),
             path_field: options.scene.display().to_string(),
             reference_field: String::new(),
             worker: Worker::new(options.threads),
             output: Output::default(),
-            textures: Vec::new(),
+            textures: TextureCache::default(),
             in_window: false,
             auto_shot_done: false,
             window_shot: None,
@@ -133,6 +161,11 @@ impl ViewerApp {
                 self.selected_material = None;
                 self.light = None;
                 self.error = None;
+                // Another image: fit it, and inspect its centre unless a pixel is pinned there.
+                self.view.zoom = super::zoom::Zoom::Fit;
+                if !self.inspect_pinned {
+                    self.inspect = None;
+                }
                 // A reference of another scene no longer applies.
                 self.reference = None;
                 self.scene_changed();
@@ -192,8 +225,8 @@ impl ViewerApp {
             lanes: self.params.lanes(),
             seed: self.options.seed,
             spp_limit: self.params.spp_limit,
-            equal_time: self.params.equal_time,
-            backend: self.params.backend,
+            pacing: self.params.pacing,
+            target_relmse: self.params.target_relmse,
             gpu: self.window_gpu.clone(),
             reference: self.reference.as_ref().map(|(_, r)| r.clone()),
         };
@@ -303,6 +336,7 @@ impl ViewerApp {
         self.top_bar(ui);
         self.controls_panel(ui);
         self.stats_panel(ui);
+        self.inspector_panel(ui);
         self.central(ui);
         self.auto_screenshot(&ctx);
     }
@@ -333,6 +367,7 @@ impl ViewerApp {
         if save {
             self.save_screenshot(ctx);
         }
+        self.view_keys(ctx);
         let capture = self
             .window_capture
             .lock()
@@ -404,47 +439,6 @@ impl ViewerApp {
             l.height = live.height;
         }
         Ok(lanes)
-    }
-
-    /// Texture of each lane. GPU lanes with a live buffer are drawn from it by the display
-    /// shader (unless false colour is on, which needs the per-pixel errors of a readback);
-    /// other lanes' images are uploaded, only when their image or the display settings changed
-    /// (a pass of one lane leaves the others' textures alone).
-    pub(crate) fn textures(&mut self, ctx: &egui::Context) -> Vec<egui::TextureId> {
-        let lanes = &self.output.lanes;
-        self.textures.truncate(lanes.len());
-        let gain = 2f32.powf(self.display.exposure);
-        let live: Vec<Option<&LiveImage>> = lanes
-            .iter()
-            .map(|l| l.live.as_ref().filter(|_| !self.display.false_colour))
-            .collect();
-        for (i, l) in lanes.iter().enumerate() {
-            let key = (Arc::as_ptr(&l.pixels) as usize, self.display);
-            if self.textures.get(i).is_some_and(|(k, _)| *k == key) {
-                continue;
-            }
-            let img = if l.pixels.is_empty() {
-                egui::ColorImage::filled([1, 1], egui::Color32::BLACK)
-            } else {
-                color_image(l.width, l.height, &l.pixels, &l.errors, self.display)
-            };
-            if let Some((k, t)) = self.textures.get_mut(i) {
-                *k = key;
-                t.set(img, egui::TextureOptions::LINEAR);
-            } else {
-                let t = ctx.load_texture(format!("lane{i}"), img, egui::TextureOptions::LINEAR);
-                self.textures.push((key, t));
-            }
-        }
-        let mut ids: Vec<egui::TextureId> = self.textures.iter().map(|(_, t)| t.id()).collect();
-        if let Some(display) = &mut self.gpu_display {
-            for (i, image) in live.iter().enumerate() {
-                if let Some(image) = image {
-                    ids[i] = display.texture(i, image, gain);
-                }
-            }
-        }
-        ids
     }
 }
 

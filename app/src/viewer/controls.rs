@@ -1,38 +1,19 @@
-//! The top bar (scene file, camera, screenshot, messages) and the render, display, comparison
-//! and reference controls of the side panel. Every estimator control restarts accumulation.
+//! The top bar (scene file, camera, screenshot, messages) and the render, display and reference
+//! controls of the side panel. Every estimator control restarts accumulation; display controls
+//! (exposure, content, zoom, inspector) never do.
 
 use super::app::ViewerApp;
+use super::menus::{self, menu};
 use super::params::StrategyKind;
-use lumis::engine::Backend;
-use lumis::integrator::Heuristic;
-use lumis::lights::{LightSampling, LightSelection};
+use super::tonemap::Content;
+use super::zoom::Zoom;
 use std::path::PathBuf;
+
+/// Width of the side panel's combo boxes (points).
+const COMBO_WIDTH: f32 = 150.0;
 
 /// Largest spp limit the slider offers (0 = no limit).
 const MAX_SPP_LIMIT: u32 = 1 << 16;
-
-fn heuristic_name(h: Heuristic) -> &'static str {
-    match h {
-        Heuristic::Balance => "balance",
-        Heuristic::Power => "power",
-    }
-}
-
-fn backend_name(b: Backend) -> &'static str {
-    match b {
-        Backend::Cpu => "CPU",
-        Backend::Gpu => "GPU (wgpu)",
-    }
-}
-
-fn sampling_name(s: LightSampling) -> &'static str {
-    match s {
-        LightSampling::Area => "area (env. map: uniform)",
-        LightSampling::SolidAngle => "solid angle (env. map: importance)",
-        LightSampling::SolidAngleCosine => "solid angle × cos warp (Hart 2020)",
-        LightSampling::Adaptive => "adaptive: area where small, else solid angle",
-    }
-}
 
 /// A combo box over `options`; true when the user picked another value.
 pub(crate) fn combo<T: PartialEq + Copy>(
@@ -43,7 +24,11 @@ pub(crate) fn combo<T: PartialEq + Copy>(
     name: impl Fn(T) -> String,
 ) -> bool {
     let before = *value;
+    // A fixed width, long names truncated (shown whole in the list), so that the side panel
+    // keeps its width and leaves the room to the image.
     egui::ComboBox::from_label(label)
+        .width(COMBO_WIDTH)
+        .truncate()
         .selected_text(name(*value))
         .show_ui(ui, |ui| {
             for &o in options {
@@ -87,30 +72,28 @@ impl ViewerApp {
     }
 
     pub(crate) fn controls_panel(&mut self, ui: &mut egui::Ui) {
+        // At most this wide unless dragged wider: the image gets the room.
         egui::Panel::left("controls")
             .default_size(300.0)
+            .max_size(320.0)
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| {
                     ui.heading("Render");
                     self.render_controls(ui);
                     ui.separator();
                     ui.heading("Display");
-                    ui.add(
-                        egui::Slider::new(&mut self.display.exposure, -10.0..=10.0)
-                            .text("Exposure (EV)"),
-                    );
-                    ui.checkbox(
-                        &mut self.display.false_colour,
-                        "False colour: relative error",
-                    );
+                    self.display_controls(ui);
                     ui.separator();
-                    ui.heading("Comparison");
-                    self.comparison_controls(ui);
+                    ui.heading("Panes");
+                    self.panes_controls(ui);
                     ui.separator();
                     ui.heading("Reference");
                     self.reference_controls(ui);
                     ui.separator();
                     self.selection_controls(ui);
+                    ui.separator();
+                    ui.heading("Background");
+                    self.environment_controls(ui);
                 });
             });
     }
@@ -119,13 +102,7 @@ impl ViewerApp {
         let p = &mut self.params;
         let mut changed = false;
         // A backend that cannot run here (no adapter) says why in the image area.
-        changed |= combo(
-            ui,
-            "Backend",
-            &mut p.backend,
-            &[Backend::Cpu, Backend::Gpu],
-            |b| backend_name(b).into(),
-        );
+        changed |= menu(ui, "Backend", &mut p.backend, menus::BACKENDS);
         changed |= combo(ui, "Strategy", &mut p.strategy, &StrategyKind::ALL, |s| {
             s.name().into()
         });
@@ -135,32 +112,20 @@ impl ViewerApp {
                 "probability of light sampling in the mixture: 0 = BSDF only, 1 = light only",
             )
             .changed();
-        changed |= combo(
-            ui,
-            "Heuristic",
-            &mut p.heuristic,
-            &[Heuristic::Balance, Heuristic::Power],
-            |h| heuristic_name(h).into(),
-        );
-        changed |= combo(
+        changed |= menu(ui, "Heuristic", &mut p.heuristic, menus::HEURISTICS);
+        changed |= menu(
             ui,
             "Light sampling",
             &mut p.light_sampling,
-            &[
-                LightSampling::Area,
-                LightSampling::SolidAngle,
-                LightSampling::SolidAngleCosine,
-                LightSampling::Adaptive,
-            ],
-            |s| sampling_name(s).into(),
+            menus::LIGHT_SAMPLING,
         );
-        changed |= combo(
+        changed |= menu(
             ui,
             "Light selection",
             &mut p.light_selection,
-            &[LightSelection::Power, LightSelection::Bvh],
-            |s| s.name().into(),
+            menus::LIGHT_SELECTION,
         );
+        changed |= menu(ui, "Sampler", &mut p.sampler, menus::SAMPLERS);
         let mut depth = p.max_depth.unwrap_or(0);
         let scene_depth = self.desc.as_ref().map_or(0, |d| d.max_depth);
         if ui
@@ -199,41 +164,33 @@ impl ViewerApp {
         }
     }
 
-    fn comparison_controls(&mut self, ui: &mut egui::Ui) {
-        let p = &mut self.params;
-        let mut changed = ui.checkbox(&mut p.compare, "Compare strategies").changed();
-        ui.add_enabled_ui(p.compare, |ui| {
-            let mut panes = p.compare_strategies.len();
-            ui.horizontal(|ui| {
-                ui.label("Panes");
-                ui.radio_value(&mut panes, 2, "2");
-                ui.radio_value(&mut panes, 3, "3");
-            });
-            if panes != p.compare_strategies.len() {
-                p.compare_strategies.resize(panes, StrategyKind::Mis);
-                changed = true;
+    fn display_controls(&mut self, ui: &mut egui::Ui) {
+        ui.add(egui::Slider::new(&mut self.display.exposure, -10.0..=10.0).text("Exposure (EV)"));
+        combo(
+            ui,
+            "Show (C)",
+            &mut self.display.content,
+            &Content::ALL,
+            |c| c.label().into(),
+        );
+        ui.horizontal(|ui| {
+            if ui.button("Fit (F)").clicked() {
+                self.view.zoom = Zoom::Fit;
             }
-            for i in 0..p.compare_strategies.len() {
-                changed |= combo(
-                    ui,
-                    &format!("Pane {}", i + 1),
-                    &mut p.compare_strategies[i],
-                    &StrategyKind::ALL,
-                    |s| s.name().into(),
-                );
+            if ui.button("1:1 (1)").clicked() {
+                let image = self.desc.as_ref().map_or(egui::vec2(1.0, 1.0), |d| {
+                    egui::vec2(d.camera.width as f32, d.camera.height as f32)
+                });
+                self.view
+                    .set_scale(1.0 / ui.ctx().pixels_per_point(), image);
             }
-            ui.horizontal(|ui| {
-                changed |= ui
-                    .radio_value(&mut p.equal_time, false, "Equal samples")
-                    .changed();
-                changed |= ui
-                    .radio_value(&mut p.equal_time, true, "Equal time")
-                    .changed();
+            ui.label(match self.view.zoom {
+                Zoom::Fit => "fit".to_string(),
+                Zoom::Scale(s) => format!("{:.0} %", 100.0 * s * ui.ctx().pixels_per_point()),
             });
         });
-        if changed {
-            self.restart();
-        }
+        ui.checkbox(&mut self.view.integer, "Fit at whole pixels");
+        ui.checkbox(&mut self.show_inspector, "Pixel inspector (I)");
     }
 
     fn reference_controls(&mut self, ui: &mut egui::Ui) {

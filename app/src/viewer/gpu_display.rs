@@ -185,6 +185,17 @@ impl DisplayKernel {
     }
 }
 
+/// As the CPU lanes' textures (`textures::PANE_SAMPLING`): nearest when magnified, so that a
+/// zoomed pane shows single pixels, linear when minified.
+fn pane_sampler() -> wgpu::SamplerDescriptor<'static> {
+    wgpu::SamplerDescriptor {
+        label: Some("lumis pane"),
+        mag_filter: wgpu::FilterMode::Nearest,
+        min_filter: wgpu::FilterMode::Linear,
+        ..Default::default()
+    }
+}
+
 /// One lane's texture and what it last showed.
 struct Slot {
     texture: wgpu::Texture,
@@ -226,10 +237,10 @@ impl GpuDisplay {
             let view = texture.create_view(&Default::default());
             let mut renderer = self.renderer.write();
             let slot = if let Some(old) = self.slots.get(lane) {
-                renderer.update_egui_texture_from_wgpu_texture(
+                renderer.update_egui_texture_from_wgpu_texture_with_sampler_options(
                     &self.device,
                     &view,
-                    wgpu::FilterMode::Linear,
+                    pane_sampler(),
                     old.id,
                 );
                 Slot {
@@ -238,8 +249,11 @@ impl GpuDisplay {
                     shown: None,
                 }
             } else {
-                let id =
-                    renderer.register_native_texture(&self.device, &view, wgpu::FilterMode::Linear);
+                let id = renderer.register_native_texture_with_sampler_options(
+                    &self.device,
+                    &view,
+                    pane_sampler(),
+                );
                 Slot {
                     texture,
                     id,

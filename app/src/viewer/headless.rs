@@ -63,7 +63,7 @@ pub fn render(options: &ViewerOptions, why: &str) -> anyhow::Result<()> {
     let mut gpu = None;
     for (lane, out) in lanes.iter().zip(&outputs) {
         let mut r = AnyProgressive::with_device(
-            options.params.backend,
+            lane.backend,
             scene.clone(),
             lane.settings,
             options.seed,

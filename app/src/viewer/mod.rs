@@ -1,34 +1,53 @@
 //! `lumis view`: the interactive viewer. The image converges live while every control restarts
-//! accumulation at once; strategies can be compared side by side, with a live convergence plot.
+//! accumulation at once; strategies can be compared side by side or in a wipe, pixel by pixel,
+//! with a live convergence plot and predictions of the time to a target error.
 //!
 //! * [`app`]: state, actions and the frame loop; [`params`], the settings the panels edit;
-//!   [`controls`], [`selection`], [`comparison`] and [`plot`] draw its panels.
+//!   [`controls`], [`menus`], [`panes_controls`], [`selection`], [`environment`], [`plot`] and
+//!   [`inspector`] draw its panels.
+//! * [`image_area`]: the panes, in the [`layout`] grid that shows them largest, at the shared
+//!   [`zoom`]; the [`wipe`]; mouse [`gesture`]s and [`keys`]; the false-colour [`legend`];
+//!   [`textures`], uploaded only when they change.
 //! * [`worker`]: the render thread (never blocks the UI) with reduced-resolution [`preview`]s;
 //!   it renders on either engine through [`lumis::engine::AnyProgressive`].
 //! * [`gpu_display`]: the GPU lane's tonemapping on the window's device, without readback;
 //!   [`surface_race`]: the one wgpu surface error that is survived.
 //! * [`edit`], [`light_shape`], [`pick`], [`camera`]: edits of the scene description.
-//! * [`convergence`], [`tonemap`], [`screenshot`]: error estimates, display, saved files.
+//! * [`convergence`], [`prediction`], [`equal_error`], [`tonemap`], [`screenshot`]: error
+//!   estimates and their 1/t fits, equal-error stops, display, saved files.
 //! * [`headless`]: the render without a display.
 
 pub mod app;
 pub mod camera;
-pub mod comparison;
 pub mod controls;
 pub mod convergence;
 pub mod edit;
+pub mod environment;
+pub mod equal_error;
+pub mod gesture;
 pub mod gpu_display;
 pub mod headless;
+pub mod image_area;
+pub mod inspector;
+pub mod keys;
+pub mod layout;
+pub mod legend;
 pub mod light_shape;
+pub mod menus;
+pub mod panes_controls;
 pub mod params;
 pub mod pick;
 pub mod plot;
+pub mod prediction;
 pub mod preview;
 pub mod screenshot;
 pub mod selection;
 pub mod surface_race;
+pub mod textures;
 pub mod tonemap;
+pub mod wipe;
 pub mod worker;
+pub mod zoom;
 
 pub use app::ViewerApp;
 use params::RenderParams;
@@ -65,6 +84,14 @@ pub struct ViewerOptions {
     pub headless_output: Option<PathBuf>,
     /// Without a display: samples per pixel (when no spp limit is set).
     pub headless_spp: u32,
+    /// What the panes show at first.
+    pub content: tonemap::Content,
+    /// The pixel the inspector shows at first (default: the image centre).
+    pub inspect: Option<(u32, u32)>,
+    /// The window's inner size in points.
+    pub window_size: [f32; 2],
+    /// Where the wipe's divider starts, 0 (left) to 1 (right).
+    pub wipe_position: f32,
 }
 
 impl Default for ViewerOptions {
@@ -84,6 +111,10 @@ impl Default for ViewerOptions {
             log_latency: false,
             headless_output: None,
             headless_spp: 64,
+            content: tonemap::Content::Image,
+            inspect: None,
+            window_size: [1400.0, 900.0],
+            wipe_position: 0.5,
         }
     }
 }
@@ -107,7 +138,7 @@ pub fn run(options: ViewerOptions) -> anyhow::Result<()> {
     let native = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("lumis")
-            .with_inner_size([1200.0, 820.0])
+            .with_inner_size(options.window_size)
             .with_drag_and_drop(true),
         wgpu_options: window_wgpu_options(),
         ..Default::default()

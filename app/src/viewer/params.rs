@@ -1,6 +1,8 @@
 //! The estimator parameters the controls edit, and the lanes (independent accumulations) they
-//! describe: one in the single view, two or three in the comparison view.
+//! describe: one in the single view, two or three in the comparison view, two in the wipe (or
+//! one and the reference).
 
+use super::wipe::WipeSide;
 use super::worker::LaneSpec;
 use lumis::engine::Backend;
 use lumis::integrator::{Heuristic, Settings, Strategy};
@@ -40,6 +42,43 @@ impl StrategyKind {
     }
 }
 
+/// How the image area is arranged.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ViewMode {
+    /// One strategy.
+    Single,
+    /// Two or three strategies side by side (or one of them alone, see `PaneView`).
+    Compare,
+    /// Two renders (or a render and the reference) in one image, split by a divider.
+    Wipe,
+}
+
+/// How render time is shared out between lanes, and when they stop.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pacing {
+    /// Every lane gets the same samples per pixel.
+    EqualSamples,
+    /// Every lane gets the same render time.
+    EqualTime,
+    /// Lanes take turns by render time, and each stops when its relMSE reaches
+    /// `RenderParams::target_relmse`: the times to equal error are the comparison.
+    EqualError,
+}
+
+impl Pacing {
+    /// Every pacing, in menu order.
+    pub const ALL: [Pacing; 3] = [Pacing::EqualSamples, Pacing::EqualTime, Pacing::EqualError];
+
+    /// The label of its radio button.
+    pub fn label(self) -> &'static str {
+        match self {
+            Pacing::EqualSamples => "Equal samples",
+            Pacing::EqualTime => "Equal time",
+            Pacing::EqualError => "Equal error",
+        }
+    }
+}
+
 /// Everything about how the lanes render.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderParams {
@@ -61,12 +100,17 @@ pub struct RenderParams {
     pub sampler: SamplerKind,
     /// Stop at this many samples per pixel (0: never).
     pub spp_limit: u32,
-    /// Show the comparison view instead of the single view.
-    pub compare: bool,
+    /// Single view, side-by-side comparison or wipe.
+    pub view: ViewMode,
     /// Strategies of the comparison panes (two or three).
     pub compare_strategies: Vec<StrategyKind>,
-    /// In the comparison view, give every pane the same render time (else the same samples).
-    pub equal_time: bool,
+    /// The wipe's left (A) and right (B) sides.
+    pub wipe: [WipeSide; 2],
+    /// How lanes share render time (equal samples, equal time, or until equal error).
+    pub pacing: Pacing,
+    /// The relMSE the convergence panel predicts the time to, and at which equal-error pacing
+    /// stops each lane.
+    pub target_relmse: f64,
 }
 
 impl Default for RenderParams {
@@ -81,9 +125,14 @@ impl Default for RenderParams {
             max_depth: None,
             sampler: SamplerKind::Independent,
             spp_limit: 0,
-            compare: false,
+            view: ViewMode::Single,
             compare_strategies: vec![StrategyKind::Light, StrategyKind::Bsdf, StrategyKind::Mis],
-            equal_time: false,
+            wipe: [
+                WipeSide::Render(StrategyKind::Light, None),
+                WipeSide::Render(StrategyKind::Mis, None),
+            ],
+            pacing: Pacing::EqualSamples,
+            target_relmse: 1e-2,
         }
     }
 }
@@ -111,20 +160,45 @@ impl RenderParams {
         }
     }
 
-    /// The lanes shown: the single strategy, or the comparison's.
+    /// The lanes rendered: the single strategy, the comparison's, or the wipe's renders (a
+    /// reference side has no lane). A lane without a backend of its own uses `backend`.
     pub fn lanes(&self) -> Vec<LaneSpec> {
-        let kinds: &[StrategyKind] = if self.compare {
-            &self.compare_strategies
-        } else {
-            std::slice::from_ref(&self.strategy)
-        };
-        kinds
-            .iter()
-            .map(|&k| LaneSpec {
-                label: lane_label(k, self),
+        let lane = |k: StrategyKind, backend: Option<Backend>| {
+            let backend = backend.unwrap_or(self.backend);
+            let mut label = lane_label(k, self);
+            if backend != self.backend {
+                label += match backend {
+                    Backend::Cpu => " (CPU)",
+                    Backend::Gpu => " (GPU)",
+                };
+            }
+            LaneSpec {
+                label,
                 settings: self.settings(k),
-            })
-            .collect()
+                backend,
+            }
+        };
+        match self.view {
+            ViewMode::Single => vec![lane(self.strategy, None)],
+            ViewMode::Compare => (self.compare_strategies.iter())
+                .map(|&k| lane(k, None))
+                .collect(),
+            ViewMode::Wipe => {
+                let mut lanes: Vec<LaneSpec> = (self.wipe.iter())
+                    .filter_map(|s| match *s {
+                        WipeSide::Render(k, b) => Some(lane(k, b)),
+                        WipeSide::Reference => None,
+                    })
+                    .collect();
+                // The same strategy on the same backend twice (two equal lanes) still gets two
+                // names, so that the panes and the plot tell them apart.
+                if lanes.len() == 2 && lanes[0].label == lanes[1].label {
+                    lanes[0].label += " A";
+                    lanes[1].label += " B";
+                }
+                lanes
+            }
+        }
     }
 }
 

@@ -1,9 +1,14 @@
 //! The statistics panel: per lane spp, samples/s, render time, discarded non-finite samples and
-//! the current error, and a live log-log plot of error against render time for every lane.
+//! the current error; the time and spp each lane needs to reach the target relMSE, predicted
+//! from its curve's fitted 1/t line (or, with equal-error pacing, measured); and a live log-log
+//! plot against render time of every lane's relMSE (with the fitted lines and the target) or of
+//! its efficiency 1/(relMSE · t), flat for an unbiased estimator, higher is better.
 
 use super::app::ViewerApp;
+use super::params::Pacing;
+use super::prediction::{InverseFit, describe};
 use super::worker::LaneView;
-use egui_plot::{GridMark, HoverPosition, Legend, Line, Plot};
+use egui_plot::{GridMark, HLine, HoverPosition, Legend, Line, LineStyle, Plot};
 
 /// Lane colours, shared by the plot and the captions' order.
 pub const LANE_COLOURS: [egui::Color32; 3] = [
@@ -52,13 +57,35 @@ impl ViewerApp {
                     "first image after the last change: {latency} · restarts: {}",
                     self.restarts
                 ));
+                let target = self.params.target_relmse;
                 for l in &self.output.lanes {
-                    ui.label(stats_line(l));
+                    ui.label(format!(
+                        "{} · {}",
+                        stats_line(l),
+                        describe(&l.curve, target)
+                    ));
                 }
+                if self.params.pacing == Pacing::EqualError {
+                    ui.label(format!("equal error (relMSE {target:.0e}):"));
+                    for line in super::equal_error::report(&self.output.lanes, target) {
+                        ui.label(line);
+                    }
+                }
+                let efficiency = self.plot_efficiency;
+                ui.horizontal(|ui| {
+                    ui.label("Plot");
+                    ui.radio_value(&mut self.plot_efficiency, false, "relMSE");
+                    ui.radio_value(&mut self.plot_efficiency, true, "efficiency 1/(relMSE·t)");
+                });
+                let y_name = if efficiency { "efficiency" } else { "relMSE" };
                 Plot::new("convergence")
                     .legend(Legend::default())
                     .x_axis_label("render time (s)")
-                    .y_axis_label("relMSE")
+                    .y_axis_label(if efficiency {
+                        "1/(relMSE · s)"
+                    } else {
+                        "relMSE"
+                    })
                     .x_axis_formatter(|m, _| pow10_label(m, ""))
                     .y_axis_formatter(|m, _| pow10_label(m, ""))
                     .label_formatter(|hover| {
@@ -71,7 +98,7 @@ impl ViewerApp {
                             HoverPosition::Elsewhere { position } => ("", position),
                         };
                         Some(format!(
-                            "{name}\n{:.3} s\nrelMSE {:.3e}",
+                            "{name}\n{:.3} s\n{y_name} {:.3e}",
                             10f64.powf(p.x),
                             10f64.powf(p.y)
                         ))
@@ -80,15 +107,36 @@ impl ViewerApp {
                         for (i, l) in self.output.lanes.iter().enumerate() {
                             // Log-log: an unbiased estimator's error falls as 1/t, a straight
                             // line of slope −1, so strategies compare by their offsets.
+                            // Efficiency 1/(relMSE·t) is flat for such an estimator.
+                            let y = |e: f64, t: f64| if efficiency { 1.0 / (e * t) } else { e };
+                            let colour = LANE_COLOURS[i % LANE_COLOURS.len()];
                             let points: Vec<[f64; 2]> = l
                                 .curve
                                 .iter()
                                 .filter(|p| p.seconds > 0.0 && p.relmse > 0.0)
-                                .map(|p| [p.seconds.log10(), p.relmse.log10()])
+                                .map(|p| [p.seconds.log10(), y(p.relmse, p.seconds).log10()])
                                 .collect();
-                            plot.line(
-                                Line::new(l.label.clone(), points)
-                                    .color(LANE_COLOURS[i % LANE_COLOURS.len()]),
+                            plot.line(Line::new(l.label.clone(), points).color(colour));
+                            // The fitted 1/t line, from the first point out to the target.
+                            if let Some(fit) = InverseFit::fit(&l.curve) {
+                                let t0 = l.curve[0].seconds.max(1e-3);
+                                let t1 = fit.seconds_to(target).max(l.render_seconds);
+                                let line: Vec<[f64; 2]> = [t0, t1]
+                                    .iter()
+                                    .map(|&t| [t.log10(), y(fit.per_second / t, t).log10()])
+                                    .collect();
+                                plot.line(
+                                    Line::new(format!("{} 1/t fit", l.label), line)
+                                        .color(colour.gamma_multiply(0.6))
+                                        .style(LineStyle::dashed_dense()),
+                                );
+                            }
+                        }
+                        if !efficiency {
+                            plot.hline(
+                                HLine::new("target", target.log10())
+                                    .color(egui::Color32::GRAY)
+                                    .style(LineStyle::dotted_loose()),
                             );
                         }
                     });

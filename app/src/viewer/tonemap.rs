@@ -1,27 +1,49 @@
 //! From linear radiance to display pixels: exposure, clamp and the sRGB curve (the same as
-//! `lumis render`'s PNG output), or a false-colour map of the per-pixel relative error.
+//! `lumis render`'s PNG output), a false-colour map of the per-pixel relative error, or a signed
+//! false-colour map of the difference of two images ([`Content`]).
 
 use glam::Vec3;
 /// One display pixel (sRGB bytes) of linear `c` at a gain (`2^exposure`), as `lumis render`
 /// writes PNGs.
 pub use lumis::image_io::srgb8;
 
+/// What each pane shows per pixel. Display only: switching never restarts accumulation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Content {
+    /// The image, exposed and sRGB-encoded.
+    #[default]
+    Image,
+    /// The per-pixel relative error in false colour ([`error_colour`]): against the reference
+    /// where one is loaded, else the half-buffer estimate.
+    RelativeError,
+    /// The signed relative difference `(A − B)/(|B| + 0.01)` of the luminance in a diverging map
+    /// ([`difference_colour`]): in the wipe, its A against its B; elsewhere each pane against
+    /// the reference, or without one against the first pane.
+    Difference,
+    // Issue 21 item 4 adds the technique map here (which strategy carries the estimate).
+}
+
+impl Content {
+    /// Every content, in menu order (one line per mode).
+    pub const ALL: [Content; 3] = [Content::Image, Content::RelativeError, Content::Difference];
+
+    /// Its menu name.
+    pub fn label(self) -> &'static str {
+        match self {
+            Content::Image => "image",
+            Content::RelativeError => "relative error",
+            Content::Difference => "difference A − B",
+        }
+    }
+}
+
 /// How the image is shown.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Display {
     /// Exposure in stops: pixels are multiplied by `2^exposure`.
     pub exposure: f32,
-    /// Show the relative error in false colour instead of the image.
-    pub false_colour: bool,
-}
-
-impl Default for Display {
-    fn default() -> Display {
-        Display {
-            exposure: 0.0,
-            false_colour: false,
-        }
-    }
+    /// What the panes show.
+    pub content: Content,
 }
 
 /// Decades of relative error the false-colour map spans: 10⁻³ (dark blue) to 10⁰ (yellow).
@@ -52,10 +74,58 @@ pub fn error_colour(e: f32) -> [u8; 3] {
     })
 }
 
+/// The diverging map of [`Content::Difference`], from blue (B brighter) through light grey
+/// (equal) to red (A brighter): Moreland's cool-warm at five stops, whose ends are equally
+/// bright so that neither sign looks larger.
+const COOL_WARM: [[f32; 3]; 5] = [
+    [0.230, 0.299, 0.754],
+    [0.552, 0.690, 0.996],
+    [0.866, 0.866, 0.866],
+    [0.957, 0.604, 0.482],
+    [0.706, 0.016, 0.150],
+];
+
+/// The false colour (sRGB bytes) of signed relative difference `d`: `|d|` on the same decades
+/// as the error map ([`ERROR_DECADES`]), below 10⁻³ grey, at 1 and over the ends; NaN is
+/// dark grey.
+pub fn difference_colour(d: f32) -> [u8; 3] {
+    if !d.is_finite() {
+        return [64, 64, 64];
+    }
+    let (lo, hi) = ERROR_DECADES;
+    let m = ((d.abs().max(1e-12).log10() - lo) / (hi - lo)).clamp(0.0, 1.0);
+    // t in [0, 4]: 0 is −1, 2 is 0, 4 is +1.
+    let t = 2.0 + 2.0 * m * d.signum();
+    let i = (t as usize).min(3);
+    let f = t - i as f32;
+    std::array::from_fn(|c| {
+        let v = COOL_WARM[i][c] * (1.0 - f) + COOL_WARM[i + 1][c] * f;
+        (v * 255.0 + 0.5) as u8
+    })
+}
+
+/// The luminance of linear `c` (Rec. 709 weights).
+pub fn luminance(c: Vec3) -> f32 {
+    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
+}
+
+/// Per pixel, the signed relative difference of the luminance `(a − b)/(|b| + 0.01)`, the
+/// denominator as in relMSE; NaN where the sizes differ (a preview against a full image).
+pub fn signed_difference(a: &[Vec3], b: &[Vec3]) -> Vec<f32> {
+    if a.len() != b.len() {
+        return vec![f32::NAN; a.len().max(1)];
+    }
+    a.iter()
+        .zip(b)
+        .map(|(a, b)| (luminance(*a) - luminance(*b)) / (luminance(*b).abs() + 0.01))
+        .collect()
+}
+
 /// The displayed pixels, RGB bytes row-major. False colour needs per-pixel errors of the same
-/// size; previews have none, so they are shown as images.
+/// size; previews have none, so they are shown as images. (The difference, which needs two
+/// images, is [`difference_rgb`].)
 pub fn display_rgb(pixels: &[Vec3], errors: &[f32], display: Display) -> Vec<u8> {
-    if display.false_colour && errors.len() == pixels.len() {
+    if display.content == Content::RelativeError && errors.len() == pixels.len() {
         return errors.iter().flat_map(|&e| error_colour(e)).collect();
     }
     let gain = 2f32.powf(display.exposure);
@@ -74,4 +144,34 @@ pub fn color_image(
         [width as usize, height as usize],
         &display_rgb(pixels, errors, display),
     )
+}
+
+/// The difference view of `a` against `b` as RGB bytes (see [`signed_difference`]).
+pub fn difference_rgb(a: &[Vec3], b: &[Vec3]) -> Vec<u8> {
+    signed_difference(a, b)
+        .into_iter()
+        .flat_map(difference_colour)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The diverging map is grey at 0, red for A brighter, blue for B brighter, symmetric in
+    /// brightness, and saturates at ±1 (the end stops).
+    #[test]
+    fn difference_map_is_signed_and_symmetric() {
+        let grey = difference_colour(0.0);
+        assert_eq!(grey, difference_colour(1e-5));
+        assert_eq!(grey, [221, 221, 221]);
+        let (red, blue) = (difference_colour(0.1), difference_colour(-0.1));
+        assert!(red[0] > red[2] && blue[2] > blue[0], "{red:?} {blue:?}");
+        assert_eq!(difference_colour(5.0), difference_colour(1.0));
+        assert_eq!(difference_colour(1.0), [180, 4, 38]);
+        assert_eq!(difference_colour(-1.0), [59, 76, 192]);
+        assert_eq!(difference_colour(f32::NAN), [64, 64, 64]);
+        let d = signed_difference(&[Vec3::splat(2.0)], &[Vec3::ONE]);
+        assert!((d[0] - 1.0 / 1.01).abs() < 1e-6);
+    }
 }

@@ -5,6 +5,7 @@
 
 use super::convergence::{CurvePoint, ErrorSource, film_error, pixel_errors};
 use super::gpu_display::LiveImage;
+use super::params::Pacing;
 use super::preview::{preview_factors, render_preview};
 use glam::Vec3;
 use lumis::engine::{AnyProgressive, Backend};
@@ -31,6 +32,8 @@ pub struct LaneSpec {
     pub label: String,
     /// Estimator settings.
     pub settings: Settings,
+    /// Where this lane renders (a wipe may put CPU and GPU side by side).
+    pub backend: Backend,
 }
 
 /// Everything the render thread needs for one accumulation run.
@@ -48,10 +51,10 @@ pub struct Job {
     pub seed: u32,
     /// Stop each lane at this many samples per pixel (0: never).
     pub spp_limit: u32,
-    /// Share render time equally between lanes instead of samples.
-    pub equal_time: bool,
-    /// Where to render.
-    pub backend: Backend,
+    /// How lanes share render time.
+    pub pacing: Pacing,
+    /// With [`Pacing::EqualError`]: stop each lane when its relMSE reaches this.
+    pub target_relmse: f64,
     /// The window's wgpu device, when it has one: GPU lanes then render on it and are shown
     /// from their accumulation buffers without a readback per pass.
     pub gpu: Option<Arc<GpuContext>>,
@@ -74,6 +77,9 @@ pub struct LaneView {
     pub preview: bool,
     /// The current mean, linear RGB.
     pub pixels: Arc<Vec<Vec3>>,
+    /// Per pixel and channel, the variance of the mean (`s²/n` from the film's Σx and Σx²;
+    /// infinite below 2 samples, empty for previews): the inspector's standard error.
+    pub variance: Arc<Vec<Vec3>>,
     /// Per-pixel relative error (NaN where unknown; empty for previews).
     pub errors: Arc<Vec<f32>>,
     /// Samples per pixel of `pixels` (a GPU lane shown live may be further: see `live`).
@@ -91,8 +97,11 @@ pub struct LaneView {
     pub error: Option<(f64, ErrorSource)>,
     /// Error against render time.
     pub curve: Vec<CurvePoint>,
-    /// The spp limit is reached.
+    /// The spp limit is reached, or (equal-error pacing) the target error.
     pub done: bool,
+    /// Equal-error pacing: the render time (s) and spp at which the lane's relMSE first reached
+    /// the target.
+    pub reached: Option<(f64, u32)>,
 }
 
 /// What the render thread has published.
@@ -244,7 +253,8 @@ struct Running {
     previews: Vec<u32>,
     seed: u32,
     spp_limit: u32,
-    equal_time: bool,
+    pacing: Pacing,
+    target_relmse: f64,
     reference: Option<Arc<Vec<Vec3>>>,
     /// GPU lanes are shown from their buffers (the job came with the window's device).
     live: bool,
@@ -319,7 +329,7 @@ fn start(
     let mut lanes = Vec::new();
     for spec in &job.lanes {
         let render = match AnyProgressive::with_device(
-            job.backend,
+            spec.backend,
             scene.clone(),
             spec.settings,
             job.seed,
@@ -370,7 +380,8 @@ fn start(
         lanes,
         seed: job.seed,
         spp_limit: job.spp_limit,
-        equal_time: job.equal_time,
+        pacing: job.pacing,
+        target_relmse: job.target_relmse,
         reference: job.reference,
         live: job.gpu.is_some(),
     })
@@ -378,12 +389,21 @@ fn start(
 
 fn empty_view(spec: &LaneSpec) -> LaneView {
     LaneView {
-        label: spec.label.clone(),
         settings: spec.settings,
+        ..empty_lane_view(&spec.label)
+    }
+}
+
+/// A lane with nothing rendered yet.
+pub(crate) fn empty_lane_view(label: &str) -> LaneView {
+    LaneView {
+        label: label.into(),
+        settings: Settings::default(),
         width: 0,
         height: 0,
         preview: true,
         pixels: Arc::new(Vec::new()),
+        variance: Arc::new(Vec::new()),
         errors: Arc::new(Vec::new()),
         spp: 0,
         live: None,
@@ -393,6 +413,7 @@ fn empty_view(spec: &LaneSpec) -> LaneView {
         error: None,
         curve: Vec::new(),
         done: false,
+        reached: None,
     }
 }
 
@@ -426,7 +447,7 @@ fn step(shared: &Shared, r: &mut Running) {
     let spp = lane.render.spp();
     let mut n = lane.pass;
     // Equal samples: a lane that is behind catches up to the leader before running ahead.
-    if !r.equal_time && spp < max_spp {
+    if r.pacing == Pacing::EqualSamples && spp < max_spp {
         n = n.min(max_spp - spp);
     }
     if r.spp_limit > 0 {
@@ -458,8 +479,11 @@ fn step(shared: &Shared, r: &mut Running) {
         v.samples_per_second =
             spp as f64 * acc.width as f64 * acc.height as f64 / v.render_seconds.max(1e-9);
     }
+    // Equal-error pacing reads every pass back, so that a lane stops at the pass that reaches
+    // the target, not up to half a second later.
     let due = v.live.is_none()
         || done
+        || r.pacing == Pacing::EqualError
         || lane
             .last_readback
             .is_none_or(|t| t.elapsed() >= READBACK_EVERY);
@@ -471,15 +495,21 @@ fn step(shared: &Shared, r: &mut Running) {
             r.lanes.clear();
             return;
         }
+        if r.pacing == Pacing::EqualError
+            && let Some(at) = super::equal_error::reached(&lane.view, r.target_relmse)
+        {
+            lane.view.reached = Some(at);
+            lane.view.done = true;
+        }
     }
     publish(shared, r, i);
 }
 
-/// Which lane renders next: the one with the least render time (equal time) or the fewest
-/// samples (equal samples); ties go to the leftmost.
+/// Which lane renders next: the one with the least render time (equal time or error) or the
+/// fewest samples (equal samples); ties go to the leftmost.
 fn next_lane(r: &Running) -> Option<usize> {
     let candidates = r.lanes.iter().enumerate().filter(|(_, l)| !l.view.done);
-    if r.equal_time {
+    if r.pacing != Pacing::EqualSamples {
         candidates.min_by_key(|(_, l)| l.time).map(|(i, _)| i)
     } else {
         candidates
@@ -496,6 +526,7 @@ fn update_view(lane: &mut Lane, reference: Option<&[Vec3]>) -> Result<(), String
     let v = &mut lane.view;
     v.error = film_error(film, &mean, reference);
     v.errors = Arc::new(pixel_errors(film, &mean, reference));
+    v.variance = Arc::new(variance_of_mean(film));
     v.width = film.width;
     v.height = film.height;
     v.preview = false;
@@ -513,6 +544,25 @@ fn update_view(lane: &mut Lane, reference: Option<&[Vec3]>) -> Result<(), String
         });
     }
     Ok(())
+}
+
+/// [`lumis::engine::Film::variance_of_mean`] in `f32`, one `Vec3` a pixel, computed in one pass
+/// over the film (the inspector's standard errors; the film itself stays with the engine).
+fn variance_of_mean(film: &lumis::engine::Film) -> Vec<Vec3> {
+    let n = film.spp as f64;
+    film.pixels
+        .iter()
+        .map(|p| {
+            if n < 2.0 {
+                return Vec3::INFINITY;
+            }
+            let v: [f32; 3] = std::array::from_fn(|c| {
+                let mean = p.sum[c] / n;
+                (((p.sum_sq[c] - n * mean * mean) / (n - 1.0)).max(0.0) / n) as f32
+            });
+            Vec3::from(v)
+        })
+        .collect()
 }
 
 fn publish_error(shared: &Shared, generation: u64, e: String) {

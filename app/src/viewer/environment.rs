@@ -1,0 +1,54 @@
+//! The background's controls: an environment map's scale and rotation about +y, or a constant
+//! background's radiance. Edits go into the scene description, which is then rebuilt.
+
+use super::app::ViewerApp;
+use lumis::scene::BackgroundDesc;
+
+/// Range of the environment map's scale slider (logarithmic).
+const SCALE_RANGE: std::ops::RangeInclusive<f64> = 1e-3..=1e3;
+
+impl ViewerApp {
+    pub(crate) fn environment_controls(&mut self, ui: &mut egui::Ui) {
+        let Some(desc) = &mut self.desc else { return };
+        let mut changed = false;
+        match &mut desc.background {
+            BackgroundDesc::Envmap(e) => {
+                ui.label(format!(
+                    "environment map {}",
+                    e.file.file_name().unwrap_or_default().to_string_lossy()
+                ));
+                changed |= ui
+                    .add(
+                        egui::Slider::new(&mut e.scale, SCALE_RANGE)
+                            .logarithmic(true)
+                            .text("Environment scale"),
+                    )
+                    .changed();
+                changed |= ui
+                    .add(
+                        egui::Slider::new(&mut e.rotate_y_deg, -180.0..=180.0)
+                            .text("Environment rotation (°)"),
+                    )
+                    .changed();
+            }
+            BackgroundDesc::Constant(c) => {
+                ui.horizontal(|ui| {
+                    for (v, name) in [(&mut c.x, "red"), (&mut c.y, "green"), (&mut c.z, "blue")] {
+                        changed |= ui
+                            .add(
+                                egui::DragValue::new(v)
+                                    .range(0.0..=1e5)
+                                    .speed(0.01)
+                                    .prefix(format!("{name} ")),
+                            )
+                            .changed();
+                    }
+                    ui.label("Background radiance");
+                });
+            }
+        }
+        if changed {
+            self.scene_changed();
+        }
+    }
+}
