@@ -63,19 +63,24 @@ for scene in $scenes; do
         done
     done
 done
-echo "clock: $clock; spp $spp; seeds 0..$((seeds - 1)); relMSE the mean, seconds the median"
+echo "clock: $clock; spp $spp; seeds 0..$((seeds - 1)); seconds the median"
+echo "efficiency 1/(relMSE·seconds) relative to Mitsuba independent's, by the mean and by the median"
+echo "relMSE (a single firefly moves the mean of a heavy-tailed error; the median is robust)"
 python3 - "$rows" <<'PY'
 import collections, statistics, sys
 rows = collections.defaultdict(list)
 for line in open(sys.argv[1]):
     scene, name, _seed, rel, secs = line.split()
     rows[(scene, name)].append((float(rel), float(secs)))
-print(f"{'scene':14} {'renderer':24} {'relMSE':>10} {'seconds':>8} {'eff. vs mi independent':>22}")
+print(f"{'scene':14} {'renderer':24} {'relMSE mean':>11} {'median':>10} {'seconds':>8} "
+      f"{'eff. (mean)':>11} {'eff. (median)':>13}")
 for scene in dict.fromkeys(k[0] for k in rows):
     base = rows[(scene, "mitsuba_independent")]
-    eff = lambda r: 1 / (statistics.mean(x for x, _ in r) * statistics.median(s for _, s in r))
+    secs = lambda r: statistics.median(s for _, s in r)
+    eff = lambda r, avg: 1 / (avg([x for x, _ in r]) * secs(r))
     for (sc, name), r in rows.items():
         if sc == scene:
-            print(f"{scene:14} {name:24} {statistics.mean(x for x, _ in r):10.3e} "
-                  f"{statistics.median(s for _, s in r):8.2f} {eff(r) / eff(base):22.2f}")
+            m, md = statistics.mean, statistics.median
+            print(f"{scene:14} {name:24} {m(x for x, _ in r):11.3e} {md(x for x, _ in r):10.3e} "
+                  f"{secs(r):8.2f} {eff(r, m) / eff(base, m):11.2f} {eff(r, md) / eff(base, md):13.2f}")
 PY
