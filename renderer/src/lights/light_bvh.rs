@@ -124,6 +124,26 @@ impl LightBvh {
         n / (n + if self.nodes.is_empty() { 0.0 } else { 1.0 })
     }
 
+    /// The children of the interior node `node` (at `index`) and the probability of descending
+    /// into each from a receiver at `(p, n)`; `None` where neither can reach `p`. One function
+    /// for [`LightBvh::sample`] and [`LightBvh::pmf`], so that the two multiply the same numbers.
+    #[inline]
+    fn children(
+        &self,
+        index: usize,
+        node: &LightBvhNode,
+        p: Vec3,
+        n: Vec3,
+    ) -> Option<[(usize, f32); 2]> {
+        let (c0, c1) = (index + 1, node.child_or_light as usize);
+        let w0 = self.nodes[c0].bounds.importance(p, n);
+        let w1 = self.nodes[c1].bounds.importance(p, n);
+        if !positive(w0 + w1) {
+            return None;
+        }
+        Some([(c0, w0 / (w0 + w1)), (c1, w1 / (w0 + w1))])
+    }
+
     /// Chooses a light for a receiver at `p` with normal `n` (zero: none) from `u ∈ [0, 1)`:
     /// `(index, probability)`, `None` where no light can reach `p`.
     pub fn sample(&self, p: Vec3, n: Vec3, u: f32) -> Option<(usize, f32)> {
@@ -142,20 +162,14 @@ impl LightBvh {
         let mut node = root;
         let mut index = 0;
         while !node.leaf {
-            let (c0, c1) = (index + 1, node.child_or_light as usize);
-            let w0 = self.nodes[c0].bounds.importance(p, n);
-            let w1 = self.nodes[c1].bounds.importance(p, n);
-            if !positive(w0 + w1) {
-                return None;
-            }
-            let p0 = w0 / (w0 + w1);
+            let [(c0, p0), (c1, p1)] = self.children(index, node, p, n)?;
             if u < p0 {
                 u = (u / p0).min(crate::sampling::ONE_MINUS_EPSILON);
-                pmf *= w0 / (w0 + w1);
+                pmf *= p0;
                 index = c0;
             } else {
                 u = ((u - p0) / (1.0 - p0)).min(crate::sampling::ONE_MINUS_EPSILON);
-                pmf *= w1 / (w0 + w1);
+                pmf *= p1;
                 index = c1;
             }
             node = &self.nodes[index];
@@ -179,19 +193,14 @@ impl LightBvh {
         let mut node = root;
         let mut index = 0;
         while !node.leaf {
-            let (c0, c1) = (index + 1, node.child_or_light as usize);
-            let w0 = self.nodes[c0].bounds.importance(p, n);
-            let w1 = self.nodes[c1].bounds.importance(p, n);
-            if !positive(w0 + w1) {
+            let Some([(c0, p0), (c1, p1)]) = self.children(index, node, p, n) else {
                 return 0.0;
-            }
-            if trail & 1 == 0 {
-                pmf *= w0 / (w0 + w1);
-                index = c0;
+            };
+            (pmf, index) = if trail & 1 == 0 {
+                (pmf * p0, c0)
             } else {
-                pmf *= w1 / (w0 + w1);
-                index = c1;
-            }
+                (pmf * p1, c1)
+            };
             trail >>= 1;
             node = &self.nodes[index];
         }

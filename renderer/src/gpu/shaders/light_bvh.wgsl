@@ -91,6 +91,25 @@ fn light_bvh_p_infinite() -> f32 {
 }
 
 // `LightBvh::sample`: pmf 0 where no light can reach p.
+// `LightBvh::children`: interior node `index`'s children and the probability of descending into
+// each from (p, n); one function for sample and pmf, so the two multiply the same numbers.
+struct LightBvhChildren {
+    c0: u32,
+    c1: u32,
+    p0: f32,
+    p1: f32,
+    // False where neither child can reach p.
+    reach: bool,
+}
+
+fn light_bvh_children(index: u32, p: vec3f, n: vec3f) -> LightBvhChildren {
+    let c0 = index + 1u;
+    let c1 = light_bvh_child_or_light(index);
+    let w0 = light_bounds_importance(light_bvh_bounds(c0), p, n);
+    let w1 = light_bounds_importance(light_bvh_bounds(c1), p, n);
+    return LightBvhChildren(c0, c1, w0 / (w0 + w1), w1 / (w0 + w1), w0 + w1 > 0.0);
+}
+
 fn light_bvh_sample(p: vec3f, n: vec3f, u_in: f32) -> LightChoice {
     let base = params.light_bvh;
     let n_nodes = light_bvh_word(base);
@@ -107,22 +126,18 @@ fn light_bvh_sample(p: vec3f, n: vec3f, u_in: f32) -> LightChoice {
     var pmf = 1.0 - p_inf;
     var index = 0u;
     while !light_bvh_is_leaf(index) {
-        let c0 = index + 1u;
-        let c1 = light_bvh_child_or_light(index);
-        let w0 = light_bounds_importance(light_bvh_bounds(c0), p, n);
-        let w1 = light_bounds_importance(light_bvh_bounds(c1), p, n);
-        if !(w0 + w1 > 0.0) {
+        let c = light_bvh_children(index, p, n);
+        if !c.reach {
             return LightChoice(0u, 0.0);
         }
-        let p0 = w0 / (w0 + w1);
-        if u < p0 {
-            u = min(u / p0, ONE_MINUS_EPSILON);
-            pmf *= w0 / (w0 + w1);
-            index = c0;
+        if u < c.p0 {
+            u = min(u / c.p0, ONE_MINUS_EPSILON);
+            pmf *= c.p0;
+            index = c.c0;
         } else {
-            u = min((u - p0) / (1.0 - p0), ONE_MINUS_EPSILON);
-            pmf *= w1 / (w0 + w1);
-            index = c1;
+            u = min((u - c.p0) / (1.0 - c.p0), ONE_MINUS_EPSILON);
+            pmf *= c.p1;
+            index = c.c1;
         }
     }
     if index == 0u && !(light_bounds_importance(light_bvh_bounds(0u), p, n) > 0.0) {
@@ -151,19 +166,16 @@ fn light_bvh_pmf(p: vec3f, n: vec3f, i: u32) -> f32 {
     var pmf = 1.0 - light_bvh_p_infinite();
     var index = 0u;
     while !light_bvh_is_leaf(index) {
-        let c0 = index + 1u;
-        let c1 = light_bvh_child_or_light(index);
-        let w0 = light_bounds_importance(light_bvh_bounds(c0), p, n);
-        let w1 = light_bounds_importance(light_bvh_bounds(c1), p, n);
-        if !(w0 + w1 > 0.0) {
+        let c = light_bvh_children(index, p, n);
+        if !c.reach {
             return 0.0;
         }
         if (lo & 1u) == 0u {
-            pmf *= w0 / (w0 + w1);
-            index = c0;
+            pmf *= c.p0;
+            index = c.c0;
         } else {
-            pmf *= w1 / (w0 + w1);
-            index = c1;
+            pmf *= c.p1;
+            index = c.c1;
         }
         lo = (lo >> 1u) | (hi << 31u);
         hi = hi >> 1u;
