@@ -49,7 +49,12 @@ mod tests {
         assert_eq!(missing_features(), Vec::<&str>::new());
         #[cfg(target_arch = "x86_64")]
         if option_env!("RUSTFLAGS").is_none() {
-            assert!(cfg!(target_feature = "avx2") && cfg!(target_feature = "fma"));
+            let built_with = [cfg!(target_feature = "avx2"), cfg!(target_feature = "fma")];
+            assert_eq!(
+                built_with,
+                [true, true],
+                "built without AVX2/FMA (avx2, fma)"
+            );
         }
     }
 }
