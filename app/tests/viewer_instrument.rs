@@ -463,11 +463,11 @@ fn every_render_option_is_in_the_menus() {
         [1400.0, 1400.0],
     );
     assert_restarts(&mut h, "sampler", |h| {
-        pick_combo(h, "Sampler", "sobol (Owen-scrambled)")
+        pick_combo(h, "Sampler", "independent")
     });
     assert_eq!(
         h.state().output().lanes[0].settings.sampler,
-        SamplerKind::Sobol
+        SamplerKind::Independent
     );
     for (entry, want) in [
         ("area (env. map: uniform)", LightSampling::Area),

@@ -114,7 +114,10 @@ fn check_viewer_against_cli(backend: &str) {
             &SPP.to_string(),
             "--exit-after-screenshot",
         ])
-        // Another seed than the CLI's: the two renders are independent estimates.
+        // Another seed than the CLI's: the two renders are independent estimates. The
+        // independent sampler on both sides, so the third render's per-pixel variance below is
+        // theirs (Sobol's default points have no per-pixel variance estimate of their own).
+        .args(["--sampler", "independent"])
         .args(["--seed", "1", "--log-latency", "--screenshot-dir"])
         .arg(&shots);
     let (ok, log) = run_with_limit(viewer, Duration::from_secs(300));
@@ -125,7 +128,15 @@ fn check_viewer_against_cli(backend: &str) {
     let out = Command::new(bin)
         .arg("render")
         .arg(scene())
-        .args(["--spp", &SPP.to_string(), "--seed", "0", "-o"])
+        .args([
+            "--spp",
+            &SPP.to_string(),
+            "--seed",
+            "0",
+            "--sampler",
+            "independent",
+        ])
+        .arg("-o")
         .arg(&cli_exr)
         .output()
         .unwrap();

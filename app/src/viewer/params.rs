@@ -123,7 +123,8 @@ impl Default for RenderParams {
             light_sampling: LightSampling::SolidAngle,
             light_selection: LightSelection::Power,
             max_depth: None,
-            sampler: SamplerKind::Independent,
+            // The CLI's default too (docs/performance.md, "Sobol sampler").
+            sampler: SamplerKind::Sobol,
             spp_limit: 0,
             view: ViewMode::Single,
             compare_strategies: vec![StrategyKind::Light, StrategyKind::Bsdf, StrategyKind::Mis],
