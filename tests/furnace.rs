@@ -1,6 +1,6 @@
 //! White-furnace tests: scenes whose every pixel has a closed-form value, rendered with every
-//! strategy (light, BSDF, mixture w = 0.5, MIS power and balance) and both light-sampling methods
-//! (area, solid angle), seeded.
+//! strategy (light, BSDF, mixture w = 0.5, MIS power and balance, MIS with optimal weights) and
+//! both light-sampling methods (area, solid angle), seeded.
 //!
 //! - **Closed emissive box.** The camera sits inside a cube of six inward-facing diffuse quads, each
 //!   with albedo `a` and one-sided (inward) emission `L`. Every pixel sees `L·(1 + a + … + a^{k−1})`
@@ -36,7 +36,7 @@
 mod common;
 
 use common::ground::{background_scene, classify_pixels};
-use common::{METHODS, STRATEGIES, Tally, build, json_vec, render};
+use common::{METHODS, STRATEGIES_AND_OPTIMAL as STRATEGIES, Tally, build, json_vec, render};
 use glam::Vec3;
 use lumis::integrator::{Settings, Strategy};
 use lumis::lights::LightSampling;

@@ -3,14 +3,16 @@
 //! layer's radiance waits in a scratch plane and `fold` adds the layers in sample order with the
 //! same updates. Passes of 5 and 6 samples exercise a last dispatch of fewer layers. On lavapipe
 //! (a CPU adapter, where the default is one sample per dispatch) this is the only coverage of the
-//! multi-sample path. Both samplers; and the split into passes does not matter either.
+//! multi-sample path. Both samplers; and the split into passes does not matter either. With
+//! `mis-optimal` the layers' moments wait in scratch planes too, and dispatches are split where
+//! a stage starts: the same film for every layering and pass split.
 
 mod gpu_common;
 
 use gpu_common::*;
 use lumis::engine::Film;
 use lumis::gpu::GpuProgressive;
-use lumis::integrator::Settings;
+use lumis::integrator::{Settings, Strategy};
 use lumis::sampler::SamplerKind;
 use lumis::scene::Scene;
 use std::sync::Arc;
@@ -33,11 +35,21 @@ fn render(
     samples_per_dispatch: u32,
     passes: &[u32],
 ) -> Option<Film> {
-    let ctx = context()?;
     let settings = Settings {
         sampler,
         ..Settings::default()
     };
+    render_with(scene, settings, samples_per_dispatch, passes)
+}
+
+/// [`render`] with any settings.
+fn render_with(
+    scene: &Arc<Scene>,
+    settings: Settings,
+    samples_per_dispatch: u32,
+    passes: &[u32],
+) -> Option<Film> {
+    let ctx = context()?;
     let mut r = GpuProgressive::with_context(ctx, scene.clone(), settings, 7)
         .unwrap_or_else(|e| panic!("{e}"));
     r.set_samples_per_dispatch(samples_per_dispatch);
@@ -84,6 +96,40 @@ fn films_do_not_depend_on_samples_per_dispatch() {
                     "{sampler:?}, {k} samples per dispatch, passes {passes:?}, pixel {i}"
                 );
             }
+        }
+    }
+}
+
+/// mis-optimal: 20 spp (α solved at samples 8 and 16) rendered 1, 2, 4 or 8 samples per dispatch
+/// in passes of 5, 6 and 9, in one pass (dispatches split at 8 and 16), or 20 passes of one, are
+/// the same film bit for bit: the moments are added in sample order by `fold` or by the sample
+/// itself, and α is solved once per stage from the samples before it.
+#[test]
+fn mis_optimal_films_do_not_depend_on_samples_per_dispatch() {
+    let scene = small_cornell();
+    let settings = Settings {
+        strategy: Strategy::MisOptimal,
+        ..Settings::default()
+    };
+    let Some(one) = render_with(&scene, settings, 1, &[5, 6, 9]) else {
+        return;
+    };
+    assert!(one.pixels.iter().any(|p| p.sum[0] > 0.0), "a black image");
+    for (k, passes) in [
+        (2, &[5, 6, 9][..]),
+        (4, &[5, 6, 9]),
+        (8, &[5, 6, 9]),
+        (8, &[20]),
+        (1, &[1; 20]),
+    ] {
+        let other = render_with(&scene, settings, k, passes).unwrap();
+        assert_eq!(other.spp, one.spp);
+        assert_eq!(other.nonfinite, one.nonfinite);
+        for (i, (a, b)) in bits(&one).iter().zip(&bits(&other)).enumerate() {
+            assert_eq!(
+                a, b,
+                "{k} samples per dispatch, passes {passes:?}, pixel {i}"
+            );
         }
     }
 }

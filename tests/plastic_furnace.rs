@@ -143,7 +143,7 @@ fn spp(strategy: Strategy) -> u32 {
     match strategy {
         Strategy::Light => 8192,
         Strategy::Mixture { .. } => 2048,
-        Strategy::Mis { .. } => 1024,
+        Strategy::Mis { .. } | Strategy::MisOptimal => 1024,
         Strategy::Bsdf => 512,
     }
 }

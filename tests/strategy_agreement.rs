@@ -119,6 +119,7 @@ fn plastic_scene_strategies_agree() {
             None,
             32,
         ),
+        (Strategy::MisOptimal, LightSampling::Area, 64, None, 32),
     ];
     let stored = (
         reference("plastic_lights.exr"),

@@ -7,8 +7,8 @@
 //!   equal those it gives the light sample (to 1e-3, periodic). Deterministic; catches any
 //!   disagreement between the two lookups, including ones no image test sees (swapped
 //!   barycentrics permute the texture within each triangle and keep every triangle's power).
-//! * `strategies_agree_on_textured_emitters`: light, BSDF, mixture and MIS (both light-sampling
-//!   methods; seeds 10–15) against a converged MIS render made here (1024 spp, seed 1), by the
+//! * `strategies_agree_on_textured_emitters`: light, BSDF, mixture, MIS and MIS with optimal
+//!   weights (both light-sampling methods; seeds 10–16) against a converged MIS render made here (1024 spp, seed 1), by the
 //!   block z-test with both images' variances (8 × 8 blocks, family-wise α = 0.01 over all
 //!   cases, blocks and channels, Šidák). Light sampling sees the texture at sampled points, BSDF
 //!   sampling at hits: a wrong texture value on either side makes them disagree. `max_depth` 2
@@ -230,6 +230,8 @@ fn strategies_agree_on_textured_emitters() {
             LightSampling::SolidAngle,
             256,
         ),
+        // Its control variate needs light samples and BSDF hits to agree on which points emit.
+        (Strategy::MisOptimal, LightSampling::SolidAngle, 256),
     ];
     let alpha = sidak(0.01, cases.len());
     let mut failures = Vec::new();

@@ -5,7 +5,10 @@
 # Runs alternate A and B per seed, so machine load affects both alike.
 # Usage: tools/ab_relmse.sh "OPTIONS A" "OPTIONS B" [SEEDS] [OUT_DIR] [SCENES] [SPP_LIST]
 #   e.g. tools/ab_relmse.sh "--strategy mis --sampler independent" "--strategy mis --sampler sobol"
-# SCENES defaults to "seed_cornell veach_mis", SPP_LIST to "16 64 256".
+# SCENES defaults to "seed_cornell veach_mis", SPP_LIST to "16 64 256". A scene is read from
+# tests/data/scenes/, else from assets/ (plastic_lights, whose stored reference is a lumis render).
+# REF_DIR (default tests/data/refs) holds the references SCENE.exr: another folder for renders
+# that are not the full image (e.g. references rendered with --max-depth 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 a=$1
@@ -14,6 +17,7 @@ seeds=${3:-1}
 out=${4:-out/ab_relmse}
 scenes=${5:-seed_cornell veach_mis}
 spps=${6:-16 64 256}
+refs=${REF_DIR:-tests/data/refs}
 mkdir -p "$out"
 cargo build --release -q -p lumis-app
 lumis=${CARGO_TARGET_DIR:-target}/release/lumis
@@ -28,11 +32,13 @@ for scene in $scenes; do
                 opts=$a
                 [ "$side" = b ] && opts=$b
                 img="$out/${scene}_${spp}_${side}_${seed}.exr"
+                file="tests/data/scenes/$scene.json"
+                [ -f "$file" ] || file="assets/$scene.json"
                 # shellcheck disable=SC2086
-                summary=$($lumis render "tests/data/scenes/$scene.json" --spp "$spp" --seed "$seed" \
+                summary=$($lumis render "$file" --spp "$spp" --seed "$seed" \
                     $opts -o "$img" | tail -n 1)
                 s=$(echo "$summary" | sed 's/.*seconds=\([^ ]*\).*/\1/')
-                r=$($lumis compare "$img" "tests/data/refs/$scene.exr" | sed 's/relmse=\([^ ]*\).*/\1/')
+                r=$($lumis compare "$img" "$refs/$scene.exr" | sed 's/relmse=\([^ ]*\).*/\1/')
                 rel[$side]=$(python3 -c "print(${rel[$side]} + $r / $seeds)")
                 secs[$side]=$(python3 -c "print(${secs[$side]} + $s / $seeds)")
             done

@@ -102,6 +102,7 @@ impl Curve {
                     Heuristic::Power => "power",
                 }
             ),
+            Strategy::MisOptimal => "mis (optimal weights)".to_owned(),
             s => s.name().to_owned(),
         }
     }

@@ -43,6 +43,9 @@ pub enum StrategyArg {
     Mixture,
     /// Light + BSDF sampling with multiple importance sampling.
     Mis,
+    /// Light + BSDF sampling with optimal MIS weights learnt per pixel from its earlier samples
+    /// (first vertex; power heuristic deeper). Not with --sample-range parts after sample 0.
+    MisOptimal,
 }
 
 /// MIS heuristics.
@@ -152,6 +155,7 @@ impl EstimatorOptions {
                 light_weight: self.mix_weight,
             },
             StrategyArg::Mis => Strategy::Mis { heuristic },
+            StrategyArg::MisOptimal => Strategy::MisOptimal,
         };
         let light_sampling = match self.light_sampling {
             LightSamplingArg::Area => LightSampling::Area,

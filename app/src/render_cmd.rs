@@ -1,6 +1,6 @@
 //! `lumis render` and `lumis compare`.
 
-use crate::cli::{BackendArg, CompareArgs, RenderArgs};
+use crate::cli::{BackendArg, CompareArgs, RenderArgs, StrategyArg};
 use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use lumis::engine::{AnyProgressive, Progressive};
@@ -122,6 +122,18 @@ fn check_part_options(args: &RenderArgs) -> anyhow::Result<()> {
         bail!(
             "{}: --sample-range writes a part file, which must end in .exr",
             args.output.display()
+        );
+    }
+    if let Some(range) = &args.sample_range
+        && range.start > 0
+        && args.estimator.strategy == StrategyArg::MisOptimal
+    {
+        bail!(
+            "--strategy mis-optimal learns each pixel's weights from its samples before the \
+             range, which a part starting at sample {} does not render: a mis-optimal part must \
+             start at 0 (render 0..{} as one part), or use another strategy",
+            range.start,
+            range.end
         );
     }
     Ok(())

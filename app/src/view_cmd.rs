@@ -15,6 +15,7 @@ fn kind(s: StrategyArg) -> StrategyKind {
         StrategyArg::Bsdf => StrategyKind::Bsdf,
         StrategyArg::Mixture => StrategyKind::Mixture,
         StrategyArg::Mis => StrategyKind::Mis,
+        StrategyArg::MisOptimal => StrategyKind::MisOptimal,
     }
 }
 

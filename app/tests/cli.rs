@@ -342,6 +342,7 @@ fn every_estimator_option_is_accepted() {
         &["--strategy", "mixture", "--mix-weight", "1"],
         &["--strategy", "mis", "--heuristic", "balance"],
         &["--strategy", "mis", "--heuristic", "power"],
+        &["--strategy", "mis-optimal"],
         &["--light-sampling", "area"],
         &["--light-sampling", "solid-angle"],
         &["--strategy", "light", "--light-sampling", "area"],

@@ -372,5 +372,20 @@ fn sample_range_errors_are_one_line() {
         &run(&["--sample-range", "0..4"], &dir.path("out.png")),
         &["out.png", "part file", ".exr"],
     );
+    // mis-optimal's weights come from the samples before the range: refused after sample 0.
+    expect_error(
+        &run(
+            &["--sample-range", "8..16", "--strategy", "mis-optimal"],
+            &out,
+        ),
+        &["mis-optimal", "must start at 0", "8"],
+    );
     assert!(!out.exists());
+    // A part from sample 0 is the render itself.
+    render(
+        &scene,
+        &out,
+        &["--sample-range", "0..2", "--strategy", "mis-optimal"],
+    );
+    assert!(out.exists());
 }

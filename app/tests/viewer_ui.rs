@@ -62,6 +62,13 @@ fn estimator_sliders_and_menus_change_their_setting_and_restart() {
             heuristic: lumis::integrator::Heuristic::Balance
         }
     );
+    assert_restarts(&mut h, "strategy mis-optimal", |h| {
+        pick_combo(h, "Strategy", "mis-optimal")
+    });
+    assert_eq!(
+        h.state().output().lanes[0].settings.strategy,
+        Strategy::MisOptimal
+    );
 
     assert_restarts(&mut h, "spp limit", |h| set_slider(h, "Spp limit", 48.0));
     assert_eq!(h.state().params.spp_limit, 48);

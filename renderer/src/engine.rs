@@ -6,6 +6,11 @@
 //! samples are added in sample order by one thread, so the image for a given seed and sample count
 //! is bit-identical for any thread count.
 //!
+//! With [`Strategy::MisOptimal`] each pixel also keeps its optimal-MIS moments and the α of its
+//! current stage ([`crate::integrator::optimal::PixelState`]); since a pixel's samples are
+//! added in order, α for sample `s` comes from the same earlier samples however the render is
+//! split into passes or threads.
+//!
 //! [`backend`] puts this engine and the GPU's ([`crate::gpu::GpuProgressive`]) behind one
 //! interface, [`AnyProgressive`].
 
@@ -13,7 +18,10 @@ pub mod backend;
 
 pub use backend::{AnyProgressive, Backend};
 
-use crate::integrator::{Settings, radiance_specialised};
+use crate::integrator::optimal::PixelState;
+use crate::integrator::{
+    OptimalSample, Settings, Strategy, radiance_optimal, radiance_specialised,
+};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 use glam::Vec3;
@@ -189,7 +197,19 @@ pub struct Progressive {
     /// `--sample-range` part).
     first_sample: u32,
     film: Film,
+    /// Per-pixel optimal-MIS state ([`Strategy::MisOptimal`] only; empty otherwise).
+    optimal: Vec<PixelState>,
     cancel: Arc<AtomicBool>,
+}
+
+/// The optimal-MIS state a film of `width`×`height` needs with `settings`: one per pixel for
+/// [`Strategy::MisOptimal`], none otherwise.
+fn optimal_state(settings: &Settings, width: u32, height: u32) -> Vec<PixelState> {
+    if settings.strategy == Strategy::MisOptimal {
+        vec![PixelState::default(); (width * height) as usize]
+    } else {
+        Vec::new()
+    }
 }
 
 impl Progressive {
@@ -203,19 +223,31 @@ impl Progressive {
     /// and the sums of slices add up to it. The film's `sum_even` holds the samples whose
     /// global index is even, so that it adds up too; its [`Film::half_means`] counts assume
     /// `first` = 0.
+    ///
+    /// [`Strategy::MisOptimal`] learns each pixel's α from its samples before `first`, which a
+    /// slice does not have: `first` must be 0 there (the command line refuses such parts).
+    ///
+    /// # Panics
+    ///
+    /// With [`Strategy::MisOptimal`] and `first > 0`.
     pub fn with_first_sample(
         scene: Arc<Scene>,
         settings: Settings,
         seed: u32,
         first: u32,
     ) -> Progressive {
-        let film = Film::new(scene.camera.width, scene.camera.height);
+        assert!(
+            first == 0 || settings.strategy != Strategy::MisOptimal,
+            "mis-optimal renders cannot start at sample {first}: α comes from the earlier samples"
+        );
+        let (w, h) = (scene.camera.width, scene.camera.height);
         Progressive {
+            optimal: optimal_state(&settings, w, h),
+            film: Film::new(w, h),
             scene,
             settings,
             seed,
             first_sample: first,
-            film,
             cancel: Arc::new(AtomicBool::new(false)),
         }
     }
@@ -223,6 +255,12 @@ impl Progressive {
     /// The accumulated image.
     pub fn film(&self) -> &Film {
         &self.film
+    }
+
+    /// Per-pixel optimal-MIS state (moments and current α), row-major; empty unless the
+    /// strategy is [`Strategy::MisOptimal`].
+    pub fn optimal_state(&self) -> &[PixelState] {
+        &self.optimal
     }
 
     /// The scene.
@@ -250,7 +288,9 @@ impl Progressive {
     /// sample).
     pub fn restart(&mut self, settings: Settings) {
         self.settings = settings;
-        self.film = Film::new(self.scene.camera.width, self.scene.camera.height);
+        let (w, h) = (self.scene.camera.width, self.scene.camera.height);
+        self.film = Film::new(w, h);
+        self.optimal = optimal_state(&settings, w, h);
         self.cancel.store(false, Ordering::Relaxed);
     }
 
@@ -265,13 +305,23 @@ impl Progressive {
         let nonfinite = AtomicU64::new(0);
         let transmission = scene.has_transmission();
         let mut pixels = self.film.pixels.clone();
+        let mut optimal = self.optimal.clone();
+        // One optimal-MIS row per film row (rows of one unused state for other strategies).
+        let mut no_state = vec![PixelState::default(); self.film.height as usize];
+        let optimal_rows = if optimal.is_empty() {
+            no_state.par_chunks_mut(1)
+        } else {
+            optimal.par_chunks_mut(width)
+        };
         pixels
             .par_chunks_mut(width)
+            .zip(optimal_rows)
             .enumerate()
-            .for_each(|(y, row)| {
+            .for_each(|(y, (row, optimal_row))| {
                 if cancel.load(Ordering::Relaxed) {
                     return;
                 }
+                let learn = optimal_row.len() == row.len();
                 let mut bad = 0u64;
                 for (x, px) in row.iter_mut().enumerate() {
                     for s in first..first + n {
@@ -287,7 +337,35 @@ impl Progressive {
                             .camera
                             .film_position(sampler.camera_2d(), x as u32, y as u32);
                         let ray = scene.camera.ray(p.x, p.y);
-                        let l = if transmission {
+                        let l = if learn {
+                            let state = &mut optimal_row[x];
+                            let mut one = OptimalSample {
+                                alpha: state.alpha_for(s),
+                                ..OptimalSample::default()
+                            };
+                            let l = if transmission {
+                                radiance_optimal::<true>(
+                                    scene,
+                                    ray,
+                                    &mut sampler,
+                                    settings,
+                                    &mut one,
+                                )
+                            } else {
+                                radiance_optimal::<false>(
+                                    scene,
+                                    ray,
+                                    &mut sampler,
+                                    settings,
+                                    &mut one,
+                                )
+                            };
+                            // A sample that is dropped adds nothing to the moments either.
+                            if l.is_finite() && one.moments.is_finite() {
+                                state.moments.add(&one.moments);
+                            }
+                            l
+                        } else if transmission {
                             radiance_specialised::<true>(scene, ray, &mut sampler, settings)
                         } else {
                             radiance_specialised::<false>(scene, ray, &mut sampler, settings)
@@ -314,6 +392,7 @@ impl Progressive {
             return false;
         }
         self.film.pixels = pixels;
+        self.optimal = optimal;
         self.film.spp += n;
         self.film.nonfinite += nonfinite.into_inner();
         true
@@ -423,6 +502,69 @@ mod tests {
             }
         }
         assert!(w.pixels.iter().any(|p| p.sum[0] > 0.0));
+    }
+
+    /// mis-optimal: the image and every pixel's moments and α depend on the seed and spp only,
+    /// not on the pass split or the thread count (α for sample s comes from samples 0..s of the
+    /// same pixel, added in order); past the first stage α is non-zero (the control variate is
+    /// on); a restart with another strategy drops the state.
+    #[test]
+    fn mis_optimal_is_independent_of_passes_and_threads() {
+        let scene = small_scene();
+        let settings = Settings {
+            strategy: Strategy::MisOptimal,
+            ..Settings::default()
+        };
+        let pool = |n| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+        };
+        let a = pool(1).install(|| {
+            let mut a = Progressive::new(scene.clone(), settings, 5);
+            for n in [3, 5, 9, 15] {
+                assert!(a.render_pass(n));
+            }
+            a
+        });
+        let b = pool(3).install(|| {
+            let mut b = Progressive::new(scene.clone(), settings, 5);
+            assert!(b.render_pass(32));
+            b
+        });
+        assert_eq!(a.film().spp, 32);
+        assert_eq!(a.film().mean(), b.film().mean());
+        assert_eq!(a.optimal_state(), b.optimal_state());
+        assert_eq!(a.optimal_state().len(), 12 * 8);
+        assert!(
+            a.optimal_state()
+                .iter()
+                .any(|p| p.alpha.light != Vec3::ZERO && p.alpha.bsdf != Vec3::ZERO)
+        );
+        // Not the balance heuristic's image: the control variate changed the samples.
+        let balance = Settings {
+            strategy: Strategy::Mis {
+                heuristic: crate::integrator::Heuristic::Balance,
+            },
+            ..Settings::default()
+        };
+        let mut c = Progressive::new(scene, balance, 5);
+        assert!(c.render_pass(32));
+        assert_ne!(a.film().mean(), c.film().mean());
+        let mut a = a;
+        a.restart(balance);
+        assert!(a.optimal_state().is_empty());
+    }
+
+    #[test]
+    #[should_panic(expected = "mis-optimal renders cannot start at sample 4")]
+    fn mis_optimal_refuses_a_slice() {
+        let settings = Settings {
+            strategy: Strategy::MisOptimal,
+            ..Settings::default()
+        };
+        Progressive::with_first_sample(small_scene(), settings, 1, 4);
     }
 
     #[test]

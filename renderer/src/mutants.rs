@@ -19,6 +19,8 @@
 //! | `plastic_eval` | the plastic's f (both lobes, non-delta) × 1.03, in eval and sample alike |
 //! | `sampler:light_camera` | the light sample draws the camera's dimensions (ZSobol) |
 //! | `sampler:shared_bounces` | every bounce's BSDF direction draws bounce 0's dimensions (ZSobol) |
+//! | `optimal:pure_zero` | mis-optimal: a pure sample's control-variate term is 0 instead of `−α_own` |
+//! | `optimal:occluded_combined` | mis-optimal: a blocked light sample is weighed as if BSDF sampling could reach it (CPU only) |
 //!
 //! On the GPU the same points are constants of the generated WGSL prelude
 //! (`gpu::prelude::mutant_constants`, built with the feature), so a mutant reaches both backends; a value ending
@@ -51,6 +53,10 @@ pub enum Mutant {
     SamplerLightCamera,
     /// Every bounce's BSDF direction reuses bounce 0's sampler dimensions.
     SamplerSharedBounces,
+    /// mis-optimal's pure samples add no control-variate term.
+    OptimalPureZero,
+    /// mis-optimal's blocked light samples are combined outcomes.
+    OptimalOccludedCombined,
 }
 
 /// The tag named `kind` in a GPU tag list (`LIGHT_DISK` for `disk` with prefix `LIGHT_`): the
@@ -87,6 +93,8 @@ pub fn parse(text: &str) -> Result<Mutant, String> {
         "plastic_eval" if arg.is_empty() => Mutant::PlasticEval,
         "sampler" if arg == "light_camera" => Mutant::SamplerLightCamera,
         "sampler" if arg == "shared_bounces" => Mutant::SamplerSharedBounces,
+        "optimal" if arg == "pure_zero" => Mutant::OptimalPureZero,
+        "optimal" if arg == "occluded_combined" => Mutant::OptimalOccludedCombined,
         _ => return Err(format!("LUMIS_MUTANT={text}: unknown mutant")),
     })
 }
@@ -192,6 +200,19 @@ pub fn sampler_light_reuses_camera() -> bool {
 #[inline(always)]
 pub fn sampler_bounces_share_dimensions() -> bool {
     cfg!(feature = "mutants") && *active_on_cpu() == Mutant::SamplerSharedBounces
+}
+
+/// Whether mis-optimal's pure samples forget their `−α_own` (the failure mass dropped).
+#[inline(always)]
+pub fn optimal_pure_zero() -> bool {
+    cfg!(feature = "mutants") && *active_on_cpu() == Mutant::OptimalPureZero
+}
+
+/// Whether mis-optimal weighs blocked light samples as combined outcomes (the two techniques
+/// classify an outcome differently).
+#[inline(always)]
+pub fn optimal_occluded_combined() -> bool {
+    cfg!(feature = "mutants") && *active_on_cpu() == Mutant::OptimalOccludedCombined
 }
 
 /// Applies a scene-level mutant (emission, albedo) to a description before it is built.

@@ -30,6 +30,18 @@ pub const STRATEGIES: [Strategy; 5] = [
     },
 ];
 
+/// [`STRATEGIES`] and `mis-optimal` (optimal MIS weights, `integrator::optimal`), whose
+/// per-pixel α the engine learns from each pixel's earlier samples: it differs from the balance
+/// heuristic from sample 8 on, so renders of it need more than 8 spp to test it.
+pub const STRATEGIES_AND_OPTIMAL: [Strategy; 6] = [
+    STRATEGIES[0],
+    STRATEGIES[1],
+    STRATEGIES[2],
+    STRATEGIES[3],
+    STRATEGIES[4],
+    Strategy::MisOptimal,
+];
+
 /// Both light-sampling methods.
 pub const METHODS: [LightSampling; 2] = [LightSampling::Area, LightSampling::SolidAngle];
 

@@ -85,8 +85,19 @@ pub fn same_seed_check(
     scene: &Arc<Scene>,
     settings: Settings,
 ) -> Option<Result<f64, String>> {
-    let gpu = gpu_render(scene, settings, 2, 11)?;
-    let cpu = cpu_render(scene, settings, 2, 11);
+    same_seed_check_spp(what, scene, settings, 2)
+}
+
+/// [`same_seed_check`] at `spp` samples per pixel (mis-optimal needs more than 8 for its α to
+/// play a part).
+pub fn same_seed_check_spp(
+    what: &str,
+    scene: &Arc<Scene>,
+    settings: Settings,
+    spp: u32,
+) -> Option<Result<f64, String>> {
+    let gpu = gpu_render(scene, settings, spp, 11)?;
+    let cpu = cpu_render(scene, settings, spp, 11);
     let (g, c) = (gpu.mean(), cpu.mean());
     let e = lumis::metrics::relmse(&g, &c);
     let d = diverged_pixels(&g, &c);

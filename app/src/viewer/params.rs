@@ -20,15 +20,18 @@ pub enum StrategyKind {
     Mixture,
     /// Two-sample MIS.
     Mis,
+    /// Two-sample MIS with optimal weights learnt per pixel.
+    MisOptimal,
 }
 
 impl StrategyKind {
     /// Every strategy, in menu order.
-    pub const ALL: [StrategyKind; 4] = [
+    pub const ALL: [StrategyKind; 5] = [
         StrategyKind::Light,
         StrategyKind::Bsdf,
         StrategyKind::Mixture,
         StrategyKind::Mis,
+        StrategyKind::MisOptimal,
     ];
 
     /// The name the CLI uses.
@@ -38,6 +41,7 @@ impl StrategyKind {
             StrategyKind::Bsdf => "bsdf",
             StrategyKind::Mixture => "mixture",
             StrategyKind::Mis => "mis",
+            StrategyKind::MisOptimal => "mis-optimal",
         }
     }
 }
@@ -150,6 +154,7 @@ impl RenderParams {
             StrategyKind::Mis => Strategy::Mis {
                 heuristic: self.heuristic,
             },
+            StrategyKind::MisOptimal => Strategy::MisOptimal,
         };
         Settings {
             strategy,

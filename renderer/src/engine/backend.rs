@@ -80,10 +80,14 @@ impl AnyProgressive {
         }
     }
 
-    /// Drops the accumulation and restarts with new settings.
-    pub fn restart(&mut self, settings: Settings) {
+    /// Drops the accumulation and restarts with new settings; on the GPU
+    /// [`GpuError::TooLarge`] (nothing changed) where they need more memory than it allows.
+    pub fn restart(&mut self, settings: Settings) -> Result<(), GpuError> {
         match self {
-            AnyProgressive::Cpu(r) => r.restart(settings),
+            AnyProgressive::Cpu(r) => {
+                r.restart(settings);
+                Ok(())
+            }
             AnyProgressive::Gpu(r) => r.restart(settings),
         }
     }

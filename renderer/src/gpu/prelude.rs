@@ -211,6 +211,12 @@ pub fn constants() -> Vec<Constant> {
             "ADAPTIVE_MIN_SOLID_ANGLE",
             crate::lights::ADAPTIVE_MIN_SOLID_ANGLE,
         ),
+        // Optimal MIS weights (`integrator::optimal`).
+        u32c(
+            "OPTIMAL_FIRST_STAGE",
+            crate::integrator::optimal::FIRST_STAGE,
+        ),
+        f32c("OPTIMAL_RIDGE", crate::integrator::optimal::RIDGE as f32),
         // Rays and BVHs.
         f32c("SHADOW_EPSILON", ray::SHADOW_EPSILON),
         f32c("MAX_INV", wide_bvh::MAX_INV),
@@ -271,6 +277,11 @@ pub fn mutant_constants(m: &crate::mutants::Mutant) -> Vec<Constant> {
         u32c(
             "MUTANT_SAMPLER_SHARED_BOUNCES",
             u32::from(*m == Mutant::SamplerSharedBounces),
+        ),
+        // mis-optimal's pure samples without their control-variate term (`optimal.wgsl`).
+        u32c(
+            "MUTANT_OPTIMAL_PURE_ZERO",
+            u32::from(*m == Mutant::OptimalPureZero),
         ),
     ]
 }

@@ -8,12 +8,19 @@
 //! even-numbered samples, from which [`GpuProgressive::film`] rebuilds the CPU's Σx, Σx² and
 //! even-sample sums (Welford's update keeps the variance accurate where plain f32 sums of x²
 //! would cancel).
+//!
+//! [`Strategy::MisOptimal`] adds five planes per pixel after those three (its moments and the
+//! α of its current stage, `path.wgsl`), and three scratch planes per sample of a multi-sample
+//! dispatch for the moments `fold` adds in order; dispatches are split where a stage starts
+//! ([`crate::integrator::optimal::is_stage_start`]), so that α is solved once per stage from the
+//! moments of the samples before it, as on the CPU.
 
 use super::scene::{GpuParams, GpuScene, PARAMS_STRIDE};
 use super::shader::{create_module, path_tracer_source};
 use super::{GpuContext, GpuError};
 use crate::engine::{Film, PixelSums};
-use crate::integrator::Settings;
+use crate::integrator::optimal::{FIRST_STAGE, stage_start};
+use crate::integrator::{Settings, Strategy};
 use crate::scene::Scene;
 use std::sync::Arc;
 
@@ -139,22 +146,16 @@ impl GpuProgressive {
         })?;
         let cam = &gpu.scene().camera;
         let pixels = cam.width as u64 * cam.height as u64;
-        if accum_bytes(pixels, 1) > device.limits().max_storage_buffer_binding_size {
-            return Err(GpuError::TooLarge(format!(
-                "the {}x{} accumulation buffer takes {} bytes",
-                cam.width,
-                cam.height,
-                accum_bytes(pixels, 1)
-            )));
-        }
+        let optimal = settings.strategy == Strategy::MisOptimal;
+        check_fits(device, cam.width, cam.height, optimal)?;
         // A CPU adapter (lavapipe) has no occupancy to fill: one sample per dispatch there.
         let samples_per_dispatch = match ctx.adapter_info.device_type {
             wgpu::DeviceType::Cpu => 1,
             _ => TARGET_THREADS.div_ceil(pixels.max(1)) as u32,
         };
         let samples_per_dispatch =
-            fitting_samples_per_dispatch(device, pixels, samples_per_dispatch);
-        let accum = create_accumulation(device, accum_bytes(pixels, samples_per_dispatch));
+            fitting_samples_per_dispatch(device, pixels, samples_per_dispatch, optimal);
+        let accum = create_accumulation(device, accum_bytes(pixels, samples_per_dispatch, optimal));
         let counters = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("lumis counters"),
             size: 16,
@@ -198,15 +199,29 @@ impl GpuProgressive {
         let ctx = self.gpu.context().clone();
         let cam = &self.gpu.scene().camera;
         let pixels = cam.width as u64 * cam.height as u64;
-        self.samples_per_dispatch = fitting_samples_per_dispatch(&ctx.device, pixels, k);
-        let size = accum_bytes(pixels, self.samples_per_dispatch);
+        let optimal = self.optimal();
+        self.samples_per_dispatch = fitting_samples_per_dispatch(&ctx.device, pixels, k, optimal);
+        self.grow_accumulation();
+        self.clear();
+    }
+
+    /// Whether the settings are [`Strategy::MisOptimal`]'s (more planes, split dispatches).
+    fn optimal(&self) -> bool {
+        self.settings.strategy == Strategy::MisOptimal
+    }
+
+    /// Makes the accumulation buffer as large as the settings and samples per dispatch need.
+    fn grow_accumulation(&mut self) {
+        let ctx = self.gpu.context().clone();
+        let cam = &self.gpu.scene().camera;
+        let pixels = cam.width as u64 * cam.height as u64;
+        let size = accum_bytes(pixels, self.samples_per_dispatch, self.optimal());
         if size > self.accum.size() {
             self.accum = create_accumulation(&ctx.device, size);
             self.bind_group = self
                 .gpu
                 .bind_group(&self.params, &self.accum, &self.counters);
         }
-        self.clear();
     }
 
     fn clear(&mut self) {
@@ -243,10 +258,20 @@ impl GpuProgressive {
 
     /// Drops the accumulation and starts over with new settings (same scene and seed). The
     /// program does not depend on the settings (the sampler too is a parameter), so nothing is
-    /// recompiled.
-    pub fn restart(&mut self, settings: Settings) {
+    /// recompiled. [`GpuError::TooLarge`] (and nothing changed) where the settings need more
+    /// memory than a binding holds ([`Strategy::MisOptimal`]'s planes).
+    pub fn restart(&mut self, settings: Settings) -> Result<(), GpuError> {
+        let ctx = self.gpu.context().clone();
+        let cam = &self.gpu.scene().camera;
+        let pixels = cam.width as u64 * cam.height as u64;
+        let optimal = settings.strategy == Strategy::MisOptimal;
+        check_fits(&ctx.device, cam.width, cam.height, optimal)?;
+        self.samples_per_dispatch =
+            fitting_samples_per_dispatch(&ctx.device, pixels, self.samples_per_dispatch, optimal);
         self.settings = settings;
+        self.grow_accumulation();
         self.clear();
+        Ok(())
     }
 
     /// Renders `n` more samples per pixel and waits for them. Always `true` (the CPU's `false`
@@ -261,7 +286,12 @@ impl GpuProgressive {
             let mut slots = Vec::new();
             let mut layers = Vec::new();
             while done < n && layers.len() < DISPATCHES_PER_SUBMIT as usize {
-                let k = (n - done).min(self.samples_per_dispatch);
+                let mut k = (n - done).min(self.samples_per_dispatch);
+                if self.optimal() {
+                    // No dispatch runs across the start of a stage (its α comes from the samples
+                    // before it).
+                    k = k.min(next_stage_start(self.spp + done) - (self.spp + done));
+                }
                 let mut p: GpuParams = self.gpu.params(&self.settings, self.seed, self.spp + done);
                 p.samples_per_dispatch = k;
                 slots.resize(PARAMS_STRIDE as usize * layers.len(), 0u8);
@@ -314,7 +344,7 @@ impl GpuProgressive {
         let cam = &self.gpu.scene().camera;
         let (w, h) = (cam.width, cam.height);
         let pixels = (w * h) as usize;
-        let bytes = ctx.read_buffer(&self.accum, accum_bytes(pixels as u64, 1))?;
+        let bytes = ctx.read_buffer(&self.accum, 3 * pixels as u64 * 16)?;
         let planes: &[[f32; 4]] = bytemuck::cast_slice(&bytes);
         let counters = ctx.read_buffer(&self.counters, 16)?;
         let nonfinite = bytemuck::cast_slice::<u8, u32>(&counters)[0] as u64;
@@ -335,22 +365,60 @@ impl GpuProgressive {
     }
 }
 
-/// Bytes of the accumulation buffer: three planes of `vec4<f32>` per pixel, and one scratch plane
-/// per sample of a dispatch when it renders more than one.
-fn accum_bytes(pixels: u64, samples_per_dispatch: u32) -> u64 {
+/// Planes of [`Strategy::MisOptimal`]'s state (`OPT_PLANES` in `path.wgsl`).
+const OPTIMAL_PLANES: u64 = 5;
+
+/// Bytes of the accumulation buffer: three planes of `vec4<f32>` per pixel, mis-optimal's
+/// [`OPTIMAL_PLANES`] (`optimal`), and scratch planes when a dispatch renders more than one
+/// sample: one per sample (four with mis-optimal's moments).
+fn accum_bytes(pixels: u64, samples_per_dispatch: u32, optimal: bool) -> u64 {
+    let per_sample = if optimal { 4 } else { 1 };
     let scratch = if samples_per_dispatch > 1 {
-        samples_per_dispatch as u64
+        per_sample * samples_per_dispatch as u64
     } else {
         0
     };
-    (3 + scratch) * pixels * 16
+    let state = if optimal { OPTIMAL_PLANES } else { 0 };
+    (3 + state + scratch) * pixels * 16
+}
+
+/// [`GpuError::TooLarge`] where one sample per dispatch does not fit a storage binding.
+fn check_fits(
+    device: &wgpu::Device,
+    width: u32,
+    height: u32,
+    optimal: bool,
+) -> Result<(), GpuError> {
+    let bytes = accum_bytes(width as u64 * height as u64, 1, optimal);
+    let max = device.limits().max_storage_buffer_binding_size;
+    if bytes > max {
+        let why = if optimal {
+            " (mis-optimal keeps 128 bytes per pixel)"
+        } else {
+            ""
+        };
+        return Err(GpuError::TooLarge(format!(
+            "the {width}x{height} accumulation buffer takes {bytes} bytes, more than the device's \
+             {max}-byte storage binding{why}"
+        )));
+    }
+    Ok(())
+}
+
+/// The first sample after `s` where a mis-optimal stage starts.
+fn next_stage_start(s: u32) -> u32 {
+    if s < FIRST_STAGE {
+        FIRST_STAGE
+    } else {
+        stage_start(s).saturating_mul(2)
+    }
 }
 
 /// `k` clamped to 1…[`MAX_SAMPLES_PER_DISPATCH`] and to what one storage binding can hold.
-fn fitting_samples_per_dispatch(device: &wgpu::Device, pixels: u64, k: u32) -> u32 {
+fn fitting_samples_per_dispatch(device: &wgpu::Device, pixels: u64, k: u32, optimal: bool) -> u32 {
     let max_size = device.limits().max_storage_buffer_binding_size;
     let mut k = k.clamp(1, MAX_SAMPLES_PER_DISPATCH);
-    while k > 1 && accum_bytes(pixels, k) > max_size {
+    while k > 1 && accum_bytes(pixels, k, optimal) > max_size {
         k -= 1;
     }
     k

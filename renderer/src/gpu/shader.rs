@@ -54,6 +54,7 @@ const MODULES: &[Module] = &[
     module!("fresnel.wgsl"),
     module!("ggx.wgsl"),
     module!("mis.wgsl"),
+    module!("optimal.wgsl"),
     module!("material.wgsl"),
     module!("diffuse.wgsl"),
     module!("conductor.wgsl"),

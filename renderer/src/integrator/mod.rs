@@ -1,10 +1,12 @@
-//! Integrators: the unidirectional path tracer and the four ways it can estimate direct light.
+//! Integrators: the unidirectional path tracer and the five ways it can estimate direct light.
 
 pub mod mis;
+pub mod optimal;
 pub mod path;
 
 pub use mis::Heuristic;
-pub use path::{radiance, radiance_specialised};
+pub use optimal::OptimalSample;
+pub use path::{radiance, radiance_optimal, radiance_specialised};
 
 use crate::lights::{LightSampling, LightSelection};
 use crate::sampler::SamplerKind;
@@ -32,6 +34,12 @@ pub enum Strategy {
         /// Balance or power heuristic.
         heuristic: Heuristic,
     },
+    /// Next-event estimation plus BSDF sampling with optimal MIS weights (Kondapaneni et al.
+    /// 2019) at the camera ray's first vertex: the balance heuristic plus a control variate whose
+    /// per-pixel coefficients α the engine learns from each pixel's earlier samples
+    /// ([`optimal`]); the power heuristic at deeper vertices. Rendered through
+    /// [`radiance`] without the engine's α, it is α = 0 (the balance heuristic there).
+    MisOptimal,
 }
 
 impl Strategy {
@@ -42,6 +50,7 @@ impl Strategy {
             Strategy::Bsdf => "bsdf",
             Strategy::Mixture { .. } => "mixture",
             Strategy::Mis { .. } => "mis",
+            Strategy::MisOptimal => "mis-optimal",
         }
     }
 }

@@ -20,7 +20,9 @@
 //! for light samples), which evaluates a textured emitter's texture at the point.
 //! WGSL twin: `path.wgsl`.
 
+use super::optimal::{OptimalSample, balance_ratios};
 use super::{Heuristic, Settings, Strategy};
+use crate::geometry::SurfaceHit;
 use crate::geometry::primitive::NONE;
 use crate::geometry::ray::{Ray, spawn_ray, spawn_ray_to};
 use crate::math::{Frame, max_component};
@@ -39,6 +41,43 @@ enum EmissionWeight {
     Mis { p_bsdf: f32, heuristic: Heuristic },
     /// One-sample mixture, BSDF branch: `p_bsdf / (w·p_light + (1−w)·p_bsdf)`.
     Mixture { p_bsdf: f32, light_weight: f32 },
+    /// Already worked out (by `mis-optimal`'s first vertex, which needed the light pdf first).
+    Fixed(f32),
+}
+
+/// How next-event estimation weighs its sample.
+#[derive(Clone, Copy, Debug)]
+enum NeeWeight {
+    /// Light sampling alone.
+    One,
+    /// The light branch of the one-sample mixture with this light probability.
+    Mixture(f32),
+    /// Two-sample MIS with this heuristic.
+    Mis(Heuristic),
+}
+
+/// Where a light sample ended, for `mis-optimal`'s control variate ([`super::optimal`]).
+#[derive(Clone, Copy, Debug)]
+enum NeeOutcome {
+    /// Nothing BSDF sampling could also produce: a failure, a blocked shadow ray, a direction
+    /// the shading-normal rule rejects.
+    Pure,
+    /// A visible point on an emitter, with the balance weights `(r_L, r_B)` there.
+    Combined { rl: f32, rb: f32 },
+}
+
+/// The BSDF sample of `mis-optimal`'s first vertex, whose control variate term waits for the
+/// hit of its ray.
+#[derive(Clone, Copy, Debug)]
+struct PendingBsdf {
+    /// Path throughput at the vertex.
+    beta: Vec3,
+    /// The sample's weight (f·cos/pdf, or the delta lobe's).
+    weight: Vec3,
+    /// Its pdf (non-delta samples).
+    pdf: f32,
+    /// Whether it came from a delta lobe.
+    delta: bool,
 }
 
 /// Radiance arriving at the camera along `ray` (one sample of the estimator).
@@ -55,9 +94,34 @@ pub fn radiance(scene: &Scene, ray: Ray, sampler: &mut Sampler, settings: &Setti
 /// is a logic error (caught in debug builds).
 pub fn radiance_specialised<const TRANSMISSION: bool>(
     scene: &Scene,
+    ray: Ray,
+    sampler: &mut Sampler,
+    settings: &Settings,
+) -> Vec3 {
+    trace::<TRANSMISSION>(scene, ray, sampler, settings, None)
+}
+
+/// [`radiance_specialised`] for [`Strategy::MisOptimal`] with the sample's α: adds the control
+/// variate at the camera ray's first vertex and records the sample's moments in `optimal`
+/// ([`super::optimal`]). Other strategies ignore `optimal`.
+pub fn radiance_optimal<const TRANSMISSION: bool>(
+    scene: &Scene,
+    ray: Ray,
+    sampler: &mut Sampler,
+    settings: &Settings,
+    optimal: &mut OptimalSample,
+) -> Vec3 {
+    trace::<TRANSMISSION>(scene, ray, sampler, settings, Some(optimal))
+}
+
+/// The path tracer's loop; `optimal` carries `mis-optimal`'s α and moments when the engine
+/// learns them.
+fn trace<const TRANSMISSION: bool>(
+    scene: &Scene,
     mut ray: Ray,
     sampler: &mut Sampler,
     settings: &Settings,
+    mut optimal: Option<&mut OptimalSample>,
 ) -> Vec3 {
     debug_assert!(TRANSMISSION || !scene.has_transmission());
     let max_depth = settings.max_depth.unwrap_or(scene.max_depth);
@@ -70,11 +134,25 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
     // The previous vertex's shading normal, for the cosine warp's pdf (zero at the camera).
     let mut prev_ns = Vec3::ZERO;
     let mut depth: i32 = 0;
+    // mis-optimal: the first vertex's BSDF sample awaiting its hit, and whether the path ends once
+    // that is resolved (roulette or a zero throughput would have ended it before tracing).
+    let mut pending: Option<PendingBsdf> = None;
+    let mut stop = false;
     loop {
         depth += 1;
         // The sampler's bounce: 0 at the camera ray's hit.
         let bounce = (depth - 1) as u32;
-        let Some(hit) = scene.accel.intersect(&ray) else {
+        let hit = scene.accel.intersect(&ray);
+        if let (Some(p), Some(opt)) = (pending.take(), optimal.as_deref_mut()) {
+            let (cv, w) =
+                resolve_bsdf(scene, settings, &ray, hit.as_ref(), prev_p, prev_ns, p, opt);
+            l += cv;
+            weight_rule = EmissionWeight::Fixed(w);
+            if stop {
+                break;
+            }
+        }
+        let Some(hit) = hit else {
             if let Some(bg) = scene.background_light {
                 let light = &scene.lights[bg as usize];
                 let w = emission_weight(scene, settings, weight_rule, bg, prev_p, prev_ns, || {
@@ -150,8 +228,12 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
 
         // Direct light by light sampling, and the rule for emission the BSDF sample will find.
         let smooth = material.has_smooth_part() && scene.light_sampler.is_some();
+        // mis-optimal's first vertex: the balance heuristic, plus the control variate when the
+        // engine supplies α.
+        let optimal_vertex = depth == 1 && settings.strategy == Strategy::MisOptimal;
+        let cv = smooth && optimal_vertex && optimal.is_some();
         let mut do_nee = false;
-        let mut nee_mixture_weight = None;
+        let mut nee_weight = NeeWeight::One;
         weight_rule = if !smooth {
             EmissionWeight::One
         } else {
@@ -163,6 +245,20 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
                 Strategy::Bsdf => EmissionWeight::One,
                 Strategy::Mis { heuristic } => {
                     do_nee = true;
+                    nee_weight = NeeWeight::Mis(heuristic);
+                    EmissionWeight::Mis {
+                        p_bsdf: 0.0,
+                        heuristic,
+                    }
+                }
+                Strategy::MisOptimal => {
+                    let heuristic = if optimal_vertex {
+                        Heuristic::Balance
+                    } else {
+                        Heuristic::Power
+                    };
+                    do_nee = true;
+                    nee_weight = NeeWeight::Mis(heuristic);
                     EmissionWeight::Mis {
                         p_bsdf: 0.0,
                         heuristic,
@@ -171,7 +267,7 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
                 Strategy::Mixture { light_weight } => {
                     if sampler.mixture_1d(bounce) < light_weight {
                         do_nee = true;
-                        nee_mixture_weight = Some(light_weight);
+                        nee_weight = NeeWeight::Mixture(light_weight);
                         EmissionWeight::Zero
                     } else {
                         EmissionWeight::Mixture {
@@ -185,21 +281,18 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
         if do_nee {
             let u_light = sampler.light_select_1d(bounce);
             let u = sampler.light_2d(bounce);
-            l += beta
-                * direct_light::<TRANSMISSION>(
-                    scene,
-                    settings,
-                    &hit,
-                    n,
-                    &frame,
-                    wo,
-                    material,
-                    u_light,
-                    u,
-                    nee_mixture_weight,
-                    transmits,
-                    shading,
-                );
+            let (c, outcome) = direct_light::<TRANSMISSION>(
+                scene, settings, &hit, n, &frame, wo, material, u_light, u, nee_weight, cv,
+                transmits, shading,
+            );
+            l += beta * c;
+            if let (true, Some(opt)) = (cv, optimal.as_deref_mut()) {
+                let term = match outcome {
+                    NeeOutcome::Pure => opt.pure_light(),
+                    NeeOutcome::Combined { rl, rb } => opt.combined(c, rl, rb),
+                };
+                l += beta * (opt.constant() + term);
+            }
         }
 
         // Continue the path by BSDF sampling.
@@ -208,8 +301,25 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
             sampler.bsdf_lobe_1d(bounce),
             sampler.bsdf_2d(bounce),
         ) else {
+            if let (true, Some(opt)) = (cv, optimal.as_deref_mut()) {
+                l += beta * opt.pure_bsdf(Vec3::ZERO);
+            }
             break;
         };
+        let wi = frame.to_world(bs.wi);
+        let wi_ok = !shading || same_side(wi, n, bs.wi.z);
+        if cv {
+            if wi_ok {
+                pending = Some(PendingBsdf {
+                    beta,
+                    weight: bs.weight,
+                    pdf: bs.pdf,
+                    delta: bs.delta,
+                });
+            } else if let Some(opt) = optimal.as_deref_mut() {
+                l += beta * opt.pure_bsdf(Vec3::ZERO);
+            }
+        }
         if bs.delta {
             weight_rule = EmissionWeight::One;
         } else {
@@ -224,22 +334,27 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
         if TRANSMISSION {
             eta_scale *= bs.eta * bs.eta;
         }
-        if beta == Vec3::ZERO {
-            break;
-        }
-        let wi = frame.to_world(bs.wi);
-        if shading && !same_side(wi, n, bs.wi.z) {
+        if !wi_ok || (beta == Vec3::ZERO && pending.is_none()) {
             break;
         }
         prev_p = hit.p;
         prev_ns = ns;
         ray = spawn_ray(hit.p, hit.p_error, n, wi);
+        if beta == Vec3::ZERO {
+            // Traced only for the pending control variate.
+            stop = true;
+            continue;
+        }
 
         if depth as u32 >= settings.rr_depth {
             let rr_beta = if TRANSMISSION { beta * eta_scale } else { beta };
             let q = max_component(rr_beta).min(0.95);
             if sampler.rr_1d(bounce) >= q {
-                break;
+                if pending.is_none() {
+                    break;
+                }
+                stop = true;
+                continue;
             }
             beta /= q;
         }
@@ -285,13 +400,86 @@ fn emission_weight(
             let w = p_bsdf / (light_weight * p_light + (1.0 - light_weight) * p_bsdf);
             if w.is_finite() { w } else { 0.0 }
         }
+        EmissionWeight::Fixed(w) => w,
     }
 }
 
-/// Next-event estimation: picks a light (by power or by the light BVH at the hit), samples it, traces a shadow ray, and returns the
-/// contribution (without the path throughput). `mixture` holds the mixture's light probability
-/// when this is the light branch of the one-sample mixture; `transmits` lets the light lie below
-/// the surface.
+/// Resolves `mis-optimal`'s pending BSDF sample `p` once its `ray` (from the vertex at `prev_p`,
+/// shading normal `prev_ns`) found `hit`: records the sample in `optimal` and returns its control
+/// variate term (times the vertex's throughput) and the weight of the emission it found.
+///
+/// Combined (both techniques could have produced the outcome) where the ray ends on an emitter
+/// facing the vertex with non-zero radiance (or escapes into an environment light that is
+/// non-zero there) and light sampling's pdf there is positive and finite: exactly the outcomes
+/// where [`crate::scene::Scene::sample_light`] returns a sample. Pure otherwise, and for delta
+/// samples.
+#[allow(clippy::too_many_arguments)]
+fn resolve_bsdf(
+    scene: &Scene,
+    settings: &Settings,
+    ray: &Ray,
+    hit: Option<&SurfaceHit>,
+    prev_p: Vec3,
+    prev_ns: Vec3,
+    p: PendingBsdf,
+    optimal: &mut OptimalSample,
+) -> (Vec3, f32) {
+    let method = settings.light_sampling;
+    let pmf =
+        |light: u32| scene.light_pmf(settings.light_selection, prev_p, prev_ns, light as usize);
+    let (le, p_light) = match hit {
+        None => match scene.background_light {
+            Some(bg) => {
+                let light = &scene.lights[bg as usize];
+                let le = light.radiance(Vec3::ZERO, ray.d);
+                let pdf = || light.pdf(prev_p, prev_ns, ray.d, Vec3::ZERO, Vec3::ZERO, method);
+                (le, if p.delta { 0.0 } else { pmf(bg) * pdf() })
+            }
+            None => (Vec3::ZERO, 0.0),
+        },
+        Some(hit) => {
+            let prim = &scene.accel.primitives()[hit.prim as usize];
+            if prim.light == NONE {
+                (Vec3::ZERO, 0.0)
+            } else {
+                let light = &scene.lights[prim.light as usize];
+                let le = scene.emitted(prim.light, hit, ray.d);
+                let pdf = || light.pdf(prev_p, prev_ns, ray.d.normalize(), hit.p, hit.n, method);
+                (
+                    le,
+                    if p.delta {
+                        0.0
+                    } else {
+                        pmf(prim.light) * pdf()
+                    },
+                )
+            }
+        }
+    };
+    if p.delta {
+        return (p.beta * optimal.pure_bsdf(p.weight * le), 1.0);
+    }
+    let emits = le.cmpgt(Vec3::ZERO).any();
+    match balance_ratios(p_light, p.pdf) {
+        Some((rl, rb)) if emits && p_light > 0.0 => {
+            let c = p.weight * le * rb;
+            (p.beta * optimal.combined(c, rl, rb), rb)
+        }
+        _ => {
+            let w = Heuristic::Balance.weight(p.pdf, p_light);
+            (p.beta * optimal.pure_bsdf(p.weight * le * w), w)
+        }
+    }
+}
+
+/// Next-event estimation: picks a light (by power or by the light BVH at the hit), samples it,
+/// traces a shadow ray, and returns the contribution (without the path throughput) weighted by
+/// `weight`, and where the sample ended. `transmits` lets the light lie below the surface.
+///
+/// `cv` (mis-optimal's control variate, with the balance heuristic): the outcome is needed, so a
+/// sample where f is zero but the BSDF pdf is not still traces its shadow ray (visible, it is a
+/// combined outcome of contribution 0; blocked, a pure one). Without `cv` the outcome is always
+/// [`NeeOutcome::Pure`] and nothing extra is done.
 #[allow(clippy::too_many_arguments)]
 fn direct_light<const TRANSMISSION: bool>(
     scene: &Scene,
@@ -303,26 +491,33 @@ fn direct_light<const TRANSMISSION: bool>(
     material: &crate::materials::Material,
     u_light: f32,
     u: glam::Vec2,
-    mixture: Option<f32>,
+    weight: NeeWeight,
+    cv: bool,
     transmits: bool,
     shading: bool,
-) -> Vec3 {
+) -> (Vec3, NeeOutcome) {
+    const PURE: (Vec3, NeeOutcome) = (Vec3::ZERO, NeeOutcome::Pure);
     let Some((index, pmf)) = scene.select_light(settings.light_selection, hit.p, frame.n, u_light)
     else {
-        return Vec3::ZERO;
+        return PURE;
     };
     let Some(ls) = scene.sample_light(index, hit.p, frame.n, u, settings.light_sampling) else {
-        return Vec3::ZERO;
+        return PURE;
     };
     let wi = frame.to_local(ls.wi);
     let transmits = TRANSMISSION && transmits;
     let wi_invalid = if transmits { wi.z == 0.0 } else { wi.z <= 0.0 };
     if wi_invalid || (shading && !same_side(ls.wi, n, wi.z)) {
-        return Vec3::ZERO;
+        return PURE;
     }
     let f = material.eval_specialised::<TRANSMISSION>(wo, wi);
-    if f == Vec3::ZERO {
-        return Vec3::ZERO;
+    let p_bsdf_cv = if cv {
+        material.pdf_specialised::<TRANSMISSION>(wo, wi)
+    } else {
+        0.0
+    };
+    if f == Vec3::ZERO && p_bsdf_cv <= 0.0 {
+        return PURE;
     }
     let shadow = if ls.infinite {
         spawn_ray(hit.p, hit.p_error, n, ls.wi)
@@ -330,21 +525,33 @@ fn direct_light<const TRANSMISSION: bool>(
         spawn_ray_to(hit.p, hit.p_error, n, ls.p, ls.p_error, ls.n)
     };
     if scene.accel.occluded(&shadow) {
-        return Vec3::ZERO;
+        if cv && crate::mutants::optimal_occluded_combined() {
+            let p_bsdf = material.pdf_specialised::<TRANSMISSION>(wo, wi);
+            if let Some((rl, rb)) = balance_ratios(pmf * ls.pdf, p_bsdf) {
+                return (Vec3::ZERO, NeeOutcome::Combined { rl, rb });
+            }
+        }
+        return PURE;
     }
     let p_light = pmf * ls.pdf;
-    let weight = match (settings.strategy, mixture) {
-        (_, Some(w)) => {
+    let weight = match weight {
+        NeeWeight::Mixture(w) => {
             // One-sample estimator: divide by the mixture pdf (selection probability included).
             let p_mix = w * p_light + (1.0 - w) * material.pdf_specialised::<TRANSMISSION>(wo, wi);
-            return f * ls.le / p_mix;
+            return (f * ls.le / p_mix, NeeOutcome::Pure);
         }
-        (Strategy::Mis { heuristic }, None) => {
+        NeeWeight::Mis(heuristic) if cv => heuristic.weight(p_light, p_bsdf_cv),
+        NeeWeight::Mis(heuristic) => {
             heuristic.weight(p_light, material.pdf_specialised::<TRANSMISSION>(wo, wi))
         }
-        _ => 1.0,
+        NeeWeight::One => 1.0,
     };
-    f * ls.le * (weight / p_light)
+    let contribution = f * ls.le * (weight / p_light);
+    let outcome = match balance_ratios(p_light, p_bsdf_cv) {
+        Some((rl, rb)) if cv => NeeOutcome::Combined { rl, rb },
+        _ => NeeOutcome::Pure,
+    };
+    (contribution, outcome)
 }
 
 #[cfg(test)]

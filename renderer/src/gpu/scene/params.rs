@@ -90,6 +90,8 @@ gpu_tags! {
         Mixture => "STRATEGY_MIXTURE",
         /// [`Strategy::Mis`].
         Mis => "STRATEGY_MIS",
+        /// [`Strategy::MisOptimal`].
+        MisOptimal => "STRATEGY_MIS_OPTIMAL",
     }
 }
 
@@ -212,6 +214,7 @@ impl GpuScene {
             Strategy::Bsdf => (StrategyTag::Bsdf, balance, 0.0),
             Strategy::Mixture { light_weight } => (StrategyTag::Mixture, balance, light_weight),
             Strategy::Mis { heuristic } => (StrategyTag::Mis, HeuristicTag::of(heuristic), 0.0),
+            Strategy::MisOptimal => (StrategyTag::MisOptimal, balance, 0.0),
         };
         let (filter, filter_stddev, filter_radius) = FilterTag::of(cam.filter);
         GpuParams {

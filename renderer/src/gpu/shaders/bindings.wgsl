@@ -53,7 +53,7 @@ fn params_filter() -> PixelFilter {
 // light-sampling method are read by `if`s that would take any other value for the second).
 fn check_param_tags(p: Params) {
     switch p.strategy {
-        case STRATEGY_LIGHT, STRATEGY_BSDF, STRATEGY_MIXTURE, STRATEGY_MIS: {}
+        case STRATEGY_LIGHT, STRATEGY_BSDF, STRATEGY_MIXTURE, STRATEGY_MIS, STRATEGY_MIS_OPTIMAL: {}
         default: {
             _ = unknown_tag();
         }

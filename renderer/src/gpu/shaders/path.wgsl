@@ -1,4 +1,4 @@
-// The unidirectional path tracer, the twin of `integrator/path.rs` (one loop, four direct-light
+// The unidirectional path tracer, the twin of `integrator/path.rs` (one loop, five direct-light
 // strategies, Mitsuba's max_depth, Russian roulette from rr_depth, transmission through
 // dielectrics under HAS_DIELECTRIC only, so a scene without glass runs the reflection-only
 // program, shading normals under HAS_SHADING_NORMALS only, textured materials and emission under
@@ -7,21 +7,26 @@
 // it into the accumulation with Welford's update (stable variance in f32; the film reads back Σx
 // and Σx² from it).
 
-// `EmissionWeight`: 0 one, 1 zero, 2 MIS, 3 mixture (BSDF branch). Local to this kernel, not in the
-// prelude: the CPU's enum carries its data and no record or parameter holds these.
+// `EmissionWeight`: 0 one, 1 zero, 2 MIS, 3 mixture (BSDF branch), 4 fixed (mis-optimal's first
+// vertex worked it out; the weight travels in `p_bsdf`). Local to this kernel, not in the prelude:
+// the CPU's enum carries its data and no record or parameter holds these.
 const EW_ONE: u32 = 0u;
 const EW_ZERO: u32 = 1u;
 const EW_MIS: u32 = 2u;
 const EW_MIXTURE: u32 = 3u;
+const EW_FIXED: u32 = 4u;
 
 // Weight of emission from light `light` found by a BSDF-sampled ray (`emission_weight`);
 // `light_pdf` is the solid-angle pdf light sampling would have had for the direction; `prev_p`,
-// `prev_ns`: the previous vertex, which the light BVH's selection probability depends on.
-fn emission_weight(rule: u32, p_bsdf: f32, light: u32, light_pdf: f32, prev_p: vec3f, prev_ns: vec3f) -> f32 {
+// `prev_ns`: the previous vertex, which the light BVH's selection probability depends on;
+// `heuristic`: EW_MIS's.
+fn emission_weight(rule: u32, p_bsdf: f32, light: u32, light_pdf: f32, prev_p: vec3f, prev_ns: vec3f, heuristic: u32) -> f32 {
     if rule == EW_ONE {
         return 1.0;
     } else if rule == EW_ZERO {
         return 0.0;
+    } else if rule == EW_FIXED {
+        return p_bsdf;
     }
     var pmf = 0.0;
 // #if HAS_LIGHTS
@@ -31,7 +36,7 @@ fn emission_weight(rule: u32, p_bsdf: f32, light: u32, light_pdf: f32, prev_p: v
 // #endif
     let p_light = pmf * light_pdf;
     if rule == EW_MIS {
-        return mis_weight(params.heuristic, p_bsdf, p_light);
+        return mis_weight(heuristic, p_bsdf, p_light);
     }
     let w = params.mix_weight;
     let r = p_bsdf / (w * p_light + (1.0 - w) * p_bsdf);
@@ -51,16 +56,31 @@ fn same_side(w: vec3f, n: vec3f, local_z: f32) -> bool {
 // #endif
 
 // #if HAS_LIGHTS
-// Next-event estimation (`direct_light`); `mixture_w` ≥ 0 on the mixture's light branch;
-// `shading`: the frame is a shading normal's (the rule above applies).
+// What next-event estimation returns (`direct_light`'s pair): the contribution and, for
+// mis-optimal's control variate, whether the sample ended on an outcome BSDF sampling can produce
+// too (`NeeOutcome::Combined`) with its balance ratios.
+struct NeeResult {
+    c: vec3f,
+    combined: bool,
+    rl: f32,
+    rb: f32,
+}
+
+fn nee_pure() -> NeeResult {
+    return NeeResult(vec3f(0.0), false, 0.0, 0.0);
+}
+
+// Next-event estimation (`direct_light`); `mixture_w` ≥ 0 on the mixture's light branch; `mis_h`
+// the MIS heuristic or NONE (light sampling alone); `cv`: mis-optimal's control variate needs the
+// outcome; `shading`: the frame is a shading normal's (the rule above applies).
 // #if HAS_SHADING_NORMALS
-fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material, u_light: f32, u: vec2f, mixture_w: f32, shading: bool) -> vec3f {
+fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material, u_light: f32, u: vec2f, mixture_w: f32, mis_h: u32, cv: bool, shading: bool) -> NeeResult {
 // #else
-fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material, u_light: f32, u: vec2f, mixture_w: f32) -> vec3f {
+fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material, u_light: f32, u: vec2f, mixture_w: f32, mis_h: u32, cv: bool) -> NeeResult {
 // #endif
     let choice = light_select(hit.p, frame.n, u_light);
     if !(choice.pmf > 0.0) {
-        return vec3f(0.0);
+        return nee_pure();
     }
     let light = lights[choice.index];
     var ls = light_sample(light, hit.p, frame.n, u, params.light_sampling);
@@ -68,7 +88,7 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
     ls = light_sample_textured(light, ls);
 // #endif
     if !ls.ok {
-        return vec3f(0.0);
+        return nee_pure();
     }
     let wi = to_local(frame, ls.wi);
 // #if HAS_DIELECTRIC
@@ -77,16 +97,20 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
 // #else
     if wi.z <= 0.0 {
 // #endif
-        return vec3f(0.0);
+        return nee_pure();
     }
 // #if HAS_SHADING_NORMALS
     if shading && !same_side(ls.wi, n, wi.z) {
-        return vec3f(0.0);
+        return nee_pure();
     }
 // #endif
     let f = material_eval(m, wo, wi);
-    if all(f == vec3f(0.0)) {
-        return vec3f(0.0);
+    var p_bsdf_cv = 0.0;
+    if cv {
+        p_bsdf_cv = material_pdf(m, wo, wi);
+    }
+    if all(f == vec3f(0.0)) && p_bsdf_cv <= 0.0 {
+        return nee_pure();
     }
     var shadow: Ray;
     if ls.infinite {
@@ -95,18 +119,79 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
         shadow = spawn_ray_to(hit.p, hit.p_error, n, ls.p, ls.p_error, ls.n);
     }
     if scene_occluded(shadow) {
-        return vec3f(0.0);
+        return nee_pure();
     }
     let p_light = choice.pmf * ls.pdf;
     if mixture_w >= 0.0 {
         let p_mix = mixture_w * p_light + (1.0 - mixture_w) * material_pdf(m, wo, wi);
-        return f * ls.le / p_mix;
+        return NeeResult(f * ls.le / p_mix, false, 0.0, 0.0);
     }
     var weight = 1.0;
-    if params.strategy == STRATEGY_MIS {
-        weight = mis_weight(params.heuristic, p_light, material_pdf(m, wo, wi));
+    if mis_h != NONE {
+        var pb = p_bsdf_cv;
+        if !cv {
+            pb = material_pdf(m, wo, wi);
+        }
+        weight = mis_weight(mis_h, p_light, pb);
     }
-    return f * ls.le * (weight / p_light);
+    let c = f * ls.le * (weight / p_light);
+    if cv {
+        let r = balance_ratios(p_light, p_bsdf_cv);
+        if r.ok {
+            return NeeResult(c, true, r.rl, r.rb);
+        }
+    }
+    return NeeResult(c, false, 0.0, 0.0);
+}
+
+// mis-optimal: resolves the first vertex's pending BSDF sample (`resolve_bsdf`; throughput
+// `beta` at the vertex, sample weight `weight`, pdf `pdf`, `delta`) once its `ray` found `hit`:
+// records it in the sample's moments; returns its control-variate term and the weight of the
+// emission it found.
+struct Resolved {
+    cv: vec3f,
+    w: f32,
+}
+
+fn resolve_bsdf(ray: Ray, hit: SurfaceHit, prev_p: vec3f, prev_ns: vec3f, beta: vec3f, weight: vec3f, pdf: f32, delta: bool) -> Resolved {
+    var le = vec3f(0.0);
+    var p_light = 0.0;
+    if hit.prim == NONE {
+// #if HAS_BACKGROUND
+        if params.background != NONE {
+            let bg = lights[params.background];
+            le = light_radiance(bg, vec3f(0.0), ray.d);
+            if !delta && params.light_pmf != NONE {
+                p_light = light_select_pmf(prev_p, prev_ns, params.background)
+                    * light_pdf(bg, prev_p, prev_ns, ray.d, vec3f(0.0), vec3f(0.0), params.light_sampling);
+            }
+        }
+// #endif
+    } else {
+        let prim = prims[hit.prim];
+        let li = prim_light(prim);
+        if li != NONE {
+            let light = lights[li];
+            le = light_radiance(light, hit.n, ray.d);
+// #if HAS_TEXTURES
+            le = light_emitted(light, prim, hit, le);
+// #endif
+            if !delta && params.light_pmf != NONE {
+                p_light = light_select_pmf(prev_p, prev_ns, li)
+                    * light_pdf(light, prev_p, prev_ns, normalize_glam(ray.d), hit.p, hit.n, params.light_sampling);
+            }
+        }
+    }
+    if delta {
+        return Resolved(beta * opt_pure_bsdf(weight * le), 1.0);
+    }
+    let emits = any(le > vec3f(0.0));
+    let r = balance_ratios(p_light, pdf);
+    if r.ok && emits && p_light > 0.0 {
+        return Resolved(beta * opt_combined(weight * le * r.rb, r.rl, r.rb), r.rb);
+    }
+    let w = mis_weight(HEURISTIC_BALANCE, pdf, p_light);
+    return Resolved(beta * opt_pure_bsdf(weight * le * w), w);
 }
 // #endif
 
@@ -121,15 +206,37 @@ fn radiance(camera_ray: Ray) -> vec3f {
 // #endif
     var rule = EW_ONE;
     var p_bsdf = 0.0;
+    // EW_MIS's heuristic.
+    var mis_h = params.heuristic;
     var prev_p = ray.o;
     // The previous vertex's shading normal, for the cosine warp's pdf (zero at the camera).
     var prev_ns = vec3f(0.0);
     var depth = 0;
+    // mis-optimal: the first vertex's BSDF sample awaiting its hit (`PendingBsdf`), and whether
+    // the path ends once it is resolved (roulette or a zero throughput would have ended it).
+    var pending = false;
+    var pend_beta = vec3f(0.0);
+    var pend_weight = vec3f(0.0);
+    var pend_pdf = 0.0;
+    var pend_delta = false;
+    var stop = false;
     loop {
         depth += 1;
         // The sampler's bounce: 0 at the camera ray's hit.
         let bounce = u32(depth - 1);
         let hit = scene_intersect(ray);
+// #if HAS_LIGHTS
+        if pending {
+            pending = false;
+            let res = resolve_bsdf(ray, hit, prev_p, prev_ns, pend_beta, pend_weight, pend_pdf, pend_delta);
+            l += res.cv;
+            rule = EW_FIXED;
+            p_bsdf = res.w;
+            if stop {
+                break;
+            }
+        }
+// #endif
         if hit.prim == NONE {
 // #if HAS_BACKGROUND
             if params.background != NONE {
@@ -142,7 +249,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
                     lpdf = light_pdf(bg, prev_p, prev_ns, ray.d, vec3f(0.0), vec3f(0.0), params.light_sampling);
                 }
 // #endif
-                let w = emission_weight(rule, p_bsdf, params.background, lpdf, prev_p, prev_ns);
+                let w = emission_weight(rule, p_bsdf, params.background, lpdf, prev_p, prev_ns, mis_h);
                 l += beta * light_radiance(bg, vec3f(0.0), ray.d) * w;
             }
 // #endif
@@ -163,7 +270,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
                     lpdf = light_pdf(light, prev_p, prev_ns, normalize_glam(ray.d), hit.p, hit.n, params.light_sampling);
                 }
 // #endif
-                l += beta * le * emission_weight(rule, p_bsdf, light_index, lpdf, prev_p, prev_ns);
+                l += beta * le * emission_weight(rule, p_bsdf, light_index, lpdf, prev_p, prev_ns, mis_h);
             }
         }
         if max_depth >= 0 && depth >= max_depth {
@@ -230,6 +337,10 @@ fn radiance(camera_ray: Ray) -> vec3f {
         var do_nee = false;
         var nee_mixture_w = -1.0;
         rule = EW_ONE;
+        // mis-optimal's first vertex: the balance heuristic plus the control variate (the GPU
+        // engine always supplies α).
+        let optimal_vertex = depth == 1 && params.strategy == STRATEGY_MIS_OPTIMAL;
+        var cv = false;
 // #if HAS_LIGHTS
         let nee_worth = material_has_smooth_part(m) && params.light_cdf != NONE;
         if nee_worth {
@@ -237,11 +348,20 @@ fn radiance(camera_ray: Ray) -> vec3f {
                 case STRATEGY_LIGHT: {
                     do_nee = true;
                     rule = EW_ZERO;
+                    mis_h = NONE;
                 }
                 case STRATEGY_MIS: {
                     do_nee = true;
                     rule = EW_MIS;
                     p_bsdf = 0.0;
+                    mis_h = params.heuristic;
+                }
+                case STRATEGY_MIS_OPTIMAL: {
+                    do_nee = true;
+                    rule = EW_MIS;
+                    p_bsdf = 0.0;
+                    mis_h = select(HEURISTIC_POWER, HEURISTIC_BALANCE, optimal_vertex);
+                    cv = optimal_vertex;
                 }
                 case STRATEGY_MIXTURE: {
                     if sampler_mixture_1d(bounce) < params.mix_weight {
@@ -262,11 +382,25 @@ fn radiance(camera_ray: Ray) -> vec3f {
         if do_nee {
             let u_light = sampler_light_select_1d(bounce);
             let u = sampler_light_2d(bounce);
+            var nee_h = mis_h;
+            if nee_mixture_w >= 0.0 {
+                nee_h = NONE;
+            }
 // #if HAS_SHADING_NORMALS
-            l += beta * direct_light(hit, n, frame, wo, m, u_light, u, nee_mixture_w, shading);
+            let nee = direct_light(hit, n, frame, wo, m, u_light, u, nee_mixture_w, nee_h, cv, shading);
 // #else
-            l += beta * direct_light(hit, n, frame, wo, m, u_light, u, nee_mixture_w);
+            let nee = direct_light(hit, n, frame, wo, m, u_light, u, nee_mixture_w, nee_h, cv);
 // #endif
+            l += beta * nee.c;
+            if cv {
+                var term = vec3f(0.0);
+                if nee.combined {
+                    term = opt_combined(nee.c, nee.rl, nee.rb);
+                } else {
+                    term = opt_pure_light();
+                }
+                l += beta * (opt_constant() + term);
+            }
         }
 // #endif
 
@@ -274,7 +408,26 @@ fn radiance(camera_ray: Ray) -> vec3f {
         let u_lobe = sampler_bsdf_lobe_1d(bounce);
         let bs = material_sample(m, wo, u_lobe, sampler_bsdf_2d(bounce));
         if !bs.ok {
+            if cv {
+                l += beta * opt_pure_bsdf(vec3f(0.0));
+            }
             break;
+        }
+        let wi = to_world(frame, bs.wi);
+        var wi_ok = true;
+// #if HAS_SHADING_NORMALS
+        wi_ok = !(shading && !same_side(wi, n, bs.wi.z));
+// #endif
+        if cv {
+            if wi_ok {
+                pending = true;
+                pend_beta = beta;
+                pend_weight = bs.weight;
+                pend_pdf = bs.pdf;
+                pend_delta = bs.delta;
+            } else {
+                l += beta * opt_pure_bsdf(vec3f(0.0));
+            }
         }
         if bs.delta {
             rule = EW_ONE;
@@ -285,18 +438,17 @@ fn radiance(camera_ray: Ray) -> vec3f {
 // #if HAS_DIELECTRIC
         eta_scale *= bs.eta * bs.eta;
 // #endif
-        if all(beta == vec3f(0.0)) {
+        if !wi_ok || (all(beta == vec3f(0.0)) && !pending) {
             break;
         }
-        let wi = to_world(frame, bs.wi);
-// #if HAS_SHADING_NORMALS
-        if shading && !same_side(wi, n, bs.wi.z) {
-            break;
-        }
-// #endif
         prev_p = hit.p;
         prev_ns = frame.n;
         ray = spawn_ray(hit.p, hit.p_error, n, wi);
+        if all(beta == vec3f(0.0)) {
+            // Traced only for the pending control variate.
+            stop = true;
+            continue;
+        }
 
         if u32(depth) >= params.rr_depth {
 // #if HAS_DIELECTRIC
@@ -305,7 +457,11 @@ fn radiance(camera_ray: Ray) -> vec3f {
             let q = min(max_component(beta), 0.95);
 // #endif
             if sampler_rr_1d(bounce) >= q {
-                break;
+                if !pending {
+                    break;
+                }
+                stop = true;
+                continue;
             }
             beta /= q;
         }
@@ -321,11 +477,56 @@ fn camera_ray(x: f32, y: f32) -> Ray {
     return Ray(params.cam_origin.xyz, normalize_glam(d), inf());
 }
 
+// mis-optimal's planes of `accum` (`GpuProgressive`): after the three of the film, the pixel's
+// moments (M_LL, M_LB, M_BB), b_L, b_B, then α_L, α_B of its current stage; the scratch planes
+// of multi-sample dispatches follow them.
+const OPT_PLANES: u32 = 5u;
+
+fn optimal_on() -> bool {
+    return params.strategy == STRATEGY_MIS_OPTIMAL;
+}
+
+// First scratch plane: after the film's three and, for mis-optimal, its OPT_PLANES.
+fn scratch_base() -> u32 {
+    return 3u + select(0u, OPT_PLANES, optimal_on());
+}
+
+// `PixelState::alpha_for`, for every sample of this dispatch (the host splits dispatches where a
+// stage starts, so a stage starts at most at the dispatch's first sample): there α comes from the
+// moments of samples 0..params.sample, which no invocation writes during the dispatch, and layer
+// 0 stores it; elsewhere the stage's stored α. Zeroes the sample's moments.
+fn opt_load(pixel: u32, layer: u32) {
+    let plane = params.width * params.height;
+    opt_m = vec3f(0.0);
+    opt_bl = vec3f(0.0);
+    opt_bb = vec3f(0.0);
+    if opt_is_stage_start(params.sample) {
+        let a = optimal_solve(accum[3u * plane + pixel].xyz, accum[4u * plane + pixel].xyz, accum[5u * plane + pixel].xyz);
+        opt_alpha_l = a.light;
+        opt_alpha_b = a.bsdf;
+        if layer == 0u {
+            accum[6u * plane + pixel] = vec4f(a.light, 0.0);
+            accum[7u * plane + pixel] = vec4f(a.bsdf, 0.0);
+        }
+    } else {
+        opt_alpha_l = accum[6u * plane + pixel].xyz;
+        opt_alpha_b = accum[7u * plane + pixel].xyz;
+    }
+}
+
+// Adds moments to the pixel's sums.
+fn opt_add(pixel: u32, m: vec3f, bl: vec3f, bb: vec3f) {
+    let plane = params.width * params.height;
+    accum[3u * plane + pixel] = vec4f(accum[3u * plane + pixel].xyz + m, 0.0);
+    accum[4u * plane + pixel] = vec4f(accum[4u * plane + pixel].xyz + bl, 0.0);
+    accum[5u * plane + pixel] = vec4f(accum[5u * plane + pixel].xyz + bb, 0.0);
+}
+
 // One dispatch renders `params.samples_per_dispatch` samples per pixel, one per z layer: small
 // images then still fill a large GPU (256² pixels are a quarter of the threads an H100 holds).
-// With one layer the sample is added at once; with more, each layer leaves its radiance in a
-// scratch plane and `fold` adds them in sample order with the same updates, so the image is the
-// same bit for bit whatever the layering.
+// With one layer the sample is added at once; with more, each layer leaves its radiance (and
+// mis-optimal's moments) in scratch planes and `fold` adds them in sample order with the same
+// updates, so the image is the same bit for bit whatever the layering.
 @compute @workgroup_size(8, 8, 1)
 fn render(@builtin(global_invocation_id) gid: vec3<u32>) {
     if gid.x >= params.width || gid.y >= params.height {
@@ -333,6 +534,10 @@ fn render(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let pixel = gid.y * params.width + gid.x;
     let s = params.sample + gid.z;
+    let optimal = optimal_on();
+    if optimal {
+        opt_load(pixel, gid.z);
+    }
     // `Sampler::new`, as the CPU's render loop makes it (`engine.rs`); an unknown sampler tag
     // flags the sample there.
     sampler_init(params.sampler, params.seed, gid.x, gid.y, params.width, s);
@@ -345,15 +550,34 @@ fn render(@builtin(global_invocation_id) gid: vec3<u32>) {
         // A record or parameter with a tag no `switch` knows (`tags.wgsl`): a NaN sample.
         x = vec3f(unknown_tag());
     }
+    // A dropped sample adds nothing to the moments either (`engine.rs`).
+    let keep_moments = is_finite3(x) && is_finite3(opt_m) && is_finite3(opt_bl) && is_finite3(opt_bb);
     if !is_finite3(x) {
         // The CPU skips it but still counts the sample: a zero sample.
         atomicAdd(&counters[0], 1u);
         x = vec3f(0.0);
     }
+    if !keep_moments {
+        opt_m = vec3f(0.0);
+        opt_bl = vec3f(0.0);
+        opt_bb = vec3f(0.0);
+    }
+    let plane = params.width * params.height;
     if params.samples_per_dispatch == 1u {
         accumulate(pixel, s, x);
+        if optimal {
+            opt_add(pixel, opt_m, opt_bl, opt_bb);
+        }
     } else {
-        accum[(3u + gid.z) * params.width * params.height + pixel] = vec4f(x, 0.0);
+        let base = scratch_base();
+        accum[(base + gid.z) * plane + pixel] = vec4f(x, 0.0);
+        if optimal {
+            // Layer j's moments: three planes after the dispatch's radiance planes.
+            let m = base + params.samples_per_dispatch + 3u * gid.z;
+            accum[m * plane + pixel] = vec4f(opt_m, 0.0);
+            accum[(m + 1u) * plane + pixel] = vec4f(opt_bl, 0.0);
+            accum[(m + 2u) * plane + pixel] = vec4f(opt_bb, 0.0);
+        }
     }
 }
 
@@ -365,8 +589,13 @@ fn fold(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let pixel = gid.y * params.width + gid.x;
     let plane = params.width * params.height;
+    let base = scratch_base();
     for (var j = 0u; j < params.samples_per_dispatch; j++) {
-        accumulate(pixel, params.sample + j, accum[(3u + j) * plane + pixel].xyz);
+        accumulate(pixel, params.sample + j, accum[(base + j) * plane + pixel].xyz);
+        if optimal_on() {
+            let m = base + params.samples_per_dispatch + 3u * j;
+            opt_add(pixel, accum[m * plane + pixel].xyz, accum[(m + 1u) * plane + pixel].xyz, accum[(m + 2u) * plane + pixel].xyz);
+        }
     }
 }
 
