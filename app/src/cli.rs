@@ -238,6 +238,8 @@ pub enum ShowArg {
     Error,
     /// The signed difference in false colour.
     Difference,
+    /// Where light samples and where BSDF samples carry the direct light (CPU lanes).
+    TechniqueMap,
 }
 
 /// A `--wipe` side.
@@ -427,8 +429,9 @@ pub struct ViewArgs {
     /// error are reported).
     #[arg(long, value_name = "RELMSE")]
     pub equal_error: Option<f64>,
-    /// What the panes show: the image, the per-pixel relative error, or the signed difference
-    /// (A − B in the wipe, else against the reference or the first pane).
+    /// What the panes show: the image, the per-pixel relative error, the signed difference
+    /// (A − B in the wipe, else against the reference or the first pane), or the technique map
+    /// (where light samples and where BSDF samples carry the direct light; CPU lanes).
     #[arg(long, value_enum, default_value = "image")]
     pub show: ShowArg,
     /// The pixel the inspector shows at first, `X,Y` [default: the image centre].

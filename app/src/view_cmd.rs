@@ -121,6 +121,7 @@ pub fn view(args: &ViewArgs) -> anyhow::Result<()> {
             ShowArg::Image => Content::Image,
             ShowArg::Error => Content::RelativeError,
             ShowArg::Difference => Content::Difference,
+            ShowArg::TechniqueMap => Content::TechniqueMap,
         },
         inspect: args.inspect,
         window_size: args.window_size,

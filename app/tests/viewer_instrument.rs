@@ -534,6 +534,9 @@ fn display_only_controls_never_restart() {
     pick_combo(&mut h, "Show (C)", "difference A − B");
     h.run_steps(2);
     assert_eq!(h.state().display.content, Content::Difference);
+    pick_combo(&mut h, "Show (C)", "technique map (light vs BSDF)");
+    h.run_steps(2);
+    assert_eq!(h.state().display.content, Content::TechniqueMap);
     for b in ["1:1 (1)", "Fit (F)"] {
         h.get_by_label(b).click();
         h.run_steps(2);
@@ -605,4 +608,107 @@ fn wipe_puts_the_cpu_and_the_gpu_side_by_side() {
     assert_eq!(lanes[1].label, "mis power (GPU)");
     assert!(lanes.iter().all(|l| l.spp == 8 && !l.pixels.is_empty()));
     h.get_by_label_contains("B mis power (GPU): 8 spp");
+}
+
+/// The technique map (issue 21 item 4) on Veach's scene with light sampling, BSDF sampling and
+/// MIS side by side: each lane's parts add up to its image (the map is the estimate the image
+/// holds, split by the weights actually applied), light sampling has no BSDF part and BSDF
+/// sampling no light part, MIS has both (light samples carry the big lights on the rough plates,
+/// BSDF samples the small ones on the smooth plates), the panes show each lane's map, and
+/// switching to it is a display change. Deliberate bug tried: the map drawn from the first
+/// lane's parts in every pane: 97.7% of the BSDF pane's pixels were not its map, the test failed.
+#[test]
+fn technique_map_splits_each_image_by_technique() {
+    use lumis::integrator::Technique;
+    use lumis::integrator::technique::light_share;
+    use lumis_app::viewer::tonemap::technique_colour;
+    let size = 48u32;
+    let mut o = options("veach_mis.json", Some(size), "techniques");
+    o.params.view = ViewMode::Compare;
+    o.params.compare_strategies = vec![StrategyKind::Light, StrategyKind::Bsdf, StrategyKind::Mis];
+    o.params.spp_limit = 8;
+    let mut h = harness_with(o, [1400.0, 1000.0]);
+    assert!(h.state_mut().wait_for(WAIT, |o| o.lanes.len() == 3
+        && o.lanes.iter().all(|l| l.done)));
+    h.run_steps(2);
+    let restarts = h.state().restarts;
+    pick_combo(&mut h, "Show (C)", "technique map (light vs BSDF)");
+    h.run_steps(2);
+    assert_eq!(h.state().display.content, Content::TechniqueMap);
+    assert_eq!(h.state().restarts, restarts, "the technique map restarted");
+
+    let lanes = h.state().output().lanes.clone();
+    let part = |l: usize, i: usize, t: Technique| lanes[l].techniques[i][t.index()];
+    for (k, l) in lanes.iter().enumerate() {
+        assert_eq!(l.techniques.len(), l.pixels.len(), "{}", l.label);
+        for (parts, image) in l.techniques.iter().zip(l.pixels.iter()) {
+            let sum: Vec3 = parts.iter().sum();
+            let scale: f32 = parts.iter().map(|p| p.abs().max_element()).sum();
+            assert!(
+                (sum - *image).abs().max_element() <= 1e-5 * scale + 1e-7,
+                "{}: the parts {parts:?} add up to {sum}, the image has {image}",
+                l.label
+            );
+        }
+        let n = l.pixels.len();
+        let nonzero = |t: Technique| (0..n).filter(|&i| part(k, i, t) != Vec3::ZERO).count();
+        let (light, bsdf) = (nonzero(Technique::Light), nonzero(Technique::Bsdf));
+        match l.settings.strategy {
+            Strategy::Light => assert!(light > n / 10 && bsdf == 0, "light: {light} {bsdf}"),
+            Strategy::Bsdf => assert!(light == 0 && bsdf > n / 10, "bsdf: {light} {bsdf}"),
+            _ => {
+                let shares: Vec<f32> = (0..n)
+                    .filter_map(|i| {
+                        light_share(part(k, i, Technique::Light), part(k, i, Technique::Bsdf))
+                    })
+                    .collect();
+                let by_light = shares.iter().filter(|&&s| s > 0.9).count();
+                let by_bsdf = shares.iter().filter(|&&s| s < 0.1).count();
+                assert!(by_light > 20 && by_bsdf > 20, "mis: {by_light} {by_bsdf}");
+            }
+        }
+    }
+
+    if skip_gpu() {
+        return;
+    }
+    h.state_mut().show_inspector = false;
+    h.remove_cursor();
+    h.run_steps(2);
+    let img = h.render().expect("render the frame");
+    // Screen pixels of pane `pane` (away from pixel edges) against lane `lane`'s map colours;
+    // the share that differs by more than 2 units.
+    let mismatch = |pane: usize, lane: usize| {
+        let (rect, cell) = (h.state().pane_rects[pane], h.state().pane_cells[pane]);
+        let seen = rect.intersect(cell);
+        let (mut n, mut bad) = (0, 0);
+        for y in (seen.min.y as u32 + 2..seen.max.y as u32 - 2).step_by(3) {
+            for x in (seen.min.x as u32 + 2..seen.max.x as u32 - 2).step_by(3) {
+                let u = (egui::pos2(x as f32 + 0.5, y as f32 + 0.5) - rect.min) / rect.width()
+                    * size as f32;
+                let i = (u.y as u32 * size + u.x as u32) as usize;
+                let want = technique_colour(
+                    part(lane, i, Technique::Light),
+                    part(lane, i, Technique::Bsdf),
+                    1.0,
+                );
+                let p = img.get_pixel(x, y).0;
+                n += 1;
+                bad += (0..3).any(|c| (p[c] as i32 - want[c] as i32).abs() > 2) as u32;
+            }
+        }
+        assert!(n > 500, "{n} pixels checked");
+        bad as f64 / n as f64
+    };
+    for k in 0..3 {
+        let shown = mismatch(k, k);
+        assert!(shown < 0.02, "pane {k}: {:.1} % not its map", 100.0 * shown);
+    }
+    // Against the wrong lane's map the check fails (measured 14%: many pixels are dark, or lit
+    // by light samples alike in both), well above the 2% allowed.
+    let other = mismatch(2, 0);
+    assert!(
+        other > 0.08,
+        "MIS's and light sampling's maps look alike ({other})"
+    );
 }

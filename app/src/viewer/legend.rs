@@ -1,7 +1,7 @@
 //! The colour bar under the panes when they show false colour: which map, its range and what
 //! its ends mean.
 
-use super::tonemap::{Content, ERROR_DECADES, difference_colour, error_colour};
+use super::tonemap::{Content, ERROR_DECADES, difference_colour, error_colour, technique_hue};
 
 /// Width of the colour bar (points).
 const BAR: f32 = 220.0;
@@ -14,6 +14,14 @@ pub fn legend(ui: &mut egui::Ui, rect: egui::Rect, content: Content, has_referen
     let (lo, hi) = ERROR_DECADES;
     let (colour, range, text): (ColourOf, (f32, f32), String) = match content {
         Content::Image => return,
+        Content::TechniqueMap => (
+            |t| technique_hue(t).map(|c| (c * 255.0 + 0.5) as u8),
+            (0.0, 1.0),
+            "share of the direct light carried by BSDF samples (blue, left) or light samples \
+             (orange, right), grey: both alike; brightness: the direct light; dark grey: none, \
+             or a GPU lane (not recorded there)"
+                .to_string(),
+        ),
         Content::RelativeError => (
             |t| error_colour(10f32.powf(t)),
             (lo, hi),
@@ -39,6 +47,17 @@ pub fn legend(ui: &mut egui::Ui, rect: egui::Rect, content: Content, has_referen
             ),
         ),
     };
+    paint_bar(ui, rect, colour, range, text);
+}
+
+/// The bar of `colour` over `range`, and `text` beside it.
+fn paint_bar(
+    ui: &mut egui::Ui,
+    rect: egui::Rect,
+    colour: ColourOf,
+    range: (f32, f32),
+    text: String,
+) {
     let bar = egui::Rect::from_min_size(
         rect.min + egui::vec2(0.0, 3.0),
         egui::vec2(BAR.min(rect.width()), rect.height() - 6.0),

@@ -6,7 +6,7 @@
 //! minified.
 
 use super::app::ViewerApp;
-use super::tonemap::{Content, Display, color_image, difference_rgb};
+use super::tonemap::{Content, Display, color_image, difference_rgb, technique_rgb};
 use super::wipe::Source;
 use glam::Vec3;
 use std::collections::{HashMap, HashSet};
@@ -27,6 +27,8 @@ pub enum Picture {
     Error(usize),
     /// The signed difference of the first against the second.
     Difference(Source, Source),
+    /// Lane `i`'s technique map.
+    Techniques(usize),
 }
 
 impl Picture {
@@ -35,6 +37,7 @@ impl Picture {
     pub fn of(source: Source, content: Content, base: Option<Source>) -> Picture {
         match (content, source, base) {
             (Content::RelativeError, Source::Lane(i), _) => Picture::Error(i),
+            (Content::TechniqueMap, Source::Lane(i), _) => Picture::Techniques(i),
             (Content::Difference, s, Some(b)) if b != s => Picture::Difference(s, b),
             _ => Picture::Image(source),
         }
@@ -118,6 +121,31 @@ impl ViewerApp {
                 (
                     key,
                     Box::new(move || color_image(w, h, &px, &errors, display)),
+                )
+            }
+            Picture::Techniques(i) => {
+                let l = self.output.lanes.get(i)?;
+                let (parts, w, h) = (l.techniques.clone(), l.width, l.height);
+                if l.pixels.is_empty() {
+                    return None;
+                }
+                let display = Display {
+                    content: Content::TechniqueMap,
+                    ..self.display
+                };
+                let key = (Arc::as_ptr(&parts) as usize, 1, display);
+                (
+                    key,
+                    Box::new(move || {
+                        // A GPU lane or a preview records no split: uniform dark grey, which
+                        // the legend explains.
+                        let rgb = if parts.len() == (w * h) as usize {
+                            technique_rgb(&parts, 2f32.powf(display.exposure))
+                        } else {
+                            [40u8; 3].repeat((w * h) as usize)
+                        };
+                        egui::ColorImage::from_rgb([w as usize, h as usize], &rgb)
+                    }),
                 )
             }
             Picture::Difference(a, b) => {

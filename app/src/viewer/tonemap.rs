@@ -20,12 +20,19 @@ pub enum Content {
     /// ([`difference_colour`]): in the wipe, its A against its B; elsewhere each pane against
     /// the reference, or without one against the first pane.
     Difference,
-    // Issue 21 item 4 adds the technique map here (which strategy carries the estimate).
+    /// Where light samples and where BSDF samples carry the direct light
+    /// ([`technique_colour`]), from the weights the estimator actually applied (CPU lanes).
+    TechniqueMap,
 }
 
 impl Content {
     /// Every content, in menu order (one line per mode).
-    pub const ALL: [Content; 3] = [Content::Image, Content::RelativeError, Content::Difference];
+    pub const ALL: [Content; 4] = [
+        Content::Image,
+        Content::RelativeError,
+        Content::Difference,
+        Content::TechniqueMap,
+    ];
 
     /// Its menu name.
     pub fn label(self) -> &'static str {
@@ -33,6 +40,7 @@ impl Content {
             Content::Image => "image",
             Content::RelativeError => "relative error",
             Content::Difference => "difference A − B",
+            Content::TechniqueMap => "technique map (light vs BSDF)",
         }
     }
 }
@@ -104,6 +112,48 @@ pub fn difference_colour(d: f32) -> [u8; 3] {
     })
 }
 
+/// The technique map's hues at a pixel's light share 0 (BSDF samples carry all its direct
+/// light), ½ (both alike) and 1 (light samples carry all of it): blue, light grey, orange.
+const TECHNIQUE_HUES: [[f32; 3]; 3] = [[0.15, 0.55, 1.0], [0.85, 0.85, 0.85], [1.0, 0.5, 0.05]];
+
+/// The hue (linear in [0, 1]) of light share `s` (see [`TECHNIQUE_HUES`]).
+pub fn technique_hue(s: f32) -> [f32; 3] {
+    let t = s.clamp(0.0, 1.0) * 2.0;
+    let i = (t as usize).min(1);
+    let f = t - i as f32;
+    std::array::from_fn(|c| TECHNIQUE_HUES[i][c] * (1.0 - f) + TECHNIQUE_HUES[i + 1][c] * f)
+}
+
+/// The technique map's colour (sRGB bytes) of a pixel whose light samples contributed `light`
+/// and whose BSDF samples contributed `bsdf` (means, linear): the hue of the light share
+/// ([`lumis::integrator::technique::light_share`]), as bright as the direct light exposed by
+/// `gain` (at least a quarter, so that dim regions still show their hue); dark grey where no
+/// direct light arrived.
+pub fn technique_colour(light: Vec3, bsdf: Vec3, gain: f32) -> [u8; 3] {
+    let Some(s) = lumis::integrator::technique::light_share(light, bsdf) else {
+        return [40, 40, 40];
+    };
+    let direct = srgb8(Vec3::splat(luminance(light + bsdf) * gain), 1.0)[0] as f32 / 255.0;
+    let brightness = direct.max(0.25);
+    technique_hue(s).map(|h| (h * brightness * 255.0 + 0.5) as u8)
+}
+
+/// The technique map of per-pixel parts ([`lumis::integrator::Technique::ALL`] order) as RGB
+/// bytes.
+pub fn technique_rgb(parts: &[[Vec3; 4]], gain: f32) -> Vec<u8> {
+    use lumis::integrator::Technique;
+    parts
+        .iter()
+        .flat_map(|p| {
+            technique_colour(
+                p[Technique::Light.index()],
+                p[Technique::Bsdf.index()],
+                gain,
+            )
+        })
+        .collect()
+}
+
 /// The luminance of linear `c` (Rec. 709 weights).
 pub fn luminance(c: Vec3) -> f32 {
     c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
@@ -173,5 +223,22 @@ mod tests {
         assert_eq!(difference_colour(f32::NAN), [64, 64, 64]);
         let d = signed_difference(&[Vec3::splat(2.0)], &[Vec3::ONE]);
         assert!((d[0] - 1.0 / 1.01).abs() < 1e-6);
+    }
+
+    /// The technique map: blue where BSDF samples carry the direct light, orange where light
+    /// samples do, grey where both alike; brighter with more direct light; dark grey without.
+    #[test]
+    fn technique_map_colours_the_light_share() {
+        let bright = Vec3::splat(10.0);
+        let [r, _, b] = technique_colour(Vec3::ZERO, bright, 1.0);
+        assert!(b > 200 && r < 60, "all BSDF: {r} {b}");
+        let [r, _, b] = technique_colour(bright, Vec3::ZERO, 1.0);
+        assert!(r > 200 && b < 30, "all light: {r} {b}");
+        let [r, g, b] = technique_colour(bright, bright, 1.0);
+        assert!(r == g && g == b && r > 200, "half: {r} {g} {b}");
+        let dim = technique_colour(Vec3::splat(0.01), Vec3::ZERO, 1.0);
+        let lit = technique_colour(Vec3::splat(0.3), Vec3::ZERO, 1.0);
+        assert!(dim[0] < lit[0] && dim[0] >= 63, "{dim:?} {lit:?}");
+        assert_eq!(technique_colour(Vec3::ZERO, Vec3::ZERO, 1.0), [40, 40, 40]);
     }
 }

@@ -82,6 +82,10 @@ pub struct LaneView {
     pub variance: Arc<Vec<Vec3>>,
     /// Per-pixel relative error (NaN where unknown; empty for previews).
     pub errors: Arc<Vec<f32>>,
+    /// Per pixel, the mean contribution of each technique (camera, light samples, BSDF
+    /// samples, control variate: [`lumis::integrator::Technique::ALL`]) for the technique map;
+    /// empty for previews and GPU lanes (their kernels do not record it).
+    pub techniques: Arc<Vec<[Vec3; 4]>>,
     /// Samples per pixel of `pixels` (a GPU lane shown live may be further: see `live`).
     pub spp: u32,
     /// A GPU lane's accumulation buffer, to show without a readback (only when the job had the
@@ -328,7 +332,7 @@ fn start(
     }
     let mut lanes = Vec::new();
     for spec in &job.lanes {
-        let render = match AnyProgressive::with_device(
+        let mut render = match AnyProgressive::with_device(
             spec.backend,
             scene.clone(),
             spec.settings,
@@ -338,6 +342,9 @@ fn start(
             Ok(r) => r,
             Err(e) => return fail(e.to_string()),
         };
+        // Always recorded on the CPU (a few adds per contribution), so that switching the
+        // panes to the technique map is a display change, not a restart.
+        render.enable_technique_map();
         lanes.push(Lane {
             render,
             last_readback: None,
@@ -405,6 +412,7 @@ pub(crate) fn empty_lane_view(label: &str) -> LaneView {
         pixels: Arc::new(Vec::new()),
         variance: Arc::new(Vec::new()),
         errors: Arc::new(Vec::new()),
+        techniques: Arc::new(Vec::new()),
         spp: 0,
         live: None,
         nonfinite: 0,
@@ -527,6 +535,7 @@ fn update_view(lane: &mut Lane, reference: Option<&[Vec3]>) -> Result<(), String
     v.error = film_error(film, &mean, reference);
     v.errors = Arc::new(pixel_errors(film, &mean, reference));
     v.variance = Arc::new(variance_of_mean(film));
+    v.techniques = Arc::new(lane.render.technique_means());
     v.width = film.width;
     v.height = film.height;
     v.preview = false;

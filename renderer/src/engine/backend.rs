@@ -109,6 +109,31 @@ impl AnyProgressive {
         }
     }
 
+    /// Records, per pixel, which technique contributed what (the viewer's technique map; see
+    /// [`Progressive::enable_technique_map`]). CPU only: returns `false` on the GPU, whose
+    /// kernels do not record it.
+    pub fn enable_technique_map(&mut self) -> bool {
+        match self {
+            AnyProgressive::Cpu(r) => {
+                r.enable_technique_map();
+                true
+            }
+            AnyProgressive::Gpu(_) => false,
+        }
+    }
+
+    /// Per pixel, the mean of each technique's part
+    /// ([`crate::integrator::Technique::ALL`] order); empty unless recorded.
+    pub fn technique_means(&self) -> Vec<[glam::Vec3; 4]> {
+        match self {
+            AnyProgressive::Cpu(r) => {
+                let spp = r.technique_spp();
+                r.technique_sums().iter().map(|t| t.means(spp)).collect()
+            }
+            AnyProgressive::Gpu(_) => Vec::new(),
+        }
+    }
+
     /// Where a GPU render's image lives on the device, for display without a readback.
     pub fn accumulation(&self) -> Option<AccumulationView<'_>> {
         match self {

@@ -3,10 +3,12 @@
 pub mod mis;
 pub mod optimal;
 pub mod path;
+pub mod technique;
 
 pub use mis::Heuristic;
 pub use optimal::OptimalSample;
-pub use path::{radiance, radiance_optimal, radiance_specialised};
+pub use path::{radiance, radiance_optimal, radiance_recorded, radiance_specialised};
+pub use technique::{Technique, TechniqueSplit, TechniqueSums};
 
 use crate::lights::{LightSampling, LightSelection};
 use crate::sampler::SamplerKind;

@@ -21,6 +21,7 @@
 //! WGSL twin: `path.wgsl`.
 
 use super::optimal::{OptimalSample, balance_ratios};
+use super::technique::{Technique, TechniqueSplit};
 use super::{Heuristic, Settings, Strategy};
 use crate::geometry::SurfaceHit;
 use crate::geometry::primitive::NONE;
@@ -98,7 +99,7 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
     sampler: &mut Sampler,
     settings: &Settings,
 ) -> Vec3 {
-    trace::<TRANSMISSION>(scene, ray, sampler, settings, None)
+    trace::<TRANSMISSION>(scene, ray, sampler, settings, None, None)
 }
 
 /// [`radiance_specialised`] for [`Strategy::MisOptimal`] with the sample's α: adds the control
@@ -111,17 +112,51 @@ pub fn radiance_optimal<const TRANSMISSION: bool>(
     settings: &Settings,
     optimal: &mut OptimalSample,
 ) -> Vec3 {
-    trace::<TRANSMISSION>(scene, ray, sampler, settings, Some(optimal))
+    trace::<TRANSMISSION>(scene, ray, sampler, settings, Some(optimal), None)
+}
+
+/// [`radiance_specialised`] with everything the engine may ask for besides the radiance:
+/// `mis-optimal`'s α and moments (as [`radiance_optimal`]), and the sample's split by technique
+/// ([`super::technique`]; the returned radiance is the same bit for bit with or without it).
+pub fn radiance_recorded<const TRANSMISSION: bool>(
+    scene: &Scene,
+    ray: Ray,
+    sampler: &mut Sampler,
+    settings: &Settings,
+    optimal: Option<&mut OptimalSample>,
+    split: Option<&mut TechniqueSplit>,
+) -> Vec3 {
+    trace::<TRANSMISSION>(scene, ray, sampler, settings, optimal, split)
+}
+
+/// Adds `v` to the sample's radiance `l` and, when recorded, to the part of `technique`.
+#[inline(always)]
+fn add(l: &mut Vec3, split: &mut Option<&mut TechniqueSplit>, technique: Technique, v: Vec3) {
+    *l += v;
+    if let Some(s) = split {
+        s.add(technique, v);
+    }
+}
+
+/// Emission found at path depth `depth` was found by the camera ray (1) or by a BSDF sample.
+#[inline(always)]
+fn emission_technique(depth: i32) -> Technique {
+    if depth == 1 {
+        Technique::Camera
+    } else {
+        Technique::Bsdf
+    }
 }
 
 /// The path tracer's loop; `optimal` carries `mis-optimal`'s α and moments when the engine
-/// learns them.
+/// learns them; `split` records which technique contributed what.
 fn trace<const TRANSMISSION: bool>(
     scene: &Scene,
     mut ray: Ray,
     sampler: &mut Sampler,
     settings: &Settings,
     mut optimal: Option<&mut OptimalSample>,
+    mut split: Option<&mut TechniqueSplit>,
 ) -> Vec3 {
     debug_assert!(TRANSMISSION || !scene.has_transmission());
     let max_depth = settings.max_depth.unwrap_or(scene.max_depth);
@@ -146,7 +181,7 @@ fn trace<const TRANSMISSION: bool>(
         if let (Some(p), Some(opt)) = (pending.take(), optimal.as_deref_mut()) {
             let (cv, w) =
                 resolve_bsdf(scene, settings, &ray, hit.as_ref(), prev_p, prev_ns, p, opt);
-            l += cv;
+            add(&mut l, &mut split, Technique::ControlVariate, cv);
             weight_rule = EmissionWeight::Fixed(w);
             if stop {
                 break;
@@ -165,7 +200,8 @@ fn trace<const TRANSMISSION: bool>(
                         settings.light_sampling,
                     )
                 });
-                l += beta * light.radiance(Vec3::ZERO, ray.d) * w;
+                let le = light.radiance(Vec3::ZERO, ray.d);
+                add(&mut l, &mut split, emission_technique(depth), beta * le * w);
             }
             break;
         };
@@ -192,7 +228,7 @@ fn trace<const TRANSMISSION: bool>(
                         )
                     },
                 );
-                l += beta * le * w;
+                add(&mut l, &mut split, emission_technique(depth), beta * le * w);
             }
         }
         if max_depth >= 0 && depth >= max_depth {
@@ -285,13 +321,14 @@ fn trace<const TRANSMISSION: bool>(
                 scene, settings, &hit, n, &frame, wo, material, u_light, u, nee_weight, cv,
                 transmits, shading,
             );
-            l += beta * c;
+            add(&mut l, &mut split, Technique::Light, beta * c);
             if let (true, Some(opt)) = (cv, optimal.as_deref_mut()) {
                 let term = match outcome {
                     NeeOutcome::Pure => opt.pure_light(),
                     NeeOutcome::Combined { rl, rb } => opt.combined(c, rl, rb),
                 };
-                l += beta * (opt.constant() + term);
+                let cv = beta * (opt.constant() + term);
+                add(&mut l, &mut split, Technique::ControlVariate, cv);
             }
         }
 
@@ -302,7 +339,8 @@ fn trace<const TRANSMISSION: bool>(
             sampler.bsdf_2d(bounce),
         ) else {
             if let (true, Some(opt)) = (cv, optimal.as_deref_mut()) {
-                l += beta * opt.pure_bsdf(Vec3::ZERO);
+                let cv = beta * opt.pure_bsdf(Vec3::ZERO);
+                add(&mut l, &mut split, Technique::ControlVariate, cv);
             }
             break;
         };
@@ -317,7 +355,8 @@ fn trace<const TRANSMISSION: bool>(
                     delta: bs.delta,
                 });
             } else if let Some(opt) = optimal.as_deref_mut() {
-                l += beta * opt.pure_bsdf(Vec3::ZERO);
+                let cv = beta * opt.pure_bsdf(Vec3::ZERO);
+                add(&mut l, &mut split, Technique::ControlVariate, cv);
             }
         }
         if bs.delta {
