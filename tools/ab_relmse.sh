@@ -5,7 +5,10 @@
 # Runs alternate A and B per seed, so machine load affects both alike.
 # Usage: tools/ab_relmse.sh "OPTIONS A" "OPTIONS B" [SEEDS] [OUT_DIR] [SCENES] [SPP_LIST]
 #   e.g. tools/ab_relmse.sh "--strategy mis --sampler independent" "--strategy mis --sampler sobol"
-# SCENES defaults to "seed_cornell veach_mis", SPP_LIST to "16 64 256".
+# SCENES defaults to "seed_cornell veach_mis", SPP_LIST to "16 64 256"; a scene is read from
+# tests/data/scenes/SCENE.json, or assets/SCENE.json where there is none (plastic_lights).
+# LUMIS_A / LUMIS_B: other binaries for A / B (e.g. another worktree's build, to compare with the
+# code before a change), the one built here by default.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 a=$1
@@ -17,8 +20,10 @@ spps=${6:-16 64 256}
 mkdir -p "$out"
 cargo build --release -q -p lumis-app
 lumis=${CARGO_TARGET_DIR:-target}/release/lumis
-echo "A: $a"
-echo "B: $b"
+lumis_a=${LUMIS_A:-$lumis}
+lumis_b=${LUMIS_B:-$lumis}
+echo "A: $lumis_a $a"
+echo "B: $lumis_b $b"
 printf '%-16s %5s %-11s %-11s %-9s %-13s %s\n' scene spp relmse_A relmse_B A/B seconds_A/B efficiency_B/A
 for scene in $scenes; do
     for spp in $spps; do
@@ -26,10 +31,13 @@ for scene in $scenes; do
         for ((seed = 0; seed < seeds; seed++)); do
             for side in a b; do
                 opts=$a
-                [ "$side" = b ] && opts=$b
+                bin=$lumis_a
+                [ "$side" = b ] && opts=$b && bin=$lumis_b
                 img="$out/${scene}_${spp}_${side}_${seed}.exr"
+                file="tests/data/scenes/$scene.json"
+                [ -f "$file" ] || file="assets/$scene.json"
                 # shellcheck disable=SC2086
-                summary=$($lumis render "tests/data/scenes/$scene.json" --spp "$spp" --seed "$seed" \
+                summary=$($bin render "$file" --spp "$spp" --seed "$seed" \
                     $opts -o "$img" | tail -n 1)
                 s=$(echo "$summary" | sed 's/.*seconds=\([^ ]*\).*/\1/')
                 r=$($lumis compare "$img" "tests/data/refs/$scene.exr" | sed 's/relmse=\([^ ]*\).*/\1/')
