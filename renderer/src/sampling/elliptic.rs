@@ -22,7 +22,7 @@ use crate::math::atan2;
 /// Relative truncation tolerance `r` of the final series (Carlson's stopping rule: the series'
 /// neglected terms are `O(r)` once the arguments' spread is below `(3r)^{1/6}` for `R_F` and
 /// `(r/4)^{1/6}` for `R_J`): f32's half ulp, so the series is as exact as the arithmetic.
-const TOLERANCE: f32 = f32::EPSILON / 2.0;
+pub const TOLERANCE: f32 = f32::EPSILON / 2.0;
 
 /// At most this many duplication steps. Each step shrinks the spread 4-fold once the arguments
 /// are within a factor of a few of each other, and squares the ratio of the extreme ones towards
