@@ -61,7 +61,7 @@ impl DiskLight {
             let wi = e.sample(u);
             let cos = -wi.dot(d.n);
             // The cone lies in front of p; a direction at its rim may round to grazing.
-            if !(cos > 0.0) {
+            if cos.is_nan() || cos <= 0.0 {
                 return None;
             }
             // Where wi meets the plane, projected onto it as a traced hit is (same error bound).

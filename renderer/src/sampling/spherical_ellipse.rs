@@ -105,7 +105,7 @@ impl SphericalEllipse {
         let v = center - p;
         let h = -v.dot(n);
         // Behind the one-sided disk, in its plane, or NaN.
-        if !(h > 0.0) {
+        if h.is_nan() || h <= 0.0 {
             return None;
         }
         // The centre's offset from p's foot on the plane: the disk-plane axis towards the centre.
