@@ -2,7 +2,8 @@
 //! every material's `sample` at θo ∈ {0°, 30°, 60°, 85°, 89°} (the rough dielectric, issue 15, at
 //! α ∈ {0.01, 0.05, 0.1, 0.3, 0.6, 1} × η ∈ {1.1, 1.5, 2.4} from outside and from inside, over
 //! the whole sphere), light sampling (area and solid angle) of every light shape from near, far,
-//! grazing and below-horizon points (and, issue 19, solid angle through the cosine warp for a
+//! grazing and below-horizon points (disks, issue 20, also by their spherical ellipse from four
+//! more points; see `chi2_lights`) (and, issue 19, solid angle through the cosine warp for a
 //! receiver with normal +z, for the triangle, polygon and quad lights it changes), environment maps (issue 16: constant, a 1e5 sun-like peak,
 //! black rows and columns, 1×1 and 2×1; importance-sampled and uniform), and the one-sample
 //! strategy mixture at
@@ -11,7 +12,7 @@
 //! `cargo run --release -p lumis-renderer --example warptest -- NAME`.
 //!
 //! **Significance:** family-wise α = 0.01 over all [`N_TESTS`] tests, Šidák-corrected to a
-//! per-test level `1 − 0.99^(1/N_TESTS)` ≈ 2.7e-5. Each test also fails on malformed samples,
+//! per-test level `1 − 0.99^(1/N_TESTS)` ≈ 2.5e-5. Each test also fails on malformed samples,
 //! samples where the pdf is 0 farther than 1e-5 rad from where it is not (closer is rounding at
 //! the support's edge; more than 0.1% of those fail too) or that land in cells of expected count
 //! 0, reported pdfs that
@@ -37,7 +38,7 @@ use rayon::prelude::*;
 /// Family-wise significance level.
 const ALPHA: f64 = 0.01;
 /// Number of χ² tests in the family (every case of the suite).
-const N_TESTS: usize = 397;
+const N_TESTS: usize = 405;
 
 /// Runs every case with `samples` samples and asserts that all pass; prints one line per case
 /// and the smallest p-value.
@@ -90,6 +91,25 @@ fn chi2_dielectrics() {
     run_cases("dielectrics", suite::dielectric_cases(), 1_000_000, 5000);
 }
 
+/// Every light shape × placement × method (`suite::light_cases`), including disks sampled by
+/// their spherical ellipse (issue 20) from the four shared placements (`Far` is below
+/// `MIN_ELLIPSE_SOLID_ANGLE`, so by area) and from `suite::DISK_PLACEMENTS` (0.04 sr at distance
+/// 8, 43:1 thin seen 89° off the normal, 154° long from 0.05 over the rim, 5.7 sr from 0.1 over
+/// the centre), and adaptively (area only far away).
+///
+/// **Power against the ellipse's bugs**, measured on the six disk `solidangle` cases at 1M
+/// samples (`warptest`, each mutant built by hand, then reverted; family-wise α as here):
+/// - Newton capped at 0 steps (the small-cone seed alone): edge-on, over-rim and grazing rejected
+///   (p 0); near only at p 2.8e-4, above the per-test level; middle and overhead pass (the seed
+///   is exact for a circle and nearly so for a small cone). Capped at 1 step: edge-on (p 9e-23)
+///   and over-rim (p 0) rejected, the rounder ones pass.
+/// - Ω × 1.01 or × 1.002 (the quadrant's area, hence the CDF's target and the pdf): all six
+///   rejected by ∫pdf (0.990 / 0.998 against 1.000 sampled); at 1.002 the χ² statistic alone
+///   rejects edge-on, over-rim and grazing (p ≤ 2e-43), not near, middle or overhead.
+/// - `R_J`'s coefficient `(b² − a²)/3` as `/3.3` (a wrong Carlson reduction): five rejected
+///   (∫pdf 0.08–0.96); overhead, a circle, has no third-kind part and passes.
+/// - The cone's axis taken towards the disk's centre (the oblique cone's axis is not): every
+///   case but the on-axis overhead one rejected by samples where the pdf is 0 (4–35%).
 #[test]
 fn chi2_lights() {
     run_cases("lights", suite::light_cases(), 1_000_000, 3000);

@@ -7,7 +7,7 @@
 //! pdf too (the harness's 1% test), as are malformed samples and `∫pdf` against the fraction of
 //! samples drawn.
 //!
-//! **Cases** (104):
+//! **Cases** (111):
 //! * warps: the cosine hemisphere (`sample_cosine_hemisphere`). WGSL has no bare uniform-cone
 //!   warp; the sphere light's solid-angle sampling is one (uniform in the cone it subtends), and
 //!   runs here through both of its branches: the ordinary cone (near) and the sin²θ form of tiny
@@ -23,7 +23,10 @@
 //!   with the cosine warp (issue 19, receiver normal +z) the triangle, polygons and quad from the
 //!   near point and with half the light below the horizon; adaptive sampling (issue 19 item 4)
 //!   of the same shapes from the near point (spherical; a polygon's triangle picked by its
-//!   estimated solid angle), the far point (by area) and half below the horizon.
+//!   estimated solid angle), the far point (by area) and half below the horizon; disks (issue 20)
+//!   by their spherical ellipse also from `stats::suite::DISK_PLACEMENTS` (small at distance 8,
+//!   43:1 thin seen 89° off the normal, 154° long from just over the rim, 5.7 sr from just over
+//!   the centre), and adaptively near, far and half below the horizon.
 //! * the one-sample strategy mixture (w = ½) of a plastic under a quad light, composed from
 //!   `light_sample`, `material_sample`, `material_pdf` and a traced `light_pdf` as
 //!   `stats::Mixture` composes their Rust twins.
@@ -35,7 +38,7 @@
 //!
 //! **Budget:** 500,000 samples per case (half the CPU suite's 1M), which keeps the file near a
 //! minute on lavapipe on two cores (measured: 40 s, of which the dielectric cases 14 s).
-//! **Significance:** family-wise α = 0.01, Šidák-corrected over the 104 cases (per test ≈ 9.7e-5).
+//! **Significance:** family-wise α = 0.01, Šidák-corrected over the 111 cases (per test ≈ 9.1e-5).
 //! **Control:** a deliberately broken GPU sampler (the conductor sampled at α·1.1, i.e. 0.33,
 //! against the α 0.3 density) must be rejected by the χ² statistic at the same per-test level
 //! (so must a dielectric whose lobe choice sees η·1.1: all 36 of its cases fail, checked by hand).
@@ -479,8 +482,40 @@ fn gpu_samples_pass_chi_square() {
         }
     }
 
+    // Disks by their spherical ellipse (issue 20) where it is small, thin, long or nearly a
+    // hemisphere, and adaptive sampling of disks (the ellipse near and half below the horizon,
+    // area far away).
+    light_case(
+        &mut scenes,
+        &mut cases,
+        Shape::Disk,
+        Placement::Near,
+        &[LightSampling::Adaptive],
+        "light",
+    );
+    for placement in suite::DISK_PLACEMENTS {
+        light_case(
+            &mut scenes,
+            &mut cases,
+            Shape::Disk,
+            placement,
+            &[LightSampling::SolidAngle],
+            "light",
+        );
+    }
+    for placement in [Placement::Far, Placement::BelowHorizon] {
+        light_case(
+            &mut scenes,
+            &mut cases,
+            Shape::Disk,
+            placement,
+            &[LightSampling::Adaptive],
+            "light",
+        );
+    }
+
     let tests = cases.len();
-    assert_eq!(tests, 104, "update the doc comment's case count");
+    assert_eq!(tests, 111, "update the doc comment's case count");
     let gpus: Vec<GpuScene> = scenes
         .iter()
         .map(|s| GpuScene::new(ctx.clone(), Arc::clone(s)).expect("upload"))

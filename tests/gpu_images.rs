@@ -275,7 +275,8 @@ fn local_bias_is_detected() {
 ///   roulette) and the environment map (lookup, importance and uniform sampling, the MIS weights
 ///   of rays that miss);
 /// - the cosine warp and adaptive sampling (issue 19 items 2 and 4) with light-only, the 0.5
-///   mixture and MIS on the scenes whose planar lights they change;
+///   mixture and MIS on the scenes whose planar lights they change (adaptive also on
+///   `analytic_disk`: disks by their spherical ellipse or by area, issue 20);
 /// - light selection by the light BVH (issue 19 item 3) with light-only, the mixture and MIS on
 ///   the scenes with more than one light.
 #[test]
@@ -304,6 +305,15 @@ fn same_seed_gives_the_cpu_image() {
                 cases.push((name, strategy, ls, LightSelection::Power));
             }
         }
+    }
+    // Adaptive sampling of disks (issue 20; the cosine warp leaves disks alone).
+    for strategy in light_strategies {
+        cases.push((
+            "analytic_disk",
+            strategy,
+            LightSampling::Adaptive,
+            LightSelection::Power,
+        ));
     }
     for name in ["veach_mis", "seed_cornell"] {
         for strategy in light_strategies {

@@ -18,10 +18,14 @@
 //!
 //! For these, the normal is drawn (uniformly, by rejection) so that the whole light is above the
 //! receiver's horizon, where `max(0, ·)` is inactive. In addition, [`CLIPPED`] points per polygonal
-//! light have normals for which the light straddles the horizon: the polygon is clipped by the
-//! receiver's tangent plane (Sutherland–Hodgman; the collinear edges it may add along the plane for
-//! the concave star cancel in the contour integral) and Lambert's formula is applied to the clipped
-//! polygon.
+//! light and for the disk have normals for which the light straddles the horizon: the polygon is
+//! clipped by the receiver's tangent plane (Sutherland–Hodgman; the collinear edges it may add along
+//! the plane for the concave star cancel in the contour integral) and Lambert's formula is applied
+//! to the clipped polygon; the disk's contour becomes the arc above the plane (composite Simpson)
+//! and the chord along it (Lambert's exact term for a straight edge), checked against a clipped
+//! 4096-gon. With solid-angle sampling the disk is sampled through its spherical ellipse (issue
+//! 20) wherever that is at least `MIN_ELLIPSE_SOLID_ANGLE` (heights up to ~4 here), by area
+//! beyond.
 //!
 //! **Test:** per point and method, two-sided z-test with the standard error computed from the
 //! samples, family-wise α = 0.01 over all [`N_TESTS`] comparisons in this file (Šidák), plus a
@@ -37,16 +41,18 @@ use std::f64::consts::PI;
 
 /// Receivers with the whole light above the horizon, per light.
 const POINTS: usize = 50;
-/// Extra receivers with the light straddling the horizon, per polygonal light.
+/// Extra receivers with the light straddling the horizon, per polygonal light and for the disk.
 const CLIPPED: usize = 10;
 /// Light samples per receiver and method.
 const SAMPLES: u32 = 50_000;
 const METHODS: [LightSampling; 2] = [LightSampling::Area, LightSampling::SolidAngle];
-/// Polygonal lights (triangle, quad, hexagon, star) and round ones (disk, sphere).
-const N_POLYGONAL: usize = 4;
-const N_ROUND: usize = 2;
+/// Lights also seen straddling the horizon (triangle, quad, hexagon, star, disk), and not (the
+/// sphere).
+const N_CLIPPED_LIGHTS: usize = 5;
+const N_UNCLIPPED_LIGHTS: usize = 1;
 /// Every comparison in this file.
-const N_TESTS: usize = METHODS.len() * (N_POLYGONAL * (POINTS + CLIPPED) + N_ROUND * POINTS);
+const N_TESTS: usize =
+    METHODS.len() * (N_CLIPPED_LIGHTS * (POINTS + CLIPPED) + N_UNCLIPPED_LIGHTS * POINTS);
 /// Emitted radiance.
 const LE: f64 = 1.5;
 
@@ -272,6 +278,45 @@ fn disk_irradiance(p: DVec3, n: DVec3, c: DVec3, nd: DVec3, r: f64) -> f64 {
     0.5 * LE * (sum * 2.0 * PI / M as f64).abs()
 }
 
+/// The contour integral of the part of the disk above the plane through `p` with normal `n`:
+/// the arc with `n·(x − p) ≥ 0` by composite Simpson (smooth, not periodic), closed by the chord
+/// along the plane with Lambert's exact term for a straight edge. The whole disk where the plane
+/// misses it; 0 where the disk is wholly below.
+fn clipped_disk_irradiance(p: DVec3, n: DVec3, c: DVec3, nd: DVec3, r: f64) -> f64 {
+    const M: usize = 20_000;
+    let e1 = nd.any_orthonormal_vector();
+    let e2 = nd.cross(e1);
+    // n·(x(t) − p) = m + r·k·cos(t − t0) on the rim x(t) = c + r(cos t e1 + sin t e2).
+    let (a, b) = (n.dot(e1), n.dot(e2));
+    let (m, k, t0) = (n.dot(c - p), a.hypot(b), b.atan2(a));
+    let ratio = -m / (r * k);
+    if ratio <= -1.0 {
+        return disk_irradiance(p, n, c, nd, r);
+    }
+    if ratio >= 1.0 {
+        return 0.0;
+    }
+    let delta = ratio.acos();
+    let rim = |t: f64| c + r * (t.cos() * e1 + t.sin() * e2) - p;
+    let f = |t: f64| {
+        let x = rim(t);
+        let dx = r * (-t.sin() * e1 + t.cos() * e2);
+        n.dot(x.cross(dx)) / x.length_squared()
+    };
+    let (lo, hi) = (t0 - delta, t0 + delta);
+    let h = (hi - lo) / M as f64;
+    let mut arc = f(lo) + f(hi);
+    for i in 1..M {
+        arc += f(lo + i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 };
+    }
+    arc *= h / 3.0;
+    // The chord from the arc's end back to its start.
+    let (from, to) = (rim(hi), rim(lo));
+    let cross = from.cross(to);
+    let chord = cross.length().atan2(from.dot(to)) * n.dot(cross) / cross.length();
+    0.5 * LE * (arc + chord).abs()
+}
+
 /// A receiver: position, normal, closed-form irradiance, and whether the light is clipped.
 #[derive(Clone, Copy, Debug)]
 struct Receiver {
@@ -318,7 +363,7 @@ fn receivers(case: &Case, index: usize) -> Vec<Receiver> {
     };
     let tangent_u = place_dir(DVec3::X);
     let tangent_v = place_dir(DVec3::Y);
-    let clipped_count = if matches!(case.geometry, Geometry::Polygon(_)) {
+    let clipped_count = if matches!(case.geometry, Geometry::Polygon(_) | Geometry::Disk { .. }) {
         CLIPPED
     } else {
         0
@@ -362,6 +407,9 @@ fn receivers(case: &Case, index: usize) -> Vec<Receiver> {
         let e = match &case.geometry {
             Geometry::Polygon(v) if want_clipped => lambert(p, n, &clip(p, n, v)),
             Geometry::Polygon(v) => lambert(p, n, v),
+            Geometry::Disk { c, n: nd, r } if want_clipped => {
+                clipped_disk_irradiance(p, n, *c, *nd, *r)
+            }
             Geometry::Disk { c, n: nd, r } => disk_irradiance(p, n, *c, *nd, *r),
             Geometry::Sphere { c, r } => {
                 let d = *c - p;
@@ -430,6 +478,22 @@ fn disk_contour_matches_on_axis_closed_form() {
     let a = lambert(p, -nd, &poly);
     let b = disk_irradiance(p, -nd, c, nd, 0.5);
     assert!((a - b).abs() <= 1e-5 * b, "{a} vs {b}");
+    // Clipped by tilted receivers' horizons: the arc-and-chord contour agrees with the clipped
+    // 4096-gon, and with the whole disk where the horizon misses it.
+    let tilt = nd.any_orthonormal_vector();
+    for (k, (height, lean)) in [(0.7, 1.5), (0.05, 4.0), (0.3, 0.9), (2.0, 0.1)]
+        .into_iter()
+        .enumerate()
+    {
+        let p = c + height * nd + 0.2 * tilt;
+        let n = (-nd + lean * tilt.cross(nd)).normalize();
+        let a = lambert(p, n, &clip(p, n, &poly));
+        let b = clipped_disk_irradiance(p, n, c, nd, 0.5);
+        assert!(
+            (a - b).abs() <= 1e-5 * b.max(1e-3),
+            "clipped {k}: {a} vs {b}"
+        );
+    }
 }
 
 #[test]

@@ -9,6 +9,8 @@
 # tests/data/scenes/, else from assets/ (plastic_lights, whose stored reference is a lumis render).
 # REF_DIR (default tests/data/refs) holds the references SCENE.exr: another folder for renders
 # that are not the full image (e.g. references rendered with --max-depth 2).
+# LUMIS_A / LUMIS_B: other binaries for A / B (e.g. another worktree's build, to compare with the
+# code before a change), the one built here by default.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 a=$1
@@ -21,8 +23,10 @@ refs=${REF_DIR:-tests/data/refs}
 mkdir -p "$out"
 cargo build --release -q -p lumis-app
 lumis=${CARGO_TARGET_DIR:-target}/release/lumis
-echo "A: $a"
-echo "B: $b"
+lumis_a=${LUMIS_A:-$lumis}
+lumis_b=${LUMIS_B:-$lumis}
+echo "A: $lumis_a $a"
+echo "B: $lumis_b $b"
 printf '%-16s %5s %-11s %-11s %-9s %-13s %s\n' scene spp relmse_A relmse_B A/B seconds_A/B efficiency_B/A
 for scene in $scenes; do
     for spp in $spps; do
@@ -30,12 +34,13 @@ for scene in $scenes; do
         for ((seed = 0; seed < seeds; seed++)); do
             for side in a b; do
                 opts=$a
-                [ "$side" = b ] && opts=$b
+                bin=$lumis_a
+                [ "$side" = b ] && opts=$b && bin=$lumis_b
                 img="$out/${scene}_${spp}_${side}_${seed}.exr"
                 file="tests/data/scenes/$scene.json"
                 [ -f "$file" ] || file="assets/$scene.json"
                 # shellcheck disable=SC2086
-                summary=$($lumis render "$file" --spp "$spp" --seed "$seed" \
+                summary=$($bin render "$file" --spp "$spp" --seed "$seed" \
                     $opts -o "$img" | tail -n 1)
                 s=$(echo "$summary" | sed 's/.*seconds=\([^ ]*\).*/\1/')
                 r=$($lumis compare "$img" "$refs/$scene.exr" | sed 's/relmse=\([^ ]*\).*/\1/')

@@ -62,13 +62,14 @@ pub enum HeuristicArg {
 pub enum LightSamplingArg {
     /// Uniform by area; an environment map uniformly over the sphere.
     Area,
-    /// Uniform by solid angle where the shape allows it; an environment map by importance.
+    /// Uniform by solid angle where the shape allows it (spherical triangles, rectangles and
+    /// ellipses of disks; cones of spheres); an environment map by importance.
     SolidAngle,
     /// Solid angle, warped towards the receiver's cos θ for triangles, quads and polygons
     /// (Hart et al. 2020).
     SolidAngleCosine,
-    /// Per light and shading point: by area where a triangle, quad or polygon looks small, by
-    /// solid angle elsewhere (a polygon's triangle picked by its estimated solid angle).
+    /// Per light and shading point: by area where a triangle, quad, polygon or disk looks small,
+    /// by solid angle elsewhere (a polygon's triangle picked by its estimated solid angle).
     Adaptive,
 }
 

@@ -4,8 +4,11 @@
 //! shape (the polygon is a concave 10-vertex star). Points behind a one-sided light are kept: the
 //! integrator pays for those calls too. Throughput is in samples.
 //!
-//! Disks have no solid-angle sampler (`LightSampling::SolidAngle` falls back to area), so they are
-//! measured once.
+//! Disks sample their spherical ellipse (issue 20) under `SolidAngle` (and `SolidAngleCosine`,
+//! the same for disks, so not measured again) and `Adaptive` where it is large enough, by area
+//! elsewhere; `light_pdf/disk/*` measures the MIS pdf of a point on the disk, which for the
+//! ellipse builds it and evaluates its solid angle (one `R_F` and one `R_J`) per call. The share
+//! of calls that use the ellipse is printed once.
 //!
 //! `cargo bench -p lumis-renderer --bench lights`
 
@@ -100,12 +103,12 @@ fn light_sampling(c: &mut Criterion) {
             ("solid_angle_cosine", LightSampling::SolidAngleCosine),
             ("adaptive", LightSampling::Adaptive),
         ] {
-            // Disks sample by area under every method; spheres are neither warped nor adaptive.
+            // The cosine warp does not change disks; spheres are neither warped nor adaptive.
             let planar_only = matches!(
                 method,
                 LightSampling::SolidAngleCosine | LightSampling::Adaptive
             );
-            if (shape == "disk" && method != LightSampling::Area)
+            if (shape == "disk" && method == LightSampling::SolidAngleCosine)
                 || (shape == "sphere" && planar_only)
             {
                 continue;
@@ -125,5 +128,44 @@ fn light_sampling(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, light_sampling);
+/// The MIS pdf of the disk light at its centre from every shading point, by area and by the
+/// spherical ellipse.
+fn disk_pdf(c: &mut Criterion) {
+    let scene = load_scene();
+    let inputs = inputs(&scene);
+    let (_, light) = lights(&scene)
+        .into_iter()
+        .find(|(k, _)| *k == "disk")
+        .expect("a disk");
+    let Light::Disk(d) = light else {
+        unreachable!("a disk")
+    };
+    let (y, ny) = (d.disk.center, d.disk.n);
+    let ellipse = inputs
+        .iter()
+        .filter(|x| lumis::sampling::SphericalEllipse::new(x.p, y, ny, d.disk.radius).is_some())
+        .count();
+    eprintln!(
+        "disk: {ellipse} of {} shading points sample the spherical ellipse",
+        inputs.len()
+    );
+    let mut group = c.benchmark_group("light_pdf");
+    group.throughput(Throughput::Elements(inputs.len() as u64));
+    for (method_name, method) in [
+        ("area", LightSampling::Area),
+        ("solid_angle", LightSampling::SolidAngle),
+    ] {
+        group.bench_function(format!("disk/{method_name}"), |b| {
+            b.iter(|| {
+                inputs.iter().fold(0.0f32, |acc, x| {
+                    let wi = (y - x.p).normalize();
+                    acc + light.pdf(black_box(x.p), x.ns, wi, y, ny, method)
+                })
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, light_sampling, disk_pdf);
 criterion_main!(benches);

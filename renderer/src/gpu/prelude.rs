@@ -20,7 +20,7 @@ use crate::geometry::{mesh_attributes, primitive, ray, wide_bvh};
 use crate::lights::{polygon, sphere};
 use crate::materials::{coat_albedo, ggx, mix, plastic_textured};
 use crate::sampler::{dim, owen, zsobol};
-use crate::sampling::{self, spherical_rectangle};
+use crate::sampling::{self, elliptic, spherical_ellipse, spherical_rectangle};
 use crate::textures::LUMINANCE_WEIGHTS;
 
 /// A constant's value, with its WGSL type.
@@ -207,6 +207,33 @@ pub fn constants() -> Vec<Constant> {
             const { count(polygon::MAX_SOLID_ANGLE_TRIANGLES) },
         ),
         f32c("MIN_COSINE_WEIGHT", sampling::MIN_COSINE_WEIGHT),
+        f32c(
+            "MIN_ELLIPSE_SOLID_ANGLE",
+            spherical_ellipse::MIN_ELLIPSE_SOLID_ANGLE,
+        ),
+        f32c(
+            "MAX_ELLIPSE_SOLID_ANGLE",
+            spherical_ellipse::MAX_ELLIPSE_SOLID_ANGLE,
+        ),
+        f32c("MAX_ELLIPSE_TAN", spherical_ellipse::MAX_ELLIPSE_TAN),
+        f32c(
+            "MAX_ELLIPSE_RELATIVE_RADIUS",
+            spherical_ellipse::MAX_ELLIPSE_RELATIVE_RADIUS,
+        ),
+        u32c(
+            "MAX_ELLIPSE_NEWTON_STEPS",
+            const { count(spherical_ellipse::MAX_ELLIPSE_NEWTON_STEPS) },
+        ),
+        f32c(
+            "ELLIPSE_NEWTON_TOLERANCE",
+            spherical_ellipse::ELLIPSE_NEWTON_TOLERANCE,
+        ),
+        u32c(
+            "MAX_CARLSON_STEPS",
+            const { count(elliptic::MAX_CARLSON_STEPS) },
+        ),
+        f32c("CARLSON_RF_Q", elliptic::RF_Q),
+        f32c("CARLSON_RJ_Q", elliptic::RJ_Q),
         f32c(
             "ADAPTIVE_MIN_SOLID_ANGLE",
             crate::lights::ADAPTIVE_MIN_SOLID_ANGLE,
@@ -418,6 +445,9 @@ mod tests {
             ("LIGHT_SAMPLING_SOLID_ANGLE_COSINE", Value::U32(2)),
             ("LIGHT_SAMPLING_ADAPTIVE", Value::U32(3)),
             ("MIN_COSINE_WEIGHT", Value::F32(0.01)),
+            ("MIN_ELLIPSE_SOLID_ANGLE", Value::F32(0.01)),
+            ("MAX_ELLIPSE_NEWTON_STEPS", Value::U32(20)),
+            ("MAX_CARLSON_STEPS", Value::U32(16)),
             ("FRESNEL_TINT", Value::U32(1)),
             ("TEXTURE_CHECKERBOARD", Value::U32(2)),
             ("WRAP_CLAMP", Value::U32(2)),

@@ -50,6 +50,8 @@ const MODULES: &[Module] = &[
     module!("warps.wgsl"),
     module!("spherical_triangle.wgsl"),
     module!("spherical_rectangle.wgsl"),
+    module!("elliptic.wgsl"),
+    module!("spherical_ellipse.wgsl"),
     module!("bilinear.wgsl"),
     module!("fresnel.wgsl"),
     module!("ggx.wgsl"),
@@ -290,7 +292,9 @@ impl Features {
             "spherical_rectangle.wgsl" | "quad_light.wgsl" => lights && self.has_quad_light,
             "triangle_light.wgsl" => lights && self.has_triangle_light,
             "polygon_light.wgsl" => lights && self.has_polygon_light,
-            "disk_light.wgsl" => lights && self.has_disk_light,
+            "disk_light.wgsl" | "elliptic.wgsl" | "spherical_ellipse.wgsl" => {
+                lights && self.has_disk_light
+            }
             "sphere_light.wgsl" => lights && self.has_sphere_light,
             "background_light.wgsl" => lights && self.has_background,
             "envmap_light.wgsl" => self.has_envmap,
@@ -299,7 +303,8 @@ impl Features {
             "conductor.wgsl" => self.has_conductor,
             "plastic.wgsl" => self.has_plastic,
             "dielectric.wgsl" => self.has_dielectric,
-            "disk.wgsl" => self.has_disk_shape,
+            // A disk light's ellipse samples find their point as a disk hit does.
+            "disk.wgsl" => self.has_disk_shape || (lights && self.has_disk_light),
             "sphere.wgsl" => self.has_sphere_shape,
             "bvh2.wgsl" => self.use_bvh && self.bvh2,
             // Texture coordinates of mesh triangles too.

@@ -48,9 +48,10 @@ pub enum LightSampling {
     /// Uniform by area, pdf converted to solid angle (`d² / (|cos| · A)`); the infinite lights
     /// uniformly over the sphere of directions.
     Area,
-    /// Uniform by solid angle where a shape supports it (spherical triangles and rectangles, cones
-    /// for spheres), by area elsewhere and where the solid angle is too small or too large for the
-    /// spherical warps to be accurate. An environment map is importance-sampled.
+    /// Uniform by solid angle where a shape supports it (spherical triangles and rectangles,
+    /// spherical ellipses for disks, cones for spheres), by area elsewhere and where the solid
+    /// angle is too small or too large for the spherical warps to be accurate. An environment map
+    /// is importance-sampled.
     #[default]
     SolidAngle,
     /// [`LightSampling::SolidAngle`], with the spherical triangles and rectangles (of triangle,
@@ -58,16 +59,17 @@ pub enum LightSampling {
     /// the light's corners first (Hart et al. 2020; pbrt-v4 does this whenever it knows the
     /// shading normal), so that the density is nearly proportional to cos θ dω: the cosine
     /// factor of the integrand is then mostly sampled away. Without a receiver normal (a zero
-    /// `ns`), and for disks, spheres and infinite lights, the same as `SolidAngle`.
+    /// `ns`), and for disks (whose ellipse warp has no corners to weight), spheres and infinite
+    /// lights, the same as `SolidAngle`.
     SolidAngleCosine,
     /// Per light and shading point, whichever of area and solid-angle sampling pays: a planar
-    /// light (triangle, quad, polygon) is sampled by area where it looks small from the shading
+    /// light (triangle, quad, polygon, disk) is sampled by area where it looks small from the shading
     /// point ([`planar_solid_angle_estimate`] below [`ADAPTIVE_MIN_SOLID_ANGLE`]), since there
     /// the area density is nearly uniform in solid angle already and costs a fraction of the
     /// spherical warp, and by its spherical warp elsewhere. A polygon then samples one spherical
     /// triangle of its triangulation, picked in proportion to that triangle's estimated solid
     /// angle, instead of computing every triangle's exact solid angle per sample and per pdf.
-    /// Disks, spheres and infinite lights as with `SolidAngle`.
+    /// Spheres and infinite lights as with `SolidAngle`.
     Adaptive,
 }
 
@@ -217,7 +219,7 @@ impl Light {
             Light::Triangle(l) => l.sample(p, ns, u, method),
             Light::Polygon(l) => l.sample(p, ns, u, method),
             Light::Quad(l) => l.sample(p, ns, u, method),
-            Light::Disk(l) => l.sample(p, u),
+            Light::Disk(l) => l.sample(p, u, method),
             Light::Sphere(l) => l.sample(p, u, method),
             Light::Background(l) => l.sample(u),
             Light::Envmap(l) => l.sample(u, method),
@@ -299,7 +301,7 @@ impl Light {
             Light::Triangle(l) => l.pdf(p, ns, wi, y, ny, method),
             Light::Polygon(l) => l.pdf(p, ns, wi, y, ny, method),
             Light::Quad(l) => l.pdf(p, ns, wi, y, ny, method),
-            Light::Disk(l) => area_to_solid_angle(1.0 / l.disk.area(), p, y, ny),
+            Light::Disk(l) => l.pdf(p, y, ny, method),
             Light::Sphere(l) => l.pdf(p, y, ny, method),
             Light::Background(_) => crate::sampling::uniform_sphere_pdf(),
             Light::Envmap(l) => l.pdf(wi, method),

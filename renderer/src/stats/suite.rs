@@ -119,6 +119,18 @@ pub enum Placement {
     Grazing,
     /// Centred on the receiver's horizon: about half of the light is below it.
     BelowHorizon,
+    /// Distance 8 (4× the light's size), otherwise as `Near`: a disk's spherical ellipse of
+    /// 0.04 sr, small but above `MIN_ELLIPSE_SOLID_ANGLE` (`Far` samples disks by area).
+    Middle,
+    /// Seen 89° off the light's normal from distance 1.5: a disk's ellipse 43 times longer than
+    /// wide (0.047 sr).
+    EdgeOn,
+    /// 0.05 above the light's plane, over its rim (the centre 1.00125 away, 87.1° off its
+    /// normal): a disk's ellipse spans 154° along the rim (tangent semi-axes 0.98 and 4.4,
+    /// 2.9 sr).
+    OverRim,
+    /// 0.1 straight above the light's centre: a disk's ellipse of 5.66 sr, near the hemisphere.
+    Overhead,
 }
 
 /// Every shape and placement.
@@ -130,12 +142,20 @@ pub const SHAPES: [Shape; 6] = [
     Shape::Disk,
     Shape::Sphere,
 ];
-/// Every placement.
+/// Every placement of every shape.
 pub const PLACEMENTS: [Placement; 4] = [
     Placement::Near,
     Placement::Far,
     Placement::Grazing,
     Placement::BelowHorizon,
+];
+/// The placements only disks are tested at besides [`PLACEMENTS`], where their spherical
+/// ellipse is small, thin, long, or nearly a hemisphere.
+pub const DISK_PLACEMENTS: [Placement; 4] = [
+    Placement::Middle,
+    Placement::EdgeOn,
+    Placement::OverRim,
+    Placement::Overhead,
 ];
 
 /// A scene holding only `shape` as a light, placed as `placement` says.
@@ -147,6 +167,10 @@ pub fn light_scene(shape: Shape, placement: Placement) -> Arc<Scene> {
         (Placement::Grazing, Shape::Sphere) => (20.0, 1.05, 0.0),
         (Placement::Grazing, _) => (20.0, 2.0, 85.0),
         (Placement::BelowHorizon, _) => (90.0, 1.5, 30.0),
+        (Placement::Middle, _) => (20.0, 8.0, 30.0),
+        (Placement::EdgeOn, _) => (20.0, 1.5, 89.0),
+        (Placement::OverRim, _) => (20.0, 1.001_25, 87.137_5),
+        (Placement::Overhead, _) => (20.0, 0.1, 0.0),
     };
     let dir = |a: f32| Vec3::new(a.to_radians().sin(), 0.0, a.to_radians().cos());
     let c = dist * dir(gamma);
@@ -273,21 +297,30 @@ pub fn dielectric_cases() -> Vec<Case> {
 }
 
 /// Every light shape × placement × method (the cosine warp and adaptive sampling for the shapes
-/// they change).
+/// they change; adaptive sampling also for disks), and the disk's spherical ellipse at
+/// [`DISK_PLACEMENTS`].
 pub fn light_cases() -> Vec<Case> {
     let mut out = Vec::new();
+    let mut push = |shape: Shape, placement: Placement, method: LightSampling| {
+        let name = format!("light/{shape:?}/{placement:?}/{method:?}").to_lowercase();
+        out.push(case(name, light_sampler(shape, placement, method)));
+    };
     for shape in SHAPES {
         for placement in PLACEMENTS {
             let mut methods = vec![LightSampling::Area, LightSampling::SolidAngle];
             if PLANAR_SPHERICAL_SHAPES.contains(&shape) {
                 methods.push(LightSampling::SolidAngleCosine);
+            }
+            if PLANAR_SPHERICAL_SHAPES.contains(&shape) || shape == Shape::Disk {
                 methods.push(LightSampling::Adaptive);
             }
             for method in methods {
-                let name = format!("light/{shape:?}/{placement:?}/{method:?}").to_lowercase();
-                out.push(case(name, light_sampler(shape, placement, method)));
+                push(shape, placement, method);
             }
         }
+    }
+    for placement in DISK_PLACEMENTS {
+        push(Shape::Disk, placement, LightSampling::SolidAngle);
     }
     out
 }

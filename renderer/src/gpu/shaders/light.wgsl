@@ -124,7 +124,7 @@ fn light_sample(l: Light, p: vec3f, ns: vec3f, u: vec2f, method: u32) -> LightSa
 // #endif
 // #if HAS_DISK_LIGHT
         case LIGHT_DISK: {
-            s = disk_light_sample(l, p, u);
+            s = disk_light_sample(l, p, u, method);
         }
 // #endif
 // #if HAS_SPHERE_LIGHT
@@ -185,7 +185,7 @@ fn light_pdf_unmutated(l: Light, p: vec3f, ns: vec3f, wi: vec3f, y: vec3f, ny: v
 // #endif
 // #if HAS_DISK_LIGHT
         case LIGHT_DISK: {
-            return area_to_solid_angle(1.0 / disk_light_area(l), p, y, ny);
+            return disk_light_pdf(l, p, y, ny, method);
         }
 // #endif
 // #if HAS_SPHERE_LIGHT
