@@ -31,6 +31,7 @@ fn sampling_name(s: LightSampling) -> &'static str {
         LightSampling::SolidAngle => "solid angle (env. map: importance)",
         LightSampling::SolidAngleCosine => "solid angle × cos warp (Hart 2020)",
         LightSampling::Adaptive => "adaptive: area where small, else solid angle",
+        LightSampling::ProjectedSolidAngle => "projected solid angle ∝ cos (Peters 2021)",
     }
 }
 
@@ -151,6 +152,7 @@ impl ViewerApp {
                 LightSampling::SolidAngle,
                 LightSampling::SolidAngleCosine,
                 LightSampling::Adaptive,
+                LightSampling::ProjectedSolidAngle,
             ],
             |s| sampling_name(s).into(),
         );

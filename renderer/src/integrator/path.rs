@@ -67,8 +67,10 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
     let mut eta_scale = 1.0f32;
     let mut weight_rule = EmissionWeight::One;
     let mut prev_p = ray.o;
-    // The previous vertex's shading normal, for the cosine warp's pdf (zero at the camera).
+    // The previous vertex's shading normal, for light selection (zero at the camera), and the
+    // one it gave the light sampler (`LightSampling::receiver_normal`), for the light pdf.
     let mut prev_ns = Vec3::ZERO;
+    let mut prev_light_ns = Vec3::ZERO;
     let mut depth: i32 = 0;
     loop {
         depth += 1;
@@ -80,7 +82,7 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
                 let w = emission_weight(scene, settings, weight_rule, bg, prev_p, prev_ns, || {
                     light.pdf(
                         prev_p,
-                        prev_ns,
+                        prev_light_ns,
                         ray.d,
                         Vec3::ZERO,
                         Vec3::ZERO,
@@ -106,7 +108,7 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
                     || {
                         light.pdf(
                             prev_p,
-                            prev_ns,
+                            prev_light_ns,
                             ray.d.normalize(),
                             hit.p,
                             hit.n,
@@ -233,6 +235,7 @@ pub fn radiance_specialised<const TRANSMISSION: bool>(
         }
         prev_p = hit.p;
         prev_ns = ns;
+        prev_light_ns = settings.light_sampling.receiver_normal(ns, transmits);
         ray = spawn_ray(hit.p, hit.p_error, n, wi);
 
         if depth as u32 >= settings.rr_depth {
@@ -311,11 +314,12 @@ fn direct_light<const TRANSMISSION: bool>(
     else {
         return Vec3::ZERO;
     };
-    let Some(ls) = scene.sample_light(index, hit.p, frame.n, u, settings.light_sampling) else {
+    let transmits = TRANSMISSION && transmits;
+    let ns = settings.light_sampling.receiver_normal(frame.n, transmits);
+    let Some(ls) = scene.sample_light(index, hit.p, ns, u, settings.light_sampling) else {
         return Vec3::ZERO;
     };
     let wi = frame.to_local(ls.wi);
-    let transmits = TRANSMISSION && transmits;
     let wi_invalid = if transmits { wi.z == 0.0 } else { wi.z <= 0.0 };
     if wi_invalid || (shading && !same_side(ls.wi, n, wi.z)) {
         return Vec3::ZERO;

@@ -1,8 +1,8 @@
 //! The samplers of the statistical suite, by name: every warp, every material at several
 //! incidence angles (the rough dielectric from outside and from inside), every light shape from
-//! several points with both sampling methods, environment maps with both methods, and the
-//! strategy mixture. Each list entry is one
-//! line; the tests and `examples/warptest.rs` share them.
+//! several points with every sampling method that changes it, environment maps with both
+//! methods, and the strategy mixture. Each list entry is one line; the tests and
+//! `examples/warptest.rs` share them.
 //!
 //! Light geometry: the receiver sits at the origin with normal +z (so BSDF and world frames
 //! coincide for the mixture). Plane lights have circumradius 1, the sphere radius 1.
@@ -119,6 +119,9 @@ pub enum Placement {
     Grazing,
     /// Centred on the receiver's horizon: about half of the light is below it.
     BelowHorizon,
+    /// Wholly above the horizon but low: centre 70° off the normal at distance 3, elevations
+    /// from about 1° to 40° (a grazing receiver; projected-solid-angle cases only).
+    Low,
 }
 
 /// Every shape and placement.
@@ -147,6 +150,7 @@ pub fn light_scene(shape: Shape, placement: Placement) -> Arc<Scene> {
         (Placement::Grazing, Shape::Sphere) => (20.0, 1.05, 0.0),
         (Placement::Grazing, _) => (20.0, 2.0, 85.0),
         (Placement::BelowHorizon, _) => (90.0, 1.5, 30.0),
+        (Placement::Low, _) => (70.0, 3.0, 30.0),
     };
     let dir = |a: f32| Vec3::new(a.to_radians().sin(), 0.0, a.to_radians().cos());
     let c = dist * dir(gamma);
@@ -272,8 +276,19 @@ pub fn dielectric_cases() -> Vec<Case> {
         .collect()
 }
 
+/// The placements of the projected-solid-angle cases: every one of [`PLACEMENTS`] (the far light
+/// exercises the fallback to solid angle) and [`Placement::Low`].
+pub const PROJECTED_PLACEMENTS: [Placement; 5] = [
+    Placement::Near,
+    Placement::Far,
+    Placement::Grazing,
+    Placement::BelowHorizon,
+    Placement::Low,
+];
+
 /// Every light shape × placement × method (the cosine warp and adaptive sampling for the shapes
-/// they change).
+/// they change), then projected-solid-angle sampling of the planar shapes at
+/// [`PROJECTED_PLACEMENTS`] (last, so that the earlier cases keep their seeds).
 pub fn light_cases() -> Vec<Case> {
     let mut out = Vec::new();
     for shape in SHAPES {
@@ -287,6 +302,13 @@ pub fn light_cases() -> Vec<Case> {
                 let name = format!("light/{shape:?}/{placement:?}/{method:?}").to_lowercase();
                 out.push(case(name, light_sampler(shape, placement, method)));
             }
+        }
+    }
+    let method = LightSampling::ProjectedSolidAngle;
+    for shape in PLANAR_SPHERICAL_SHAPES {
+        for placement in PROJECTED_PLACEMENTS {
+            let name = format!("light/{shape:?}/{placement:?}/{method:?}").to_lowercase();
+            out.push(case(name, light_sampler(shape, placement, method)));
         }
     }
     out

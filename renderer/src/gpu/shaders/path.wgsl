@@ -50,6 +50,15 @@ fn same_side(w: vec3f, n: vec3f, local_z: f32) -> bool {
 }
 // #endif
 
+// `LightSampling::receiver_normal` of a vertex with material m and shading normal ns.
+fn light_receiver_normal(m: Material, ns: vec3f) -> vec3f {
+// #if HAS_DIELECTRIC
+    return light_sampling_receiver_normal(params.light_sampling, ns, material_transmits(m));
+// #else
+    return ns;
+// #endif
+}
+
 // #if HAS_LIGHTS
 // Next-event estimation (`direct_light`); `mixture_w` ≥ 0 on the mixture's light branch;
 // `shading`: the frame is a shading normal's (the rule above applies).
@@ -63,7 +72,7 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
         return vec3f(0.0);
     }
     let light = lights[choice.index];
-    var ls = light_sample(light, hit.p, frame.n, u, params.light_sampling);
+    var ls = light_sample(light, hit.p, light_receiver_normal(m, frame.n), u, params.light_sampling);
 // #if HAS_TEXTURES
     ls = light_sample_textured(light, ls);
 // #endif
@@ -122,8 +131,10 @@ fn radiance(camera_ray: Ray) -> vec3f {
     var rule = EW_ONE;
     var p_bsdf = 0.0;
     var prev_p = ray.o;
-    // The previous vertex's shading normal, for the cosine warp's pdf (zero at the camera).
+    // The previous vertex's shading normal, for light selection (zero at the camera), and the
+    // one it gave the light sampler (`light_receiver_normal`), for the light pdf.
     var prev_ns = vec3f(0.0);
+    var prev_light_ns = vec3f(0.0);
     var depth = 0;
     loop {
         depth += 1;
@@ -139,7 +150,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
                 var lpdf = 0.0;
 // #if HAS_LIGHTS
                 if rule == EW_MIS || rule == EW_MIXTURE {
-                    lpdf = light_pdf(bg, prev_p, prev_ns, ray.d, vec3f(0.0), vec3f(0.0), params.light_sampling);
+                    lpdf = light_pdf(bg, prev_p, prev_light_ns, ray.d, vec3f(0.0), vec3f(0.0), params.light_sampling);
                 }
 // #endif
                 let w = emission_weight(rule, p_bsdf, params.background, lpdf, prev_p, prev_ns);
@@ -160,7 +171,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
                 var lpdf = 0.0;
 // #if HAS_LIGHTS
                 if rule == EW_MIS || rule == EW_MIXTURE {
-                    lpdf = light_pdf(light, prev_p, prev_ns, normalize_glam(ray.d), hit.p, hit.n, params.light_sampling);
+                    lpdf = light_pdf(light, prev_p, prev_light_ns, normalize_glam(ray.d), hit.p, hit.n, params.light_sampling);
                 }
 // #endif
                 l += beta * le * emission_weight(rule, p_bsdf, light_index, lpdf, prev_p, prev_ns);
@@ -296,6 +307,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
 // #endif
         prev_p = hit.p;
         prev_ns = frame.n;
+        prev_light_ns = light_receiver_normal(m, frame.n);
         ray = spawn_ray(hit.p, hit.p_error, n, wi);
 
         if u32(depth) >= params.rr_depth {
