@@ -590,6 +590,8 @@ fn local_polygon(r: &mut Rng) -> Vec<Vec3> {
 /// Measured on lavapipe: no value beyond 1e-7 relative on Ω⊥ and `Σ|S_e|` (without the
 /// conditioning term), one direction in 10,236 beyond 1e-5 (1.13e-5) without it; the GPU's own
 /// sin, cos and sqrt may differ elsewhere, which the tolerances leave room for.
+/// Mutant tried (by hand): `u.y²` in place of `u.y` in `psa_wedge_lift` fails the direction
+/// comparison (directions off by up to ~1.5e-3).
 #[test]
 fn projected_solid_angle_matches() {
     let Some((_, gpu)) = parity_scene() else {
@@ -653,7 +655,10 @@ fn projected_solid_angle_matches() {
     area.finish(0);
     // Where a polygon is close to the conditioning limit the two sides may decide differently
     // (one in 10⁴ values, a few ulp either side of it): the direction comparison skips those.
-    assert!(sampled > N / 3 && clipped > N / 10, "{sampled} sampled, {clipped} clipped");
+    assert!(
+        sampled > N / 3 && clipped > N / 10,
+        "{sampled} sampled, {clipped} clipped"
+    );
     let allowed = c_allowance(&dir, 10_000);
     dir.finish(allowed);
 }
