@@ -274,9 +274,11 @@ fn local_bias_is_detected() {
 ///   spheres, glass (transmission, both-sided next-event estimation, the η² in Russian
 ///   roulette) and the environment map (lookup, importance and uniform sampling, the MIS weights
 ///   of rays that miss);
-/// - the cosine warp and adaptive sampling (issue 19 items 2 and 4) with light-only, the 0.5
-///   mixture and MIS on the scenes whose planar lights they change (adaptive also on
-///   `analytic_disk`: disks by their spherical ellipse or by area, issue 20);
+/// - the cosine warp and adaptive sampling (issue 19 items 2 and 4), and projected-solid-angle
+///   sampling (issue 20 item 2), with light-only, the 0.5 mixture and MIS on the scenes whose
+///   planar lights they change (adaptive also on `analytic_disk`: disks by their spherical
+///   ellipse or by area, issue 20), and projected solid angle with light-only and MIS in the
+///   glass room (transmitting receivers fall back to solid angle);
 /// - light selection by the light BVH (issue 19 item 3) with light-only, the mixture and MIS on
 ///   the scenes with more than one light.
 #[test]
@@ -300,7 +302,11 @@ fn same_seed_gives_the_cpu_image() {
         }
     }
     for name in ["analytic_polygon", "seed_cornell"] {
-        for ls in [LightSampling::SolidAngleCosine, LightSampling::Adaptive] {
+        for ls in [
+            LightSampling::SolidAngleCosine,
+            LightSampling::Adaptive,
+            LightSampling::ProjectedSolidAngle,
+        ] {
             for strategy in light_strategies {
                 cases.push((name, strategy, ls, LightSelection::Power));
             }
@@ -312,6 +318,16 @@ fn same_seed_gives_the_cpu_image() {
             "analytic_disk",
             strategy,
             LightSampling::Adaptive,
+            LightSelection::Power,
+        ));
+    }
+    // Projected solid angle through glass: transmitting receivers give the light sampler no
+    // normal (`LightSampling::receiver_normal`), on both sides.
+    for strategy in [STRATEGIES[0], MIS] {
+        cases.push((
+            "glass_room",
+            strategy,
+            LightSampling::ProjectedSolidAngle,
             LightSelection::Power,
         ));
     }

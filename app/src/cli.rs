@@ -71,6 +71,9 @@ pub enum LightSamplingArg {
     /// Per light and shading point: by area where a triangle, quad, polygon or disk looks small,
     /// by solid angle elsewhere (a polygon's triangle picked by its estimated solid angle).
     Adaptive,
+    /// Triangles, quads and polygons in proportion to the receiver's cos θ over the part above
+    /// its horizon (Peters 2021); by solid angle where too small or grazing to do so accurately.
+    ProjectedSolidAngle,
 }
 
 /// Light selection rules (`lumis::lights::LightSelection`).
@@ -163,6 +166,7 @@ impl EstimatorOptions {
             LightSamplingArg::SolidAngle => LightSampling::SolidAngle,
             LightSamplingArg::SolidAngleCosine => LightSampling::SolidAngleCosine,
             LightSamplingArg::Adaptive => LightSampling::Adaptive,
+            LightSamplingArg::ProjectedSolidAngle => LightSampling::ProjectedSolidAngle,
         };
         let light_selection = match self.light_selection {
             LightSelectionArg::Power => LightSelection::Power,

@@ -480,6 +480,10 @@ fn every_render_option_is_in_the_menus() {
             LightSampling::Adaptive,
         ),
         (
+            "projected solid angle ∝ cos (Peters 2021)",
+            LightSampling::ProjectedSolidAngle,
+        ),
+        (
             "solid angle (env. map: importance)",
             LightSampling::SolidAngle,
         ),

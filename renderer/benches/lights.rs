@@ -1,5 +1,5 @@
 //! Light sampling throughput per shape (triangle, polygon, quad, disk, sphere) and method (area,
-//! solid angle): `Light::sample` from a fixed set of shading points, the first visible surface
+//! solid angle, cosine-warped, adaptive, projected solid angle): `Light::sample` from a fixed set of shading points, the first visible surface
 //! point of each pixel of a 64×48 view of `assets/plastic_lights.json`, which has one light of each
 //! shape (the polygon is a concave 10-vertex star). Points behind a one-sided light are kept: the
 //! integrator pays for those calls too. Throughput is in samples.
@@ -26,7 +26,8 @@ const GRID: (u32, u32) = (64, 48);
 /// One call's inputs.
 struct Input {
     p: Vec3,
-    /// The hit's geometric normal, facing the camera (the cosine warp's receiver normal).
+    /// The hit's geometric normal, facing the camera (the receiver normal of the cosine warp and
+    /// of projected-solid-angle sampling).
     ns: Vec3,
     u: Vec2,
 }
@@ -102,11 +103,15 @@ fn light_sampling(c: &mut Criterion) {
             ("solid_angle", LightSampling::SolidAngle),
             ("solid_angle_cosine", LightSampling::SolidAngleCosine),
             ("adaptive", LightSampling::Adaptive),
+            ("projected_solid_angle", LightSampling::ProjectedSolidAngle),
         ] {
-            // The cosine warp does not change disks; spheres are neither warped nor adaptive.
+            // The cosine warp does not change disks; spheres are neither warped, adaptive nor
+            // projected.
             let planar_only = matches!(
                 method,
-                LightSampling::SolidAngleCosine | LightSampling::Adaptive
+                LightSampling::SolidAngleCosine
+                    | LightSampling::Adaptive
+                    | LightSampling::ProjectedSolidAngle
             );
             if (shape == "disk" && method == LightSampling::SolidAngleCosine)
                 || (shape == "sphere" && planar_only)

@@ -29,6 +29,10 @@ pub const LIGHT_SAMPLING: &[(LightSampling, &str)] = &[
         LightSampling::Adaptive,
         "adaptive: area where small, else solid angle",
     ),
+    (
+        LightSampling::ProjectedSolidAngle,
+        "projected solid angle ∝ cos (Peters 2021)",
+    ),
 ];
 
 /// Light-selection rules (`--light-selection`).
@@ -96,7 +100,13 @@ mod tests {
     fn every_variant_is_in_its_menu() {
         check(
             LIGHT_SAMPLING,
-            variants!(LightSampling: Area, SolidAngle, SolidAngleCosine, Adaptive),
+            variants!(
+                LightSampling: Area,
+                SolidAngle,
+                SolidAngleCosine,
+                Adaptive,
+                ProjectedSolidAngle
+            ),
         );
         check(LIGHT_SELECTION, variants!(LightSelection: Power, Bvh));
         check(SAMPLERS, variants!(SamplerKind: Independent, Sobol));

@@ -20,7 +20,7 @@ use crate::geometry::{mesh_attributes, primitive, ray, wide_bvh};
 use crate::lights::{polygon, sphere};
 use crate::materials::{coat_albedo, ggx, mix, plastic_textured};
 use crate::sampler::{dim, owen, zsobol};
-use crate::sampling::{self, elliptic, spherical_ellipse, spherical_rectangle};
+use crate::sampling::{self, elliptic, projected_solid_angle, spherical_ellipse, spherical_rectangle};
 use crate::textures::LUMINANCE_WEIGHTS;
 
 /// A constant's value, with its WGSL type.
@@ -244,6 +244,16 @@ pub fn constants() -> Vec<Constant> {
             crate::integrator::optimal::FIRST_STAGE,
         ),
         f32c("OPTIMAL_RIDGE", crate::integrator::optimal::RIDGE as f32),
+        u32c("PSA_NEWTON_STEPS", projected_solid_angle::NEWTON_STEPS),
+        f32c(
+            "PSA_NEWTON_TOLERANCE",
+            projected_solid_angle::NEWTON_TOLERANCE,
+        ),
+        f32c("PSA_MAX_CONDITION", projected_solid_angle::MAX_CONDITION),
+        u32c(
+            "PSA_MAX_VERTICES",
+            const { count(projected_solid_angle::PSA_MAX_VERTICES) },
+        ),
         // Rays and BVHs.
         f32c("SHADOW_EPSILON", ray::SHADOW_EPSILON),
         f32c("MAX_INV", wide_bvh::MAX_INV),
@@ -444,6 +454,7 @@ mod tests {
             ("LIGHT_SAMPLING_SOLID_ANGLE", Value::U32(1)),
             ("LIGHT_SAMPLING_SOLID_ANGLE_COSINE", Value::U32(2)),
             ("LIGHT_SAMPLING_ADAPTIVE", Value::U32(3)),
+            ("LIGHT_SAMPLING_PROJECTED_SOLID_ANGLE", Value::U32(4)),
             ("MIN_COSINE_WEIGHT", Value::F32(0.01)),
             ("MIN_ELLIPSE_SOLID_ANGLE", Value::F32(0.01)),
             ("MAX_ELLIPSE_NEWTON_STEPS", Value::U32(20)),

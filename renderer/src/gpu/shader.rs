@@ -53,6 +53,7 @@ const MODULES: &[Module] = &[
     module!("elliptic.wgsl"),
     module!("spherical_ellipse.wgsl"),
     module!("bilinear.wgsl"),
+    module!("projected_solid_angle.wgsl"),
     module!("fresnel.wgsl"),
     module!("ggx.wgsl"),
     module!("mis.wgsl"),
@@ -65,6 +66,7 @@ const MODULES: &[Module] = &[
     module!("light.wgsl"),
     module!("light_sampler.wgsl"),
     module!("light_bvh.wgsl"),
+    module!("projected_light.wgsl"),
     module!("triangle_light.wgsl"),
     module!("polygon_light.wgsl"),
     module!("quad_light.wgsl"),
@@ -289,6 +291,9 @@ impl Features {
             | "light_sampler.wgsl"
             | "light_bvh.wgsl"
             | "bilinear.wgsl" => lights,
+            "projected_solid_angle.wgsl" | "projected_light.wgsl" => {
+                lights && (self.has_triangle_light || self.has_quad_light || self.has_polygon_light)
+            }
             "spherical_rectangle.wgsl" | "quad_light.wgsl" => lights && self.has_quad_light,
             "triangle_light.wgsl" => lights && self.has_triangle_light,
             "polygon_light.wgsl" => lights && self.has_polygon_light,

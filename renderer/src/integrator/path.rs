@@ -168,6 +168,9 @@ fn trace<const TRANSMISSION: bool>(
     let mut prev_p = ray.o;
     // The previous vertex's shading normal, for the cosine warp's pdf (zero at the camera).
     let mut prev_ns = Vec3::ZERO;
+    // The normal that vertex gave the light sampler (`LightSampling::receiver_normal`), for the
+    // light pdf (light selection sees `prev_ns`).
+    let mut prev_light_ns = Vec3::ZERO;
     let mut depth: i32 = 0;
     // mis-optimal: the first vertex's BSDF sample awaiting its hit, and whether the path ends once
     // that is resolved (roulette or a zero throughput would have ended it before tracing).
@@ -180,7 +183,7 @@ fn trace<const TRANSMISSION: bool>(
         let hit = scene.accel.intersect(&ray);
         if let (Some(p), Some(opt)) = (pending.take(), optimal.as_deref_mut()) {
             let (cv, w) =
-                resolve_bsdf(scene, settings, &ray, hit.as_ref(), prev_p, prev_ns, p, opt);
+                resolve_bsdf(scene, settings, &ray, hit.as_ref(), prev_p, [prev_ns, prev_light_ns], p, opt);
             add(&mut l, &mut split, Technique::ControlVariate, cv);
             weight_rule = EmissionWeight::Fixed(w);
             if stop {
@@ -193,7 +196,7 @@ fn trace<const TRANSMISSION: bool>(
                 let w = emission_weight(scene, settings, weight_rule, bg, prev_p, prev_ns, || {
                     light.pdf(
                         prev_p,
-                        prev_ns,
+                        prev_light_ns,
                         ray.d,
                         Vec3::ZERO,
                         Vec3::ZERO,
@@ -220,7 +223,7 @@ fn trace<const TRANSMISSION: bool>(
                     || {
                         light.pdf(
                             prev_p,
-                            prev_ns,
+                            prev_light_ns,
                             ray.d.normalize(),
                             hit.p,
                             hit.n,
@@ -378,6 +381,7 @@ fn trace<const TRANSMISSION: bool>(
         }
         prev_p = hit.p;
         prev_ns = ns;
+        prev_light_ns = settings.light_sampling.receiver_normal(ns, transmits);
         ray = spawn_ray(hit.p, hit.p_error, n, wi);
         if beta == Vec3::ZERO {
             // Traced only for the pending control variate.
@@ -444,7 +448,7 @@ fn emission_weight(
 }
 
 /// Resolves `mis-optimal`'s pending BSDF sample `p` once its `ray` (from the vertex at `prev_p`,
-/// shading normal `prev_ns`) found `hit`: records the sample in `optimal` and returns its control
+/// shading normal `prev_ns`, and the normal it gave the light sampler) found `hit`: records the sample in `optimal` and returns its control
 /// variate term (times the vertex's throughput) and the weight of the emission it found.
 ///
 /// Combined (both techniques could have produced the outcome) where the ray ends on an emitter
@@ -459,7 +463,7 @@ fn resolve_bsdf(
     ray: &Ray,
     hit: Option<&SurfaceHit>,
     prev_p: Vec3,
-    prev_ns: Vec3,
+    [prev_ns, prev_light_ns]: [Vec3; 2],
     p: PendingBsdf,
     optimal: &mut OptimalSample,
 ) -> (Vec3, f32) {
@@ -471,7 +475,8 @@ fn resolve_bsdf(
             Some(bg) => {
                 let light = &scene.lights[bg as usize];
                 let le = light.radiance(Vec3::ZERO, ray.d);
-                let pdf = || light.pdf(prev_p, prev_ns, ray.d, Vec3::ZERO, Vec3::ZERO, method);
+                let pdf =
+                    || light.pdf(prev_p, prev_light_ns, ray.d, Vec3::ZERO, Vec3::ZERO, method);
                 (le, if p.delta { 0.0 } else { pmf(bg) * pdf() })
             }
             None => (Vec3::ZERO, 0.0),
@@ -483,7 +488,10 @@ fn resolve_bsdf(
             } else {
                 let light = &scene.lights[prim.light as usize];
                 let le = scene.emitted(prim.light, hit, ray.d);
-                let pdf = || light.pdf(prev_p, prev_ns, ray.d.normalize(), hit.p, hit.n, method);
+                let pdf = || {
+                    let d = ray.d.normalize();
+                    light.pdf(prev_p, prev_light_ns, d, hit.p, hit.n, method)
+                };
                 (
                     le,
                     if p.delta {
@@ -540,11 +548,12 @@ fn direct_light<const TRANSMISSION: bool>(
     else {
         return PURE;
     };
-    let Some(ls) = scene.sample_light(index, hit.p, frame.n, u, settings.light_sampling) else {
+    let transmits = TRANSMISSION && transmits;
+    let ns = settings.light_sampling.receiver_normal(frame.n, transmits);
+    let Some(ls) = scene.sample_light(index, hit.p, ns, u, settings.light_sampling) else {
         return PURE;
     };
     let wi = frame.to_local(ls.wi);
-    let transmits = TRANSMISSION && transmits;
     let wi_invalid = if transmits { wi.z == 0.0 } else { wi.z <= 0.0 };
     if wi_invalid || (shading && !same_side(ls.wi, n, wi.z)) {
         return PURE;

@@ -21,6 +21,7 @@ pub mod light_bvh;
 pub mod light_sampler;
 pub mod light_selection;
 pub mod polygon;
+pub mod projected;
 pub mod quad;
 pub mod sphere;
 pub mod triangle;
@@ -71,6 +72,17 @@ pub enum LightSampling {
     /// angle, instead of computing every triangle's exact solid angle per sample and per pdf.
     /// Spheres and infinite lights as with `SolidAngle`.
     Adaptive,
+    /// Triangle, quad and polygon lights sampled in proportion to the receiver's cos θ over the
+    /// part of the light above its horizon (Peters 2021: uniform in the light's orthographic
+    /// projection onto the tangent disk, [`crate::sampling::projected_solid_angle`]), density
+    /// `cos θ / Ω⊥`: a Lambertian receiver's direct light from a constant-radiance polygon has
+    /// no variance outside penumbrae. A polygon picks a triangle of its triangulation in
+    /// proportion to that triangle's clipped projected solid angle. Where the light is too small
+    /// or too close to the horizon for f32 to sample it accurately
+    /// ([`crate::sampling::projected_solid_angle::conditioned`]), without a receiver normal (a
+    /// zero `ns`; see [`LightSampling::receiver_normal`]), and for disks, spheres and infinite
+    /// lights, the same as `SolidAngle`.
+    ProjectedSolidAngle,
 }
 
 /// [`LightSampling::Adaptive`] samples a planar light by area where its
@@ -110,11 +122,33 @@ impl LightSampling {
     pub fn spherical_for(self, p: Vec3, c: Vec3, n: Vec3, area: f32) -> bool {
         match self {
             LightSampling::Area => false,
-            LightSampling::SolidAngle | LightSampling::SolidAngleCosine => true,
+            LightSampling::SolidAngle
+            | LightSampling::SolidAngleCosine
+            | LightSampling::ProjectedSolidAngle => true,
             // NaN (p at the centroid) compares false: area, as for any method there.
             LightSampling::Adaptive => {
                 planar_solid_angle_estimate(p, c, n, area) >= ADAPTIVE_MIN_SOLID_ANGLE
             }
+        }
+    }
+
+    /// Whether planar lights are sampled by their projected solid angle for a receiver with
+    /// shading normal `ns`: [`LightSampling::ProjectedSolidAngle`] with a normal.
+    #[inline(always)]
+    pub fn projects(self, ns: Vec3) -> bool {
+        self == LightSampling::ProjectedSolidAngle && ns != Vec3::ZERO
+    }
+
+    /// The shading normal a receiver passes to [`Light::sample`] and [`Light::pdf`]: its own,
+    /// except that a receiver that transmits light (a dielectric) passes none (zero) to
+    /// [`LightSampling::ProjectedSolidAngle`], which samples only the hemisphere above the normal
+    /// and would miss the light arriving from below; such a receiver is sampled by solid angle.
+    #[inline(always)]
+    pub fn receiver_normal(self, ns: Vec3, transmits: bool) -> Vec3 {
+        if transmits && self == LightSampling::ProjectedSolidAngle {
+            Vec3::ZERO
+        } else {
+            ns
         }
     }
 
@@ -212,7 +246,8 @@ pub enum Light {
 
 impl Light {
     /// Samples a direction towards the light from `p`, a receiver with shading normal `ns` (zero
-    /// where there is none; only [`LightSampling::SolidAngleCosine`] reads it); `None` when it
+    /// where there is none; only [`LightSampling::SolidAngleCosine`] and
+    /// [`LightSampling::ProjectedSolidAngle`] read it); `None` when it
     /// contributes nothing from `p` (behind a one-sided emitter, a degenerate configuration).
     pub fn sample(&self, p: Vec3, ns: Vec3, u: Vec2, method: LightSampling) -> Option<LightSample> {
         let s = match self {

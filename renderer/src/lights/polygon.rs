@@ -13,14 +13,23 @@
 //! ([`super::planar_solid_angle_estimate`]) and samples its spherical triangle: pdf `q_i / Ω_i`,
 //! one exact solid angle per sample or pdf instead of one per triangle (or, where that triangle's
 //! solid angle does not suit the warp, by area within it: `q_i d² / (A_i |cos θ_y|)`).
+//!
+//! [`LightSampling::ProjectedSolidAngle`] picks triangle `i` with probability `Ω⊥_i / Σ Ω⊥_j`
+//! (`Ω⊥_i` its projected solid angle clipped to the receiver's horizon) and samples it in
+//! proportion to cos θ ([`super::projected`]): since the triangles' directions are disjoint, the
+//! density is `cos θ / Σ Ω⊥_j` over the whole polygon, concave or not. The triangulation serves
+//! as the convex decomposition the method needs; it exists already, is what the other methods
+//! use, and costs one clipped triangle per piece (a triangle gains at most one vertex).
 //! WGSL twin: `polygon_light.wgsl`.
 
+use super::projected::{self, Projection};
 use super::triangle::spherical_ok;
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
 use crate::geometry::ray::gamma;
 use crate::sampling::{
-    DiscreteDistribution, invert_spherical_triangle, sample_spherical_triangle_from_dirs,
-    sample_uniform_triangle, spherical_triangle_area, spherical_triangle_corners,
+    DiscreteDistribution, barycentrics_along, invert_spherical_triangle,
+    sample_spherical_triangle_from_dirs, sample_uniform_triangle, spherical_triangle_area,
+    spherical_triangle_corners,
 };
 use glam::{Vec2, Vec3};
 
@@ -183,6 +192,20 @@ impl PolygonLight {
         if method == LightSampling::Adaptive {
             return self.sample_adaptive(p, u);
         }
+        if method.projects(ns) && self.triangles.len() <= MAX_SOLID_ANGLE_TRIANGLES {
+            let frame = projected::frame(ns);
+            let mut weights = [0.0f32; MAX_SOLID_ANGLE_TRIANGLES];
+            match projected::pieces(p, &frame, self.triangles.iter(), |i, a| weights[i] = a) {
+                Projection::Below => return None,
+                Projection::Sample(total) => {
+                    let (i, ux) = pick(&weights[..self.triangles.len()], total, u.x)?;
+                    let poly = projected::piece(p, &frame, &self.triangles[i])?;
+                    let wi = frame.to_world(poly.sample(Vec2::new(ux, u.y))).normalize();
+                    return Some(self.sample_along(i, p, wi, projected::pdf(ns, wi, total)));
+                }
+                Projection::Fallback => {}
+            }
+        }
         let picked = if method.solid_angle() {
             self.with_solid_angles(p, |dirs, omegas, total| {
                 let (i, ux) = pick(omegas, total, u.x)?;
@@ -214,6 +237,25 @@ impl PolygonLight {
             });
         }
         self.sample_by_area(p, u)
+    }
+
+    /// The sample along direction `wi` from `p` (within triangle `i`'s solid angle), with
+    /// solid-angle density `pdf`: the point where it meets that triangle.
+    fn sample_along(&self, i: usize, p: Vec3, wi: Vec3, pdf: f32) -> LightSample {
+        let v = &self.triangles[i];
+        let b = barycentrics_along(v, p, wi);
+        let y = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
+        let err = gamma(6) * ((b[0] * v[0]).abs() + (b[1] * v[1]).abs() + (b[2] * v[2]).abs());
+        LightSample {
+            p: y,
+            p_error: err,
+            n: self.n,
+            wi,
+            pdf,
+            le: self.le,
+            infinite: false,
+            b: Vec2::new(b[1], b[2]),
+        }
     }
 
     /// Area sampling: a triangle by area, then uniform in it.
@@ -328,6 +370,14 @@ impl PolygonLight {
         }
         if method == LightSampling::Adaptive {
             return self.pdf_adaptive(p, y, ny);
+        }
+        if method.projects(ns) && self.triangles.len() <= MAX_SOLID_ANGLE_TRIANGLES {
+            let frame = projected::frame(ns);
+            match projected::pieces(p, &frame, self.triangles.iter(), |_, _| {}) {
+                Projection::Below => return 0.0,
+                Projection::Sample(total) => return projected::pdf(ns, wi, total),
+                Projection::Fallback => {}
+            }
         }
         if method.solid_angle()
             && let Some(total) = self.with_solid_angles(p, |_, _, total| total)

@@ -1,9 +1,11 @@
 //! Emitting parallelograms: area sampling, or solid-angle sampling of the spherical rectangle
 //! (Ureña, Fajardo & King 2013) when the quad is a rectangle, optionally through the cosine warp
 //! ([`LightSampling::SolidAngleCosine`]), or the one that pays from the shading point
-//! ([`LightSampling::Adaptive`]).
+//! ([`LightSampling::Adaptive`]), or in proportion to the receiver's cos θ over the part above
+//! its horizon ([`LightSampling::ProjectedSolidAngle`]).
 //! WGSL twin: `quad_light.wgsl`.
 
+use super::projected::{self, Projection};
 use super::triangle::spherical_ok;
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
 use crate::geometry::primitive::NONE;
@@ -96,10 +98,44 @@ impl QuadLight {
         ]
     }
 
+    /// The corners in order around the quad (counter-clockwise about `n`).
+    fn outline(&self) -> [Vec3; 4] {
+        let c = self.corner;
+        [
+            c,
+            c + self.edge_u,
+            c + self.edge_u + self.edge_v,
+            c + self.edge_v,
+        ]
+    }
+
+    /// Where the ray from `p` along `wi` meets the quad's plane, clamped onto the quad.
+    fn point_along(&self, p: Vec3, wi: Vec3) -> Vec3 {
+        let t = self.n.dot(self.corner - p) / self.n.dot(wi);
+        let d = p + t * wi - self.corner;
+        let s = (d.cross(self.edge_v).dot(self.n) / self.area).clamp(0.0, 1.0);
+        let t = (self.edge_u.cross(d).dot(self.n) / self.area).clamp(0.0, 1.0);
+        self.corner + s * self.edge_u + t * self.edge_v
+    }
+
     /// Samples a point as seen from `p` (shading normal `ns`: [`super::Light::sample`]).
     pub fn sample(&self, p: Vec3, ns: Vec3, u: Vec2, method: LightSampling) -> Option<LightSample> {
         if !self.faces(p) {
             return None;
+        }
+        if method.projects(ns) {
+            let frame = projected::frame(ns);
+            match projected::convex(p, &frame, &self.outline()) {
+                Projection::Below => return None,
+                Projection::Sample(poly) => {
+                    let wi = frame.to_world(poly.sample(u)).normalize();
+                    let y = self.point_along(p, wi);
+                    let mut s = area_sample(p, y, self.n, 1.0 / self.area, self.le)?;
+                    s.pdf = projected::pdf(ns, s.wi, poly.area());
+                    return Some(s);
+                }
+                Projection::Fallback => {}
+            }
         }
         if let Some(rect) = self.spherical(p, method) {
             let (u, warp_pdf) = method.warp(p, ns, self.corners(), u);
@@ -117,13 +153,21 @@ impl QuadLight {
         &self,
         p: Vec3,
         ns: Vec3,
-        _wi: Vec3,
+        wi: Vec3,
         y: Vec3,
         ny: Vec3,
         method: LightSampling,
     ) -> f32 {
         if !self.faces(p) {
             return 0.0;
+        }
+        if method.projects(ns) {
+            let frame = projected::frame(ns);
+            match projected::convex(p, &frame, &self.outline()) {
+                Projection::Below => return 0.0,
+                Projection::Sample(poly) => return projected::pdf(ns, wi, poly.area()),
+                Projection::Fallback => {}
+            }
         }
         if let Some(rect) = self.spherical(p, method) {
             return method.warp_pdf(p, ns, self.corners(), || rect.invert(y)) / rect.solid_angle();

@@ -1,15 +1,17 @@
 //! Emitting triangles: area sampling (uniform barycentrics) or solid-angle sampling of the
 //! spherical triangle (Arvo 1995), optionally through the cosine warp
 //! ([`LightSampling::SolidAngleCosine`]), or the one that pays from the shading point
-//! ([`LightSampling::Adaptive`]).
+//! ([`LightSampling::Adaptive`]), or in proportion to the receiver's cos θ
+//! ([`LightSampling::ProjectedSolidAngle`]).
 //! WGSL twin: `triangle_light.wgsl`.
 
+use super::projected::{self, Projection};
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
 use crate::geometry::ray::gamma;
 use crate::sampling::{
-    MAX_SPHERICAL_SAMPLE_AREA, MIN_SPHERICAL_SAMPLE_AREA, invert_spherical_triangle,
-    sample_spherical_triangle, sample_uniform_triangle, spherical_triangle_area,
-    spherical_triangle_corners,
+    MAX_SPHERICAL_SAMPLE_AREA, MIN_SPHERICAL_SAMPLE_AREA, barycentrics_along,
+    invert_spherical_triangle, sample_spherical_triangle, sample_uniform_triangle,
+    spherical_triangle_area, spherical_triangle_corners,
 };
 use glam::{Vec2, Vec3};
 
@@ -67,6 +69,17 @@ impl TriangleLight {
         if !self.faces(p) {
             return None;
         }
+        if method.projects(ns) {
+            let frame = projected::frame(ns);
+            match projected::convex(p, &frame, &self.v) {
+                Projection::Below => return None,
+                Projection::Sample(poly) => {
+                    let wi = frame.to_world(poly.sample(u)).normalize();
+                    return Some(self.sample_along(p, wi, projected::pdf(ns, wi, poly.area())));
+                }
+                Projection::Fallback => {}
+            }
+        }
         if self.spherical(p, method) && spherical_ok(triangle_solid_angle(&self.v, p)) {
             let (u, warp_pdf) = method.warp(p, ns, spherical_triangle_corners(&self.v), u);
             let s = sample_spherical_triangle(&self.v, p, u)?;
@@ -94,6 +107,25 @@ impl TriangleLight {
         })
     }
 
+    /// The sample along direction `wi` from `p` (within the triangle's solid angle), with
+    /// solid-angle density `pdf`: the point where it meets the triangle.
+    fn sample_along(&self, p: Vec3, wi: Vec3, pdf: f32) -> LightSample {
+        let b = barycentrics_along(&self.v, p, wi);
+        let y = b[0] * self.v[0] + b[1] * self.v[1] + b[2] * self.v[2];
+        let err = gamma(6)
+            * ((b[0] * self.v[0]).abs() + (b[1] * self.v[1]).abs() + (b[2] * self.v[2]).abs());
+        LightSample {
+            p: y,
+            p_error: err,
+            n: self.n,
+            wi,
+            pdf,
+            le: self.le,
+            infinite: false,
+            b: Vec2::new(b[1], b[2]),
+        }
+    }
+
     /// Solid-angle pdf of hitting `y` (normal `ny`) from `p` (shading normal `ns`) along `wi`.
     pub fn pdf(
         &self,
@@ -106,6 +138,14 @@ impl TriangleLight {
     ) -> f32 {
         if !self.faces(p) {
             return 0.0;
+        }
+        if method.projects(ns) {
+            let frame = projected::frame(ns);
+            match projected::convex(p, &frame, &self.v) {
+                Projection::Below => return 0.0,
+                Projection::Sample(poly) => return projected::pdf(ns, wi, poly.area()),
+                Projection::Fallback => {}
+            }
         }
         if self.spherical(p, method) {
             let omega = triangle_solid_angle(&self.v, p);

@@ -171,29 +171,33 @@ fn sample_arvo(t: &Arvo, v: &[Vec3; 3], p: Vec3, u: Vec2) -> Option<SphericalTri
     let sin_theta = safe_sqrt(vt * (2.0 - vt));
     let dir = (b + (sin_theta * tangent(b, b_to_cp) - vt * b)).normalize_or_zero();
 
-    // Where `dir` meets the plane (Möller–Trumbore), clamped onto the triangle.
+    Some(SphericalTriangleSample {
+        dir,
+        barycentrics: barycentrics_along(v, p, dir),
+        pdf: 1.0 / t.area,
+    })
+}
+
+/// Barycentrics of the point where the ray from `p` along `dir` meets the plane of triangle `v`
+/// (Möller–Trumbore), clamped onto the triangle: for a direction sampled within the triangle's
+/// solid angle, the point it hits. A third each where the ray is parallel to the plane.
+pub fn barycentrics_along(v: &[Vec3; 3], p: Vec3, dir: Vec3) -> [f32; 3] {
     let (e1, e2) = (v[1] - v[0], v[2] - v[0]);
     let s1 = dir.cross(e2);
     let det = s1.dot(e1);
-    let barycentrics = if det == 0.0 {
-        [1.0 / 3.0; 3]
+    if det == 0.0 {
+        return [1.0 / 3.0; 3];
+    }
+    let o = p - v[0];
+    let b1 = (o.dot(s1) / det).clamp(0.0, 1.0);
+    let b2 = (dir.dot(o.cross(e1)) / det).clamp(0.0, 1.0);
+    let sum = b1 + b2;
+    let (b1, b2) = if sum > 1.0 {
+        (b1 / sum, b2 / sum)
     } else {
-        let o = p - v[0];
-        let b1 = (o.dot(s1) / det).clamp(0.0, 1.0);
-        let b2 = (dir.dot(o.cross(e1)) / det).clamp(0.0, 1.0);
-        let sum = b1 + b2;
-        let (b1, b2) = if sum > 1.0 {
-            (b1 / sum, b2 / sum)
-        } else {
-            (b1, b2)
-        };
-        [(1.0 - b1 - b2).max(0.0), b1, b2]
+        (b1, b2)
     };
-    Some(SphericalTriangleSample {
-        dir,
-        barycentrics,
-        pdf: 1.0 / t.area,
-    })
+    [(1.0 - b1 - b2).max(0.0), b1, b2]
 }
 
 /// Inverse of [`sample_spherical_triangle`]: the `u` that samples direction `w` (from `p`, inside

@@ -26,7 +26,8 @@ pub struct LightDirections {
     pub p: Vec3,
     /// Area or solid-angle sampling.
     pub method: LightSampling,
-    /// The receiver's shading normal (zero: none), for [`LightSampling::SolidAngleCosine`].
+    /// The receiver's shading normal (zero: none), for [`LightSampling::SolidAngleCosine`] and
+    /// [`LightSampling::ProjectedSolidAngle`].
     pub ns: Vec3,
 }
 

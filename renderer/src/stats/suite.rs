@@ -1,8 +1,8 @@
 //! The samplers of the statistical suite, by name: every warp, every material at several
 //! incidence angles (the rough dielectric from outside and from inside), every light shape from
-//! several points with both sampling methods, environment maps with both methods, and the
-//! strategy mixture. Each list entry is one
-//! line; the tests and `examples/warptest.rs` share them.
+//! several points with every sampling method that changes it, environment maps with both
+//! methods, and the strategy mixture. Each list entry is one line; the tests and
+//! `examples/warptest.rs` share them.
 //!
 //! Light geometry: the receiver sits at the origin with normal +z (so BSDF and world frames
 //! coincide for the mixture). Plane lights have circumradius 1, the sphere radius 1.
@@ -131,6 +131,9 @@ pub enum Placement {
     OverRim,
     /// 0.1 straight above the light's centre: a disk's ellipse of 5.66 sr, near the hemisphere.
     Overhead,
+    /// Wholly above the horizon but low: centre 70° off the normal at distance 3, elevations
+    /// from about 1° to 40° (a grazing receiver; projected-solid-angle cases only).
+    Low,
 }
 
 /// Every shape and placement.
@@ -171,6 +174,7 @@ pub fn light_scene(shape: Shape, placement: Placement) -> Arc<Scene> {
         (Placement::EdgeOn, _) => (20.0, 1.5, 89.0),
         (Placement::OverRim, _) => (20.0, 1.001_25, 87.137_5),
         (Placement::Overhead, _) => (20.0, 0.1, 0.0),
+        (Placement::Low, _) => (70.0, 3.0, 30.0),
     };
     let dir = |a: f32| Vec3::new(a.to_radians().sin(), 0.0, a.to_radians().cos());
     let c = dist * dir(gamma);
@@ -296,9 +300,20 @@ pub fn dielectric_cases() -> Vec<Case> {
         .collect()
 }
 
+/// The placements of the projected-solid-angle cases: every one of [`PLACEMENTS`] (the far light
+/// exercises the fallback to solid angle) and [`Placement::Low`].
+pub const PROJECTED_PLACEMENTS: [Placement; 5] = [
+    Placement::Near,
+    Placement::Far,
+    Placement::Grazing,
+    Placement::BelowHorizon,
+    Placement::Low,
+];
+
 /// Every light shape × placement × method (the cosine warp and adaptive sampling for the shapes
-/// they change; adaptive sampling also for disks), and the disk's spherical ellipse at
-/// [`DISK_PLACEMENTS`].
+/// they change; adaptive sampling also for disks), the disk's spherical ellipse at
+/// [`DISK_PLACEMENTS`], then projected-solid-angle sampling of the planar shapes at
+/// [`PROJECTED_PLACEMENTS`].
 pub fn light_cases() -> Vec<Case> {
     let mut out = Vec::new();
     let mut push = |shape: Shape, placement: Placement, method: LightSampling| {
@@ -321,6 +336,12 @@ pub fn light_cases() -> Vec<Case> {
     }
     for placement in DISK_PLACEMENTS {
         push(Shape::Disk, placement, LightSampling::SolidAngle);
+    }
+    let method = LightSampling::ProjectedSolidAngle;
+    for shape in PLANAR_SPHERICAL_SHAPES {
+        for placement in PROJECTED_PLACEMENTS {
+            push(shape, placement, method);
+        }
     }
     out
 }

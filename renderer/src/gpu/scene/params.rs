@@ -126,6 +126,8 @@ gpu_tags! {
         SolidAngleCosine => "LIGHT_SAMPLING_SOLID_ANGLE_COSINE",
         /// [`LightSampling::Adaptive`].
         Adaptive => "LIGHT_SAMPLING_ADAPTIVE",
+        /// [`LightSampling::ProjectedSolidAngle`].
+        ProjectedSolidAngle => "LIGHT_SAMPLING_PROJECTED_SOLID_ANGLE",
     }
 }
 
@@ -137,6 +139,7 @@ impl LightSamplingTag {
             LightSampling::SolidAngle => LightSamplingTag::SolidAngle,
             LightSampling::SolidAngleCosine => LightSamplingTag::SolidAngleCosine,
             LightSampling::Adaptive => LightSamplingTag::Adaptive,
+            LightSampling::ProjectedSolidAngle => LightSamplingTag::ProjectedSolidAngle,
         }
     }
 }

@@ -66,7 +66,7 @@ fn check_param_tags(p: Params) {
     }
     switch p.light_sampling {
         case LIGHT_SAMPLING_AREA, LIGHT_SAMPLING_SOLID_ANGLE, LIGHT_SAMPLING_SOLID_ANGLE_COSINE,
-            LIGHT_SAMPLING_ADAPTIVE: {}
+            LIGHT_SAMPLING_ADAPTIVE, LIGHT_SAMPLING_PROJECTED_SOLID_ANGLE: {}
         default: {
             _ = unknown_tag();
         }

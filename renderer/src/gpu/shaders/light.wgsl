@@ -46,6 +46,22 @@ fn no_light_sample() -> LightSample {
     return LightSample(vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), 0.0, vec3f(0.0), false, false, vec2f(0.0));
 }
 
+// `LightSampling::projects`: projected-solid-angle sampling with a receiver normal.
+fn light_sampling_projects(method: u32, ns: vec3f) -> bool {
+    return method == LIGHT_SAMPLING_PROJECTED_SOLID_ANGLE && any(ns != vec3f(0.0));
+}
+
+// #if HAS_DIELECTRIC
+// `LightSampling::receiver_normal`: the normal a receiver gives the light sampler (none from a
+// transmitting one under projected-solid-angle sampling, which sees only the upper hemisphere).
+fn light_sampling_receiver_normal(method: u32, ns: vec3f, transmitting: bool) -> vec3f {
+    if transmitting && method == LIGHT_SAMPLING_PROJECTED_SOLID_ANGLE {
+        return vec3f(0.0);
+    }
+    return ns;
+}
+// #endif
+
 // #if HAS_LIGHTS
 // `area_to_solid_angle`: pdf_A·d²/|cos θ_y|, 0 where singular.
 fn area_to_solid_angle(pdf_area: f32, p: vec3f, y: vec3f, ny: vec3f) -> f32 {
@@ -82,7 +98,7 @@ fn light_sampling_warps(method: u32, ns: vec3f) -> bool {
     return method == LIGHT_SAMPLING_SOLID_ANGLE_COSINE && any(ns != vec3f(0.0));
 }
 
-// `SolidAngle`, `SolidAngleCosine` or `Adaptive` (`LightSampling::solid_angle`).
+// Every method but `Area` (`LightSampling::solid_angle`).
 fn light_sampling_solid_angle(method: u32) -> bool {
     return method != LIGHT_SAMPLING_AREA;
 }
@@ -103,7 +119,7 @@ fn light_sampling_spherical_for(method: u32, p: vec3f, c: vec3f, n: vec3f, area:
 }
 
 // `Light::sample`, including its final validity test; ns is the receiver's shading normal (zero:
-// none), read by LIGHT_SAMPLING_SOLID_ANGLE_COSINE only.
+// none), read by LIGHT_SAMPLING_SOLID_ANGLE_COSINE and LIGHT_SAMPLING_PROJECTED_SOLID_ANGLE only.
 fn light_sample(l: Light, p: vec3f, ns: vec3f, u: vec2f, method: u32) -> LightSample {
     var s = no_light_sample();
     switch l.h.x {

@@ -55,6 +55,15 @@ fn same_side(w: vec3f, n: vec3f, local_z: f32) -> bool {
 }
 // #endif
 
+// `LightSampling::receiver_normal` of a vertex with material m and shading normal ns.
+fn light_receiver_normal(m: Material, ns: vec3f) -> vec3f {
+// #if HAS_DIELECTRIC
+    return light_sampling_receiver_normal(params.light_sampling, ns, material_transmits(m));
+// #else
+    return ns;
+// #endif
+}
+
 // #if HAS_LIGHTS
 // What next-event estimation returns (`direct_light`'s pair): the contribution and, for
 // mis-optimal's control variate, whether the sample ended on an outcome BSDF sampling can produce
@@ -83,7 +92,7 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
         return nee_pure();
     }
     let light = lights[choice.index];
-    var ls = light_sample(light, hit.p, frame.n, u, params.light_sampling);
+    var ls = light_sample(light, hit.p, light_receiver_normal(m, frame.n), u, params.light_sampling);
 // #if HAS_TEXTURES
     ls = light_sample_textured(light, ls);
 // #endif
@@ -153,7 +162,7 @@ struct Resolved {
     w: f32,
 }
 
-fn resolve_bsdf(ray: Ray, hit: SurfaceHit, prev_p: vec3f, prev_ns: vec3f, beta: vec3f, weight: vec3f, pdf: f32, delta: bool) -> Resolved {
+fn resolve_bsdf(ray: Ray, hit: SurfaceHit, prev_p: vec3f, prev_ns: vec3f, prev_light_ns: vec3f, beta: vec3f, weight: vec3f, pdf: f32, delta: bool) -> Resolved {
     var le = vec3f(0.0);
     var p_light = 0.0;
     if hit.prim == NONE {
@@ -163,7 +172,7 @@ fn resolve_bsdf(ray: Ray, hit: SurfaceHit, prev_p: vec3f, prev_ns: vec3f, beta: 
             le = light_radiance(bg, vec3f(0.0), ray.d);
             if !delta && params.light_pmf != NONE {
                 p_light = light_select_pmf(prev_p, prev_ns, params.background)
-                    * light_pdf(bg, prev_p, prev_ns, ray.d, vec3f(0.0), vec3f(0.0), params.light_sampling);
+                    * light_pdf(bg, prev_p, prev_light_ns, ray.d, vec3f(0.0), vec3f(0.0), params.light_sampling);
             }
         }
 // #endif
@@ -178,7 +187,7 @@ fn resolve_bsdf(ray: Ray, hit: SurfaceHit, prev_p: vec3f, prev_ns: vec3f, beta: 
 // #endif
             if !delta && params.light_pmf != NONE {
                 p_light = light_select_pmf(prev_p, prev_ns, li)
-                    * light_pdf(light, prev_p, prev_ns, normalize_glam(ray.d), hit.p, hit.n, params.light_sampling);
+                    * light_pdf(light, prev_p, prev_light_ns, normalize_glam(ray.d), hit.p, hit.n, params.light_sampling);
             }
         }
     }
@@ -209,8 +218,10 @@ fn radiance(camera_ray: Ray) -> vec3f {
     // EW_MIS's heuristic.
     var mis_h = params.heuristic;
     var prev_p = ray.o;
-    // The previous vertex's shading normal, for the cosine warp's pdf (zero at the camera).
+    // The previous vertex's shading normal, for light selection (zero at the camera), and the
+    // one it gave the light sampler (`light_receiver_normal`), for the light pdf.
     var prev_ns = vec3f(0.0);
+    var prev_light_ns = vec3f(0.0);
     var depth = 0;
     // mis-optimal: the first vertex's BSDF sample awaiting its hit (`PendingBsdf`), and whether
     // the path ends once it is resolved (roulette or a zero throughput would have ended it).
@@ -228,7 +239,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
 // #if HAS_LIGHTS
         if pending {
             pending = false;
-            let res = resolve_bsdf(ray, hit, prev_p, prev_ns, pend_beta, pend_weight, pend_pdf, pend_delta);
+            let res = resolve_bsdf(ray, hit, prev_p, prev_ns, prev_light_ns, pend_beta, pend_weight, pend_pdf, pend_delta);
             l += res.cv;
             rule = EW_FIXED;
             p_bsdf = res.w;
@@ -246,7 +257,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
                 var lpdf = 0.0;
 // #if HAS_LIGHTS
                 if rule == EW_MIS || rule == EW_MIXTURE {
-                    lpdf = light_pdf(bg, prev_p, prev_ns, ray.d, vec3f(0.0), vec3f(0.0), params.light_sampling);
+                    lpdf = light_pdf(bg, prev_p, prev_light_ns, ray.d, vec3f(0.0), vec3f(0.0), params.light_sampling);
                 }
 // #endif
                 let w = emission_weight(rule, p_bsdf, params.background, lpdf, prev_p, prev_ns, mis_h);
@@ -267,7 +278,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
                 var lpdf = 0.0;
 // #if HAS_LIGHTS
                 if rule == EW_MIS || rule == EW_MIXTURE {
-                    lpdf = light_pdf(light, prev_p, prev_ns, normalize_glam(ray.d), hit.p, hit.n, params.light_sampling);
+                    lpdf = light_pdf(light, prev_p, prev_light_ns, normalize_glam(ray.d), hit.p, hit.n, params.light_sampling);
                 }
 // #endif
                 l += beta * le * emission_weight(rule, p_bsdf, light_index, lpdf, prev_p, prev_ns, mis_h);
@@ -443,6 +454,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
         }
         prev_p = hit.p;
         prev_ns = frame.n;
+        prev_light_ns = light_receiver_normal(m, frame.n);
         ray = spawn_ray(hit.p, hit.p_error, n, wi);
         if all(beta == vec3f(0.0)) {
             // Traced only for the pending control variate.

@@ -5,7 +5,8 @@
 // With the cosine warp, the chosen spherical triangle is sampled through its own bilinear warp.
 // `Adaptive`: by area where the polygon looks small from p, else a triangle picked by its
 // estimated solid angle, then Arvo in it. The record's b holds the centroid, each triangle's third
-// vertex's w its area.
+// vertex's w its area. Projected solid angle: a triangle picked by its clipped projected solid
+// angle (summed twice, like the solid angles), then `psa_sample` in it.
 
 fn polygon_light_faces(l: Light, p: vec3f) -> bool {
     return dot(p - l.a.xyz, l.d.xyz) > 0.0;
@@ -32,6 +33,66 @@ fn polygon_total_solid_angle(l: Light, p: vec3f) -> f32 {
         return total;
     }
     return -1.0;
+}
+
+// Triangle t (absolute index) seen from p in frame f, clipped to the horizon.
+fn polygon_psa_piece(t: u32, p: vec3f, f: Frame) -> PsaPolygon {
+    let v0 = vertex_data[3u * t].xyz;
+    let v1 = vertex_data[3u * t + 1u].xyz;
+    let v2 = vertex_data[3u * t + 2u].xyz;
+    return psa_piece(p, f, v0, v1, v2, v2, 3u);
+}
+
+// `projected::pieces` over the triangles: (Σ Ω⊥, Σ|S_e|, 1 if any triangle is above the horizon).
+fn polygon_psa_totals(l: Light, p: vec3f, f: Frame) -> vec3f {
+    var out = vec3f(0.0);
+    for (var i = 0u; i < l.h.z; i++) {
+        let poly = polygon_psa_piece(l.h.y + i, p, f);
+        if poly.n >= 3u {
+            out += vec3f(poly.area, poly.abs_sum, 1.0);
+        }
+    }
+    return vec3f(out.xy, min(out.z, 1.0));
+}
+
+// `PolygonLight::sample` by projected solid angle, given the totals (well conditioned).
+fn polygon_light_sample_projected(l: Light, p: vec3f, ns: vec3f, f: Frame, u: vec2f, total: f32) -> LightSample {
+    let goal = u.x * total;
+    var acc = 0.0;
+    var chosen = NONE;
+    var ux = ONE_MINUS_EPSILON;
+    for (var i = 0u; i < l.h.z; i++) {
+        let poly = polygon_psa_piece(l.h.y + i, p, f);
+        var w = 0.0;
+        if poly.n >= 3u {
+            w = poly.area;
+        }
+        if w <= 0.0 {
+            continue;
+        }
+        chosen = i;
+        if goal < acc + w {
+            ux = clamp((goal - acc) / w, 0.0, ONE_MINUS_EPSILON);
+            break;
+        }
+        acc += w;
+    }
+    if chosen == NONE {
+        return no_light_sample();
+    }
+    let t = l.h.y + chosen;
+    let poly = polygon_psa_piece(t, p, f);
+    if poly.n < 3u {
+        return no_light_sample();
+    }
+    let wi = normalize_glam(to_world(f, psa_sample(poly, vec2f(ux, u.y))));
+    let v0 = vertex_data[3u * t].xyz;
+    let v1 = vertex_data[3u * t + 1u].xyz;
+    let v2 = vertex_data[3u * t + 2u].xyz;
+    let b = barycentrics_along(v0, v1, v2, p, wi);
+    let y = b.x * v0 + b.y * v1 + b.z * v2;
+    let err = gamma(6.0) * (abs(b.x * v0) + abs(b.y * v1) + abs(b.z * v2));
+    return LightSample(y, err, l.d.xyz, wi, psa_light_pdf(ns, wi, total), l.le.xyz, false, true, b.yz);
 }
 
 // `PolygonLight::triangle_holding`: the triangle (index from `first`) whose smallest
@@ -154,6 +215,16 @@ fn polygon_light_sample(l: Light, p: vec3f, ns: vec3f, u: vec2f, method: u32) ->
             return polygon_light_sample_adaptive(l, p, u, total);
         }
     }
+    if light_sampling_projects(method, ns) && count <= MAX_SOLID_ANGLE_TRIANGLES {
+        let f = psa_frame(ns);
+        let totals = polygon_psa_totals(l, p, f);
+        if totals.z == 0.0 {
+            return no_light_sample();
+        }
+        if psa_conditioned(totals.x, totals.y) {
+            return polygon_light_sample_projected(l, p, ns, f, u, totals.x);
+        }
+    }
     if light_sampling_solid_angle(method) && method != LIGHT_SAMPLING_ADAPTIVE {
         let total = polygon_total_solid_angle(l, p);
         if total > 0.0 {
@@ -233,6 +304,15 @@ fn polygon_light_pdf(l: Light, p: vec3f, ns: vec3f, wi: vec3f, y: vec3f, ny: vec
             return polygon_light_pdf_adaptive(l, p, y, ny, total);
         }
         return area_to_solid_angle(1.0 / l.le.w, p, y, ny);
+    }
+    if light_sampling_projects(method, ns) && l.h.z <= MAX_SOLID_ANGLE_TRIANGLES {
+        let totals = polygon_psa_totals(l, p, psa_frame(ns));
+        if totals.z == 0.0 {
+            return 0.0;
+        }
+        if psa_conditioned(totals.x, totals.y) {
+            return psa_light_pdf(ns, wi, totals.x);
+        }
     }
     if light_sampling_solid_angle(method) {
         let total = polygon_total_solid_angle(l, p);

@@ -1,6 +1,7 @@
 // Emitting parallelograms, the twin of `lights/quad.rs`: by area, or by solid angle (spherical
 // rectangle) when the quad is a rectangle and its solid angle suits the warp, optionally through
-// the cosine warp, or by whichever pays from p (`Adaptive`).
+// the cosine warp, or by whichever pays from p (`Adaptive`), or by projected solid angle
+// (`projected_light.wgsl`).
 
 fn quad_light_faces(l: Light, p: vec3f) -> bool {
     return dot(p - l.a.xyz, l.d.xyz) > 0.0;
@@ -31,9 +32,38 @@ fn quad_cosine_weights(l: Light, p: vec3f, ns: vec3f) -> vec4f {
     return cosine_corner_weights(ns, c, c + l.b.xyz, c + l.c.xyz, c + l.b.xyz + l.c.xyz);
 }
 
+// The quad seen from p in frame f, clipped to the horizon (`QuadLight::outline`).
+fn quad_psa_piece(l: Light, p: vec3f, f: Frame) -> PsaPolygon {
+    let c = l.a.xyz;
+    return psa_piece(p, f, c, c + l.b.xyz, c + l.b.xyz + l.c.xyz, c + l.c.xyz, 4u);
+}
+
+// `QuadLight::point_along`: where the ray from p along wi meets the plane, clamped onto the quad.
+fn quad_point_along(l: Light, p: vec3f, wi: vec3f) -> vec3f {
+    let n = l.d.xyz;
+    let t = dot(n, l.a.xyz - p) / dot(n, wi);
+    let d = p + t * wi - l.a.xyz;
+    let s = clamp(dot(cross(d, l.c.xyz), n) / l.le.w, 0.0, 1.0);
+    let r = clamp(dot(cross(l.b.xyz, d), n) / l.le.w, 0.0, 1.0);
+    return l.a.xyz + s * l.b.xyz + r * l.c.xyz;
+}
+
 fn quad_light_sample(l: Light, p: vec3f, ns: vec3f, u_in: vec2f, method: u32) -> LightSample {
     if !quad_light_faces(l, p) {
         return no_light_sample();
+    }
+    if light_sampling_projects(method, ns) {
+        let f = psa_frame(ns);
+        let poly = quad_psa_piece(l, p, f);
+        if poly.n < 3u {
+            return no_light_sample();
+        }
+        if psa_conditioned(poly.area, poly.abs_sum) {
+            let wi = normalize_glam(to_world(f, psa_sample(poly, u_in)));
+            var s = area_sample(p, quad_point_along(l, p, wi), l.d.xyz, 1.0 / l.le.w, l.le.xyz);
+            s.pdf = psa_light_pdf(ns, s.wi, poly.area);
+            return s;
+        }
     }
     var u = u_in;
     if light_sampling_spherical_for(method, p, l.a.xyz + 0.5 * (l.b.xyz + l.c.xyz), l.d.xyz, l.le.w) {
@@ -58,6 +88,15 @@ fn quad_light_sample(l: Light, p: vec3f, ns: vec3f, u_in: vec2f, method: u32) ->
 fn quad_light_pdf(l: Light, p: vec3f, ns: vec3f, wi: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
     if !quad_light_faces(l, p) {
         return 0.0;
+    }
+    if light_sampling_projects(method, ns) {
+        let poly = quad_psa_piece(l, p, psa_frame(ns));
+        if poly.n < 3u {
+            return 0.0;
+        }
+        if psa_conditioned(poly.area, poly.abs_sum) {
+            return psa_light_pdf(ns, wi, poly.area);
+        }
     }
     if light_sampling_spherical_for(method, p, l.a.xyz + 0.5 * (l.b.xyz + l.c.xyz), l.d.xyz, l.le.w) {
         let rect = sph_rect_new(p, l.a.xyz, l.b.xyz, l.c.xyz);

@@ -110,25 +110,30 @@ fn sample_spherical_triangle(v0: vec3f, v1: vec3f, v2: vec3f, p: vec3f, u: vec2f
     let sin_theta = safe_sqrt(vt * (2.0 - vt));
     let dir = normalize_or_zero(b + (sin_theta * st_tangent(b, b_to_cp) - vt * b));
 
+    out.dir = dir;
+    out.barycentrics = barycentrics_along(v0, v1, v2, p, dir);
+    out.pdf = 1.0 / area;
+    out.ok = true;
+    return out;
+}
+
+// `barycentrics_along`: where the ray from p along dir meets the triangle's plane
+// (Möller–Trumbore), clamped onto the triangle; a third each for a ray parallel to the plane.
+fn barycentrics_along(v0: vec3f, v1: vec3f, v2: vec3f, p: vec3f, dir: vec3f) -> vec3f {
     let e1 = v1 - v0;
     let e2 = v2 - v0;
     let s1 = cross(dir, e2);
     let det = dot(s1, e1);
-    var bary = vec3f(1.0 / 3.0);
-    if det != 0.0 {
-        let o = p - v0;
-        var b1 = clamp(dot(o, s1) / det, 0.0, 1.0);
-        var b2 = clamp(dot(dir, cross(o, e1)) / det, 0.0, 1.0);
-        let sum = b1 + b2;
-        if sum > 1.0 {
-            b1 = b1 / sum;
-            b2 = b2 / sum;
-        }
-        bary = vec3f(max(1.0 - b1 - b2, 0.0), b1, b2);
+    if det == 0.0 {
+        return vec3f(1.0 / 3.0);
     }
-    out.dir = dir;
-    out.barycentrics = bary;
-    out.pdf = 1.0 / area;
-    out.ok = true;
-    return out;
+    let o = p - v0;
+    var b1 = clamp(dot(o, s1) / det, 0.0, 1.0);
+    var b2 = clamp(dot(dir, cross(o, e1)) / det, 0.0, 1.0);
+    let sum = b1 + b2;
+    if sum > 1.0 {
+        b1 = b1 / sum;
+        b2 = b2 / sum;
+    }
+    return vec3f(max(1.0 - b1 - b2, 0.0), b1, b2);
 }

@@ -1,5 +1,6 @@
 // Emitting triangles, the twin of `lights/triangle.rs`: uniform by area, or by solid angle (Arvo),
-// optionally through the cosine warp, or the one that pays from p (`Adaptive`).
+// optionally through the cosine warp, or the one that pays from p (`Adaptive`), or by projected
+// solid angle (`projected_light.wgsl`).
 
 fn triangle_solid_angle(v0: vec3f, v1: vec3f, v2: vec3f, p: vec3f) -> f32 {
     return spherical_triangle_area(normalize_or_zero(v0 - p), normalize_or_zero(v1 - p), normalize_or_zero(v2 - p));
@@ -16,6 +17,20 @@ fn triangle_light_sample(l: Light, p: vec3f, ns: vec3f, u_in: vec2f, method: u32
     let v0 = l.a.xyz;
     let v1 = l.b.xyz;
     let v2 = l.c.xyz;
+    if light_sampling_projects(method, ns) {
+        let f = psa_frame(ns);
+        let poly = psa_piece(p, f, v0, v1, v2, v2, 3u);
+        if poly.n < 3u {
+            return no_light_sample();
+        }
+        if psa_conditioned(poly.area, poly.abs_sum) {
+            let wi = normalize_glam(to_world(f, psa_sample(poly, u_in)));
+            let b = barycentrics_along(v0, v1, v2, p, wi);
+            let y = b.x * v0 + b.y * v1 + b.z * v2;
+            let err = gamma(6.0) * (abs(b.x * v0) + abs(b.y * v1) + abs(b.z * v2));
+            return LightSample(y, err, l.d.xyz, wi, psa_light_pdf(ns, wi, poly.area), l.le.xyz, false, true, b.yz);
+        }
+    }
     var u = u_in;
     let spherical = light_sampling_spherical_for(method, p, (v0 + v1 + v2) / 3.0, l.d.xyz, l.le.w);
     if spherical && spherical_ok(triangle_solid_angle(v0, v1, v2, p)) {
@@ -44,6 +59,15 @@ fn triangle_light_sample(l: Light, p: vec3f, ns: vec3f, u_in: vec2f, method: u32
 fn triangle_light_pdf(l: Light, p: vec3f, ns: vec3f, wi: vec3f, y: vec3f, ny: vec3f, method: u32) -> f32 {
     if !triangle_light_faces(l, p) {
         return 0.0;
+    }
+    if light_sampling_projects(method, ns) {
+        let poly = psa_piece(p, psa_frame(ns), l.a.xyz, l.b.xyz, l.c.xyz, l.c.xyz, 3u);
+        if poly.n < 3u {
+            return 0.0;
+        }
+        if psa_conditioned(poly.area, poly.abs_sum) {
+            return psa_light_pdf(ns, wi, poly.area);
+        }
     }
     if light_sampling_spherical_for(method, p, (l.a.xyz + l.b.xyz + l.c.xyz) / 3.0, l.d.xyz, l.le.w) {
         let omega = triangle_solid_angle(l.a.xyz, l.b.xyz, l.c.xyz, p);
