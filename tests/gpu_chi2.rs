@@ -523,7 +523,6 @@ fn gpu_samples_pass_chi_square() {
         );
     }
 
-
     // Projected-solid-angle sampling (issue 20 item 2), receiver normal +z: near (the zenith
     // inside the triangle, quad and hexagon; the wedges' Newton iteration for the star's
     // triangles) and half below the horizon (clipped) for every planar shape, and low (wholly

@@ -63,8 +63,8 @@ const ROUND_METHODS: usize = 2;
 const N_POLYGONAL: usize = 4;
 /// Every comparison in this file: the polygons with every method, the disk (also clipped) and
 /// the sphere with the first [`ROUND_METHODS`].
-const N_TESTS: usize =
-    METHODS.len() * N_POLYGONAL * (POINTS + CLIPPED) + ROUND_METHODS * ((POINTS + CLIPPED) + POINTS);
+const N_TESTS: usize = METHODS.len() * N_POLYGONAL * (POINTS + CLIPPED)
+    + ROUND_METHODS * ((POINTS + CLIPPED) + POINTS);
 /// Emitted radiance.
 const LE: f64 = 1.5;
 

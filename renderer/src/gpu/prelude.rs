@@ -20,7 +20,9 @@ use crate::geometry::{mesh_attributes, primitive, ray, wide_bvh};
 use crate::lights::{polygon, sphere};
 use crate::materials::{coat_albedo, ggx, mix, plastic_textured};
 use crate::sampler::{dim, owen, zsobol};
-use crate::sampling::{self, elliptic, projected_solid_angle, spherical_ellipse, spherical_rectangle};
+use crate::sampling::{
+    self, elliptic, projected_solid_angle, spherical_ellipse, spherical_rectangle,
+};
 use crate::textures::LUMINANCE_WEIGHTS;
 
 /// A constant's value, with its WGSL type.

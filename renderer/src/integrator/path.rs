@@ -182,8 +182,16 @@ fn trace<const TRANSMISSION: bool>(
         let bounce = (depth - 1) as u32;
         let hit = scene.accel.intersect(&ray);
         if let (Some(p), Some(opt)) = (pending.take(), optimal.as_deref_mut()) {
-            let (cv, w) =
-                resolve_bsdf(scene, settings, &ray, hit.as_ref(), prev_p, [prev_ns, prev_light_ns], p, opt);
+            let (cv, w) = resolve_bsdf(
+                scene,
+                settings,
+                &ray,
+                hit.as_ref(),
+                prev_p,
+                [prev_ns, prev_light_ns],
+                p,
+                opt,
+            );
             add(&mut l, &mut split, Technique::ControlVariate, cv);
             weight_rule = EmissionWeight::Fixed(w);
             if stop {
