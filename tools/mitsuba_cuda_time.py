@@ -20,13 +20,26 @@ import metrics  # noqa: E402
 import scene_to_mitsuba as stm  # noqa: E402
 
 scene_path, ref_path, chunk, max_spp = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4])
+# MI_SAMPLER: another Mitsuba sampler than the converter's `independent` (ldsampler, multijitter,
+# orthogonal, ...), for issue 19's "Mitsuba with its best sampler"; each CHUNK-spp render is then
+# one scrambled point set of that sampler, and the chunks are averaged like independent renders.
+SAMPLER = os.environ.get("MI_SAMPLER")
+if SAMPLER:
+    _to_dict = stm.scene_to_dict
+
+    def _with_sampler(*args, **kwargs):
+        d = _to_dict(*args, **kwargs)
+        d["sensor"]["sampler"]["type"] = SAMPLER
+        return d
+
+    stm.scene_to_dict = _with_sampler
 mi, dr, ms = stm.load(scene_path, chunk, "cuda_ad_rgb")
 ref = metrics.read_image(ref_path)
 t0 = time.perf_counter()
 img = mi.render(ms, spp=chunk, seed=dr.opaque(mi.UInt32, 999999))
 dr.eval(img)
 dr.sync_thread()
-print(json.dumps({"scene": scene_path, "warmup_seconds": round(time.perf_counter() - t0, 3)}), flush=True)
+print(json.dumps({"scene": scene_path, "sampler": SAMPLER or "independent", "warmup_seconds": round(time.perf_counter() - t0, 3)}), flush=True)
 acc, secs, spp, nxt = None, 0.0, 0, chunk
 while spp < max_spp:
     t0 = time.perf_counter()

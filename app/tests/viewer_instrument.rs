@@ -480,7 +480,7 @@ fn every_render_option_is_in_the_menus() {
             LightSampling::Adaptive,
         ),
         (
-            "projected solid angle ∝ cos (Peters 2021)",
+            "projected solid angle, cos-weighted (Peters 2021)",
             LightSampling::ProjectedSolidAngle,
         ),
         (

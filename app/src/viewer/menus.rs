@@ -31,7 +31,7 @@ pub const LIGHT_SAMPLING: &[(LightSampling, &str)] = &[
     ),
     (
         LightSampling::ProjectedSolidAngle,
-        "projected solid angle ∝ cos (Peters 2021)",
+        "projected solid angle, cos-weighted (Peters 2021)",
     ),
 ];
 
