@@ -94,6 +94,18 @@ pub enum SamplerArg {
     Sobol,
 }
 
+impl From<LightSamplingArg> for LightSampling {
+    fn from(a: LightSamplingArg) -> LightSampling {
+        match a {
+            LightSamplingArg::Area => LightSampling::Area,
+            LightSamplingArg::SolidAngle => LightSampling::SolidAngle,
+            LightSamplingArg::SolidAngleCosine => LightSampling::SolidAngleCosine,
+            LightSamplingArg::Adaptive => LightSampling::Adaptive,
+            LightSamplingArg::ProjectedSolidAngle => LightSampling::ProjectedSolidAngle,
+        }
+    }
+}
+
 /// Estimator options shared by every command that renders.
 #[derive(Args, Debug, Clone)]
 pub struct EstimatorArgs {
@@ -161,13 +173,7 @@ impl EstimatorOptions {
             StrategyArg::Mis => Strategy::Mis { heuristic },
             StrategyArg::MisOptimal => Strategy::MisOptimal,
         };
-        let light_sampling = match self.light_sampling {
-            LightSamplingArg::Area => LightSampling::Area,
-            LightSamplingArg::SolidAngle => LightSampling::SolidAngle,
-            LightSamplingArg::SolidAngleCosine => LightSampling::SolidAngleCosine,
-            LightSamplingArg::Adaptive => LightSampling::Adaptive,
-            LightSamplingArg::ProjectedSolidAngle => LightSampling::ProjectedSolidAngle,
-        };
+        let light_sampling = LightSampling::from(self.light_sampling);
         let light_selection = match self.light_selection {
             LightSelectionArg::Power => LightSelection::Power,
             LightSelectionArg::Bvh => LightSelection::Bvh,
@@ -245,6 +251,19 @@ pub enum ShowArg {
     Difference,
     /// Where light samples and where BSDF samples carry the direct light (CPU lanes).
     TechniqueMap,
+}
+
+/// A `--compare` pane: `STRATEGY` or `STRATEGY@LIGHT_SAMPLING`.
+fn parse_compare_pane(text: &str) -> Result<(StrategyArg, Option<LightSamplingArg>), String> {
+    let (strategy, method) = match text.split_once('@') {
+        Some((s, m)) => (s, Some(m)),
+        None => (text, None),
+    };
+    let strategy = StrategyArg::from_str(strategy, false)?;
+    let method = method
+        .map(|m| LightSamplingArg::from_str(m, false))
+        .transpose()?;
+    Ok((strategy, method))
 }
 
 /// A `--wipe` side.
@@ -416,9 +435,11 @@ pub struct ViewArgs {
     /// Estimator options.
     #[command(flatten)]
     pub estimator: EstimatorOptions,
-    /// Open the comparison view with these 2 or 3 strategies side by side (comma-separated).
-    #[arg(long, value_enum, value_delimiter = ',')]
-    pub compare: Vec<StrategyArg>,
+    /// Open the comparison view with these 2 or 3 panes side by side (comma-separated), each
+    /// `STRATEGY` or `STRATEGY@LIGHT_SAMPLING` (a light-sampling method of its own), e.g.
+    /// `light,bsdf,mis` or `mis@solid-angle,mis@projected-solid-angle`.
+    #[arg(long, value_delimiter = ',', value_parser = parse_compare_pane)]
+    pub compare: Vec<(StrategyArg, Option<LightSamplingArg>)>,
     /// Open the wipe: two sides in one image split by a divider, each `STRATEGY`,
     /// `STRATEGY:cpu`, `STRATEGY:gpu` or `reference` (comma-separated), e.g. `light,mis`,
     /// `mis:cpu,mis:gpu` or `mis,reference`.
@@ -484,5 +505,30 @@ impl BackendArg {
             BackendArg::Cpu => lumis::engine::Backend::Cpu,
             BackendArg::Gpu => lumis::engine::Backend::Gpu,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `--compare` panes: a strategy alone, or with a light-sampling method of its own; an
+    /// unknown name on either side is an error naming it.
+    #[test]
+    fn compare_panes_parse() {
+        assert_eq!(parse_compare_pane("mis"), Ok((StrategyArg::Mis, None)));
+        assert_eq!(
+            parse_compare_pane("light@projected-solid-angle"),
+            Ok((
+                StrategyArg::Light,
+                Some(LightSamplingArg::ProjectedSolidAngle)
+            ))
+        );
+        assert!(parse_compare_pane("mis@nope").unwrap_err().contains("nope"));
+        assert!(
+            parse_compare_pane("nope@area")
+                .unwrap_err()
+                .contains("nope")
+        );
     }
 }

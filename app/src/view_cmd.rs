@@ -4,6 +4,7 @@ use crate::cli::{BackendArg, HeuristicArg, ShowArg, StrategyArg, ViewArgs};
 use anyhow::bail;
 use lumis::engine::Backend;
 use lumis::integrator::Heuristic;
+use lumis::lights::LightSampling;
 use lumis_app::viewer::params::{Pacing, RenderParams, StrategyKind, ViewMode};
 use lumis_app::viewer::tonemap::Content;
 use lumis_app::viewer::{ViewerOptions, run};
@@ -85,8 +86,11 @@ pub fn view(args: &ViewArgs) -> anyhow::Result<()> {
         compare_strategies: if args.compare.is_empty() {
             defaults.compare_strategies
         } else {
-            args.compare.iter().map(|&s| kind(s)).collect()
+            args.compare.iter().map(|&(s, _)| kind(s)).collect()
         },
+        compare_light_sampling: (args.compare.iter())
+            .map(|&(_, m)| m.map(LightSampling::from))
+            .collect(),
         wipe: match args.wipe[..] {
             [a, b] => [a, b],
             _ => defaults.wipe,

@@ -716,3 +716,33 @@ fn technique_map_splits_each_image_by_technique() {
         "MIS's and light sampling's maps look alike ({other})"
     );
 }
+
+/// Comparison panes can compare light-sampling methods too (issue 20 item 4): each pane's own
+/// method (or the Render menu's) is in its menu, restarts, and reaches that lane's settings and
+/// caption while the other pane keeps the Render menu's.
+#[test]
+fn comparison_panes_compare_light_sampling_methods() {
+    let mut o = options("seed_cornell.json", Some(16), "pane_methods");
+    o.params.view = ViewMode::Compare;
+    o.params.compare_strategies = vec![StrategyKind::Mis, StrategyKind::Mis];
+    let mut h = harness_with(o, [1400.0, 1400.0]);
+    wait_spp(&mut h, 2, 1);
+    assert_restarts(&mut h, "pane 2 method", |h| {
+        pick_combo(h, "Pane 2 light sampling", "projected-solid-angle")
+    });
+    let lanes = &h.state().output().lanes;
+    let methods: Vec<LightSampling> = lanes.iter().map(|l| l.settings.light_sampling).collect();
+    assert_eq!(
+        methods,
+        [
+            LightSampling::SolidAngle,
+            LightSampling::ProjectedSolidAngle
+        ]
+    );
+    assert!(
+        lanes[1].label.ends_with("projected-solid-angle") && lanes[0].label != lanes[1].label,
+        "{} / {}",
+        lanes[0].label,
+        lanes[1].label
+    );
+}

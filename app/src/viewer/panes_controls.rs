@@ -5,8 +5,10 @@
 
 use super::app::ViewerApp;
 use super::controls::combo;
-use super::params::{Pacing, StrategyKind, ViewMode};
+use super::menus;
+use super::params::{Pacing, StrategyKind, ViewMode, light_sampling_short_name};
 use super::wipe::WipeSide;
+use lumis::lights::LightSampling;
 
 /// Range of the target relMSE slider (logarithmic).
 const TARGET_RANGE: std::ops::RangeInclusive<f64> = 1e-5..=1.0;
@@ -37,6 +39,11 @@ impl ViewerApp {
                     p.compare_strategies.resize(panes, StrategyKind::Mis);
                     changed = true;
                 }
+                p.compare_light_sampling.resize(panes, None);
+                // Each pane's light sampling: the Render menu's, or a method of its own.
+                let methods: Vec<Option<LightSampling>> = std::iter::once(None)
+                    .chain(menus::LIGHT_SAMPLING.iter().map(|(m, _)| Some(*m)))
+                    .collect();
                 for i in 0..p.compare_strategies.len() {
                     changed |= combo(
                         ui,
@@ -44,6 +51,17 @@ impl ViewerApp {
                         &mut p.compare_strategies[i],
                         &StrategyKind::ALL,
                         |s| s.name().into(),
+                    );
+                    changed |= combo(
+                        ui,
+                        &format!("Pane {} light sampling", i + 1),
+                        &mut p.compare_light_sampling[i],
+                        &methods,
+                        |m| {
+                            m.map_or("as in Render".into(), |m| {
+                                light_sampling_short_name(m).into()
+                            })
+                        },
                     );
                 }
                 let n = p.compare_strategies.len();

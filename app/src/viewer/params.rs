@@ -108,6 +108,10 @@ pub struct RenderParams {
     pub view: ViewMode,
     /// Strategies of the comparison panes (two or three).
     pub compare_strategies: Vec<StrategyKind>,
+    /// Per comparison pane, a light-sampling method of its own (`None`, or no entry: the Render
+    /// menu's), so that panes can compare methods (e.g. solid angle against projected solid
+    /// angle) as well as strategies.
+    pub compare_light_sampling: Vec<Option<LightSampling>>,
     /// The wipe's left (A) and right (B) sides.
     pub wipe: [WipeSide; 2],
     /// How lanes share render time (equal samples, equal time, or until equal error).
@@ -132,6 +136,7 @@ impl Default for RenderParams {
             spp_limit: 0,
             view: ViewMode::Single,
             compare_strategies: vec![StrategyKind::Light, StrategyKind::Bsdf, StrategyKind::Mis],
+            compare_light_sampling: Vec::new(),
             wipe: [
                 WipeSide::Render(StrategyKind::Light, None),
                 WipeSide::Render(StrategyKind::Mis, None),
@@ -169,9 +174,14 @@ impl RenderParams {
     /// The lanes rendered: the single strategy, the comparison's, or the wipe's renders (a
     /// reference side has no lane). A lane without a backend of its own uses `backend`.
     pub fn lanes(&self) -> Vec<LaneSpec> {
-        let lane = |k: StrategyKind, backend: Option<Backend>| {
+        let lane_with = |k: StrategyKind, backend: Option<Backend>, ls: Option<LightSampling>| {
             let backend = backend.unwrap_or(self.backend);
             let mut label = lane_label(k, self);
+            let mut settings = self.settings(k);
+            if let Some(ls) = ls {
+                label += &format!(" · {}", light_sampling_short_name(ls));
+                settings.light_sampling = ls;
+            }
             if backend != self.backend {
                 label += match backend {
                     Backend::Cpu => " (CPU)",
@@ -180,14 +190,18 @@ impl RenderParams {
             }
             LaneSpec {
                 label,
-                settings: self.settings(k),
+                settings,
                 backend,
             }
         };
+        let lane = |k: StrategyKind, backend: Option<Backend>| lane_with(k, backend, None);
         match self.view {
             ViewMode::Single => vec![lane(self.strategy, None)],
-            ViewMode::Compare => (self.compare_strategies.iter())
-                .map(|&k| lane(k, None))
+            ViewMode::Compare => (self.compare_strategies.iter().enumerate())
+                .map(|(i, &k)| {
+                    let ls = self.compare_light_sampling.get(i).copied().flatten();
+                    lane_with(k, None, ls)
+                })
                 .collect(),
             ViewMode::Wipe => {
                 let mut lanes: Vec<LaneSpec> = (self.wipe.iter())
@@ -205,6 +219,17 @@ impl RenderParams {
                 lanes
             }
         }
+    }
+}
+
+/// A light-sampling method as the CLI names it (short enough for a pane's caption).
+pub fn light_sampling_short_name(ls: LightSampling) -> &'static str {
+    match ls {
+        LightSampling::Area => "area",
+        LightSampling::SolidAngle => "solid-angle",
+        LightSampling::SolidAngleCosine => "solid-angle-cosine",
+        LightSampling::Adaptive => "adaptive",
+        LightSampling::ProjectedSolidAngle => "projected-solid-angle",
     }
 }
 
