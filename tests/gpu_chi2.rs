@@ -47,7 +47,13 @@
 //! **Control:** a deliberately broken GPU sampler (the conductor sampled at α·1.1, i.e. 0.33,
 //! against the α 0.3 density) must be rejected by the χ² statistic at the same per-test level
 //! (so must a dielectric whose lobe choice sees η·1.1: all 36 of its cases fail, checked by hand).
-//! Every case has its own seed: the run is deterministic.
+//! Every case has its own seed, a hash of its name ([`case_seed`]): the run is deterministic,
+//! and a case keeps its seed when cases are added or reordered. (Seeds were the case's index
+//! before; merging the spherical-ellipse and projected-solid-angle cases moved the latter to new
+//! indices, where `light/star/near/projectedsolidangle` gave p = 3.5e-5 < 8.3e-5, the 1% of
+//! false alarms the family-wise level allows: six other seeds gave p from 0.15 to 0.78 at these
+//! 500,000 samples and from 0.14 to 0.90 at 3,000,000, which a real difference would have driven
+//! towards 0.)
 //!
 //! `LUMIS_SKIP_GPU_TESTS=1` skips the file where no adapter exists (see `gpu_common`).
 
@@ -71,8 +77,16 @@ use std::time::Instant;
 
 /// Samples per case.
 const SAMPLES: usize = 500_000;
-/// Seed of the first case; case `i` uses `SEED + i`.
+/// Base of the cases' seeds ([`case_seed`]).
 const SEED: u32 = 5000;
+
+/// The seed of the case named `name`: `SEED` plus its name's FNV-1a hash.
+fn case_seed(name: &str) -> u32 {
+    let hash = name.bytes().fold(0x811c_9dc5u32, |h, b| {
+        (h ^ b as u32).wrapping_mul(0x0100_0193)
+    });
+    SEED.wrapping_add(hash)
+}
 /// Family-wise significance level.
 const ALPHA: f64 = 0.01;
 
@@ -554,9 +568,10 @@ fn gpu_samples_pass_chi_square() {
         .collect();
     let mut failures = Vec::new();
     let mut smallest = (1.0f64, String::new());
-    for (i, c) in cases.into_iter().enumerate() {
+    for c in cases {
         let t = Instant::now();
-        let r = run_case(&gpus[c.scene], &c.body, c.density, SEED + i as u32, tests);
+        let seed = case_seed(&c.name);
+        let r = run_case(&gpus[c.scene], &c.body, c.density, seed, tests);
         eprintln!("{:44} {r} [{:.1} s]", c.name, t.elapsed().as_secs_f64());
         if r.p_value < smallest.0 {
             smallest = (r.p_value, c.name.clone());
