@@ -4,6 +4,7 @@
 #![allow(dead_code)]
 
 pub mod images;
+pub mod parity;
 
 use glam::Vec3;
 use lumis::gpu::{GpuContext, GpuError};

@@ -1,0 +1,91 @@
+//! Helpers of the parity tests (the WGSL twins against their Rust modules on the same inputs):
+//! the parity scene, running a snippet, random inputs and the shared tolerances.
+
+use super::{Compare, build, context};
+use glam::Vec3;
+use lumis::gpu::GpuScene;
+use lumis::gpu::kernel::run_snippet;
+use lumis::integrator::Settings;
+use lumis::rng::Rng;
+use lumis::sampling;
+use std::sync::Arc;
+
+/// Every material kind and variant, every light kind, more than 4 primitives (so the BVH is on).
+pub const PARITY_SCENE: &str = r#"{
+  "camera": {"from": [0, 2, -6], "to": [0, 1, 0], "up": [0, 1, 0], "vfov_deg": 50, "width": 8, "height": 8},
+  "background": [0.2, 0.3, 0.4],
+  "materials": {
+    "diffuse": {"type": "diffuse", "albedo": [0.7, 0.5, 0.3]},
+    "gold": {"type": "conductor", "alpha": 0.2, "eta": [0.143, 0.374, 1.442], "k": [3.983, 2.385, 1.603]},
+    "tint": {"type": "conductor", "alpha": 0.6, "reflectance": [0.9, 0.6, 0.3]},
+    "mirror": {"type": "conductor", "alpha": 0.0, "reflectance": [0.95, 0.95, 0.95]},
+    "plastic_rough": {"type": "plastic", "albedo": [0.2, 0.6, 0.3], "alpha": 0.3, "ior": 1.5},
+    "plastic_sharp": {"type": "plastic", "albedo": [0.8, 0.2, 0.1], "alpha": 0.02, "ior": 1.8, "specular": [0.9, 0.8, 0.7]},
+    "plastic_smooth": {"type": "plastic", "albedo": [0.3, 0.3, 0.9], "alpha": 0.0, "ior": 1.4}
+  },
+  "shapes": [
+    {"type": "quad", "corner": [-4, 0, -4], "edge_u": [0, 0, 8], "edge_v": [8, 0, 0], "material": "diffuse"},
+    {"type": "box", "min": [-0.5, 0, -0.5], "max": [0.5, 1, 0.5], "rotate_y_deg": 25, "translate": [1, 0.01, 1], "material": "gold"},
+    {"type": "sphere", "center": [-1.2, 0.6, 0.4], "radius": 0.6, "material": "plastic_rough"},
+    {"type": "disk", "center": [0, 1.2, 2], "normal": [0, 0, -1], "radius": 0.7, "material": "tint"},
+    {"type": "triangles", "positions": [[-2, 3, -1], [-1, 3, 0], [-2, 3, 0.5]], "indices": [[0, 1, 2]], "emission": [8, 6, 4]},
+    {"type": "polygon", "vertices": [[0.0, 3.6, 1.8], [-0.205725, 3.6, 1.283156], [-0.760845, 3.6, 1.247214], [-0.33287, 3.6, 0.891844], [-0.470228, 3.6, 0.352786], [-0.0, 3.6, 0.65], [0.470228, 3.6, 0.352786], [0.33287, 3.6, 0.891844], [0.760845, 3.6, 1.247214], [0.205725, 3.6, 1.283156]], "emission": [5, 5, 5]},
+    {"type": "quad", "corner": [1.5, 3, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "emission": [4, 6, 9]},
+    {"type": "quad", "corner": [-3, 2, 2], "edge_u": [1, 0.2, 0], "edge_v": [0.5, 0, 1], "emission": [3, 3, 3]},
+    {"type": "disk", "center": [2.5, 2, 3], "normal": [-0.3, -0.2, -1], "radius": 0.4, "emission": [10, 6, 10]},
+    {"type": "sphere", "center": [2.2, 0.3, -1.0], "radius": 0.3, "emission": [6, 10, 6]},
+    {"type": "sphere", "center": [0.0, 2.5, -0.5], "radius": 0.2, "material": "mirror"},
+    {"type": "sphere", "center": [-2.5, 0.4, -1.5], "radius": 0.4, "material": "plastic_sharp"},
+    {"type": "sphere", "center": [0.5, 0.3, -2.0], "radius": 0.3, "material": "plastic_smooth"}
+  ]
+}"#;
+
+/// The parity scene on the CPU and uploaded to the shared device; `None` where GPU tests are
+/// skipped.
+pub fn parity_scene() -> Option<(Arc<lumis::scene::Scene>, GpuScene)> {
+    let ctx = context()?;
+    let scene = build(PARITY_SCENE);
+    let gpu = GpuScene::new(ctx, scene.clone()).expect("upload");
+    Some((scene, gpu))
+}
+
+/// Runs `body` on `inputs` (`in_stride` vec4 per item) and returns `out_stride` vec4 per item.
+pub fn run(
+    gpu: &GpuScene,
+    body: &str,
+    inputs: &[[f32; 4]],
+    in_stride: usize,
+    out_stride: usize,
+) -> Vec<[f32; 4]> {
+    run_snippet(
+        gpu,
+        &Settings::default(),
+        body,
+        inputs,
+        in_stride,
+        out_stride,
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// A random unit vector.
+pub fn unit(r: &mut Rng) -> Vec3 {
+    sampling::sample_uniform_sphere(r.next_2d())
+}
+
+/// One in `per` of the values compared so far.
+pub fn c_allowance(c: &Compare, per: usize) -> usize {
+    c.n / per
+}
+
+/// `v` and `w` as one vec4 of a snippet's input.
+pub fn f4(v: Vec3, w: f32) -> [f32; 4] {
+    [v.x, v.y, v.z, w]
+}
+
+/// Random inputs per comparison.
+pub const N: usize = 8192;
+
+/// How closely the GPU's and the CPU's sampled light directions agree where the geometry is
+/// well conditioned, in radians (measured on an NVIDIA H100: ~4e-6).
+pub const DIRECTION_AGREEMENT: f32 = 1e-5;
