@@ -87,6 +87,7 @@ fn case_seed(name: &str) -> u32 {
     });
     SEED.wrapping_add(hash)
 }
+
 /// Family-wise significance level.
 const ALPHA: f64 = 0.01;
 
