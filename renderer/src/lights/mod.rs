@@ -393,6 +393,32 @@ pub fn area_to_solid_angle(pdf_area: f32, p: Vec3, y: Vec3, ny: Vec3) -> f32 {
     }
 }
 
+/// The light sample at barycentrics `b` of triangle `v` (normal `n`, radiance `le`), reached
+/// along `wi` with solid-angle density `pdf`: spherical-triangle and projected-solid-angle
+/// samples of triangles, quads' fans and polygons' triangles alike.
+#[inline]
+pub(crate) fn triangle_sample(
+    v: &[Vec3; 3],
+    b: [f32; 3],
+    n: Vec3,
+    le: Vec3,
+    wi: Vec3,
+    pdf: f32,
+) -> LightSample {
+    let y = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
+    let err = gamma(6) * ((b[0] * v[0]).abs() + (b[1] * v[1]).abs() + (b[2] * v[2]).abs());
+    LightSample {
+        p: y,
+        p_error: err,
+        n,
+        wi,
+        pdf,
+        le,
+        infinite: false,
+        b: Vec2::new(b[1], b[2]),
+    }
+}
+
 /// Builds a light sample for a point `y` (normal `ny`) chosen with area density `pdf_area`.
 #[inline]
 pub(crate) fn area_sample(

@@ -24,8 +24,7 @@
 
 use super::projected::{self, Projection};
 use super::triangle::spherical_ok;
-use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
-use crate::geometry::ray::gamma;
+use super::{LightSample, LightSampling, area_sample, area_to_solid_angle, triangle_sample};
 use crate::sampling::{
     DiscreteDistribution, barycentrics_along, invert_spherical_triangle,
     sample_spherical_triangle_from_dirs, sample_uniform_triangle, spherical_triangle_area,
@@ -222,19 +221,14 @@ impl PolygonLight {
         if let Some(picked) = picked {
             let (i, s, pdf) = picked?;
             let v = &self.triangles[i];
-            let b = s.barycentrics;
-            let y = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
-            let err = gamma(6) * ((b[0] * v[0]).abs() + (b[1] * v[1]).abs() + (b[2] * v[2]).abs());
-            return Some(LightSample {
-                p: y,
-                p_error: err,
-                n: self.n,
-                wi: s.dir,
+            return Some(triangle_sample(
+                v,
+                s.barycentrics,
+                self.n,
+                self.le,
+                s.dir,
                 pdf,
-                le: self.le,
-                infinite: false,
-                b: Vec2::new(b[1], b[2]),
-            });
+            ));
         }
         self.sample_by_area(p, u)
     }
@@ -243,19 +237,7 @@ impl PolygonLight {
     /// solid-angle density `pdf`: the point where it meets that triangle.
     fn sample_along(&self, i: usize, p: Vec3, wi: Vec3, pdf: f32) -> LightSample {
         let v = &self.triangles[i];
-        let b = barycentrics_along(v, p, wi);
-        let y = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
-        let err = gamma(6) * ((b[0] * v[0]).abs() + (b[1] * v[1]).abs() + (b[2] * v[2]).abs());
-        LightSample {
-            p: y,
-            p_error: err,
-            n: self.n,
-            wi,
-            pdf,
-            le: self.le,
-            infinite: false,
-            b: Vec2::new(b[1], b[2]),
-        }
+        triangle_sample(v, barycentrics_along(v, p, wi), self.n, self.le, wi, pdf)
     }
 
     /// Area sampling: a triangle by area, then uniform in it.
@@ -326,19 +308,14 @@ impl PolygonLight {
             return self.sample_in_triangle(p, i, Vec2::new(ux, u.y), q / self.triangle_areas[i]);
         }
         let s = crate::sampling::sample_spherical_triangle(v, p, Vec2::new(ux, u.y))?;
-        let b = s.barycentrics;
-        let y = b[0] * v[0] + b[1] * v[1] + b[2] * v[2];
-        let err = gamma(6) * ((b[0] * v[0]).abs() + (b[1] * v[1]).abs() + (b[2] * v[2]).abs());
-        Some(LightSample {
-            p: y,
-            p_error: err,
-            n: self.n,
-            wi: s.dir,
-            pdf: q / omega,
-            le: self.le,
-            infinite: false,
-            b: Vec2::new(b[1], b[2]),
-        })
+        Some(triangle_sample(
+            v,
+            s.barycentrics,
+            self.n,
+            self.le,
+            s.dir,
+            q / omega,
+        ))
     }
 
     /// [`LightSampling::Adaptive`]'s pdf of hitting `y` (normal `ny`) from `p`.

@@ -6,8 +6,7 @@
 //! WGSL twin: `triangle_light.wgsl`.
 
 use super::projected::{self, Projection};
-use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
-use crate::geometry::ray::gamma;
+use super::{LightSample, LightSampling, area_sample, area_to_solid_angle, triangle_sample};
 use crate::sampling::{
     MAX_SPHERICAL_SAMPLE_AREA, MIN_SPHERICAL_SAMPLE_AREA, barycentrics_along,
     invert_spherical_triangle, sample_spherical_triangle, sample_uniform_triangle,
@@ -83,20 +82,15 @@ impl TriangleLight {
         if self.spherical(p, method) && spherical_ok(triangle_solid_angle(&self.v, p)) {
             let (u, warp_pdf) = method.warp(p, ns, spherical_triangle_corners(&self.v), u);
             let s = sample_spherical_triangle(&self.v, p, u)?;
-            let b = s.barycentrics;
-            let y = b[0] * self.v[0] + b[1] * self.v[1] + b[2] * self.v[2];
-            let err = gamma(6)
-                * ((b[0] * self.v[0]).abs() + (b[1] * self.v[1]).abs() + (b[2] * self.v[2]).abs());
-            return Some(LightSample {
-                p: y,
-                p_error: err,
-                n: self.n,
-                wi: s.dir,
-                pdf: s.pdf * warp_pdf,
-                le: self.le,
-                infinite: false,
-                b: Vec2::new(b[1], b[2]),
-            });
+            let pdf = s.pdf * warp_pdf;
+            return Some(triangle_sample(
+                &self.v,
+                s.barycentrics,
+                self.n,
+                self.le,
+                s.dir,
+                pdf,
+            ));
         }
         let b = sample_uniform_triangle(u);
         let y = b[0] * self.v[0] + b[1] * self.v[1] + b[2] * self.v[2];
@@ -111,19 +105,7 @@ impl TriangleLight {
     /// solid-angle density `pdf`: the point where it meets the triangle.
     fn sample_along(&self, p: Vec3, wi: Vec3, pdf: f32) -> LightSample {
         let b = barycentrics_along(&self.v, p, wi);
-        let y = b[0] * self.v[0] + b[1] * self.v[1] + b[2] * self.v[2];
-        let err = gamma(6)
-            * ((b[0] * self.v[0]).abs() + (b[1] * self.v[1]).abs() + (b[2] * self.v[2]).abs());
-        LightSample {
-            p: y,
-            p_error: err,
-            n: self.n,
-            wi,
-            pdf,
-            le: self.le,
-            infinite: false,
-            b: Vec2::new(b[1], b[2]),
-        }
+        triangle_sample(&self.v, b, self.n, self.le, wi, pdf)
     }
 
     /// Solid-angle pdf of hitting `y` (normal `ny`) from `p` (shading normal `ns`) along `wi`.

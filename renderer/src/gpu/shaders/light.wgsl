@@ -75,6 +75,14 @@ fn area_to_solid_angle(pdf_area: f32, p: vec3f, y: vec3f, ny: vec3f) -> f32 {
     return 0.0;
 }
 
+// `triangle_sample`: the sample at barycentrics b of triangle (v0, v1, v2), normal n, reached along
+// wi with solid-angle density pdf.
+fn triangle_sample(v0: vec3f, v1: vec3f, v2: vec3f, b: vec3f, n: vec3f, le: vec3f, wi: vec3f, pdf: f32) -> LightSample {
+    let y = b.x * v0 + b.y * v1 + b.z * v2;
+    let err = gamma(6.0) * (abs(b.x * v0) + abs(b.y * v1) + abs(b.z * v2));
+    return LightSample(y, err, n, wi, pdf, le, false, true, b.yz);
+}
+
 // `area_sample`: a sample for point y (normal ny) chosen with area density pdf_area.
 fn area_sample(p: vec3f, y: vec3f, ny: vec3f, pdf_area: f32, le: vec3f) -> LightSample {
     let d = y - p;

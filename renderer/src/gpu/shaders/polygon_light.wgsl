@@ -90,9 +90,7 @@ fn polygon_light_sample_projected(l: Light, p: vec3f, ns: vec3f, f: Frame, u: ve
     let v1 = vertex_data[3u * t + 1u].xyz;
     let v2 = vertex_data[3u * t + 2u].xyz;
     let b = barycentrics_along(v0, v1, v2, p, wi);
-    let y = b.x * v0 + b.y * v1 + b.z * v2;
-    let err = gamma(6.0) * (abs(b.x * v0) + abs(b.y * v1) + abs(b.z * v2));
-    return LightSample(y, err, l.d.xyz, wi, psa_light_pdf(ns, wi, total), l.le.xyz, false, true, b.yz);
+    return triangle_sample(v0, v1, v2, b, l.d.xyz, l.le.xyz, wi, psa_light_pdf(ns, wi, total));
 }
 
 // `PolygonLight::triangle_holding`: the triangle (index from `first`) whose smallest
@@ -187,9 +185,7 @@ fn polygon_light_sample_adaptive(l: Light, p: vec3f, u: vec2f, total: f32) -> Li
         return no_light_sample();
     }
     let b = s.barycentrics;
-    let y = b.x * v0 + b.y * v1 + b.z * v2;
-    let err = gamma(6.0) * (abs(b.x * v0) + abs(b.y * v1) + abs(b.z * v2));
-    return LightSample(y, err, l.d.xyz, s.dir, q / omega, l.le.xyz, false, true, b.yz);
+    return triangle_sample(v0, v1, v2, b, l.d.xyz, l.le.xyz, s.dir, q / omega);
 }
 
 // `PolygonLight::pdf_adaptive` where `polygon_adaptive_total` gave total > 0.
@@ -264,9 +260,7 @@ fn polygon_light_sample(l: Light, p: vec3f, ns: vec3f, u: vec2f, method: u32) ->
                 return no_light_sample();
             }
             let b = s.barycentrics;
-            let y = b.x * v0 + b.y * v1 + b.z * v2;
-            let err = gamma(6.0) * (abs(b.x * v0) + abs(b.y * v1) + abs(b.z * v2));
-            return LightSample(y, err, l.d.xyz, s.dir, warp_pdf / total, l.le.xyz, false, true, b.yz);
+            return triangle_sample(v0, v1, v2, b, l.d.xyz, l.le.xyz, s.dir, warp_pdf / total);
         }
     }
     // By area: the triangle whose CDF interval holds u.x, u.x remapped within it.

@@ -26,9 +26,7 @@ fn triangle_light_sample(l: Light, p: vec3f, ns: vec3f, u_in: vec2f, method: u32
         if psa_conditioned(poly.area, poly.abs_sum) {
             let wi = normalize_glam(to_world(f, psa_sample(poly, u_in)));
             let b = barycentrics_along(v0, v1, v2, p, wi);
-            let y = b.x * v0 + b.y * v1 + b.z * v2;
-            let err = gamma(6.0) * (abs(b.x * v0) + abs(b.y * v1) + abs(b.z * v2));
-            return LightSample(y, err, l.d.xyz, wi, psa_light_pdf(ns, wi, poly.area), l.le.xyz, false, true, b.yz);
+            return triangle_sample(v0, v1, v2, b, l.d.xyz, l.le.xyz, wi, psa_light_pdf(ns, wi, poly.area));
         }
     }
     var u = u_in;
@@ -45,9 +43,7 @@ fn triangle_light_sample(l: Light, p: vec3f, ns: vec3f, u_in: vec2f, method: u32
             return no_light_sample();
         }
         let b = s.barycentrics;
-        let y = b.x * v0 + b.y * v1 + b.z * v2;
-        let err = gamma(6.0) * (abs(b.x * v0) + abs(b.y * v1) + abs(b.z * v2));
-        return LightSample(y, err, l.d.xyz, s.dir, s.pdf * warp_pdf, l.le.xyz, false, true, b.yz);
+        return triangle_sample(v0, v1, v2, b, l.d.xyz, l.le.xyz, s.dir, s.pdf * warp_pdf);
     }
     let b = sample_uniform_triangle(u);
     let y = b.x * v0 + b.y * v1 + b.z * v2;
