@@ -8,6 +8,7 @@
 
 mod gpu_common;
 
+use gpu_common::parity::any_scene_gpu;
 use gpu_common::*;
 use lumis::camera::PixelFilter;
 use lumis::camera::filter::{TOLERANCE, erfc};
@@ -17,17 +18,6 @@ use lumis::gpu::scene::FilterTag;
 use lumis::integrator::Settings;
 use lumis::rng::Rng;
 use lumis::sampling::ONE_MINUS_EPSILON;
-
-/// Any scene: the snippets read only their inputs.
-const SCENE: &str = r#"{
-  "camera": {"from": [0, 0, -3], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 40, "width": 4, "height": 4},
-  "materials": {"d": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
-  "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "d"}]
-}"#;
-
-fn gpu() -> Option<GpuScene> {
-    Some(GpuScene::new(context()?, build(SCENE)).expect("upload"))
-}
 
 fn run(gpu: &GpuScene, body: &str, inputs: &[[f32; 4]], in_stride: usize) -> Vec<[f32; 4]> {
     run_snippet(gpu, &Settings::default(), body, inputs, in_stride, 1)
@@ -143,7 +133,7 @@ fn position_tolerance(f: PixelFilter, offset: f32, lo: f32, hi: f32, p: f32) -> 
 /// off the film).
 #[test]
 fn film_positions_match_the_cpu_at_every_edge_and_corner() {
-    let Some(gpu) = gpu() else {
+    let Some(gpu) = any_scene_gpu() else {
         return;
     };
     let mut r = Rng::new(18, 0, 0);
@@ -207,7 +197,7 @@ fn film_positions_match_the_cpu_at_every_edge_and_corner() {
 /// values failed (worst 1.6e-3 for σ = r = 16).
 #[test]
 fn cdf_and_erfc_match_the_cpu() {
-    let Some(gpu) = gpu() else {
+    let Some(gpu) = any_scene_gpu() else {
         return;
     };
     let mut r = Rng::new(18, 1, 0);
@@ -259,7 +249,7 @@ fn cdf_and_erfc_match_the_cpu() {
 /// the box's position: failed (a finite position, no flag).
 #[test]
 fn an_unknown_filter_tag_fails_loudly() {
-    let Some(gpu) = gpu() else {
+    let Some(gpu) = any_scene_gpu() else {
         return;
     };
     let unknown = FilterTag::ALL.len() as u32;

@@ -6,26 +6,12 @@
 mod gpu_common;
 
 use glam::Vec3;
+use gpu_common::parity::{N, any_scene_gpu};
 use gpu_common::*;
-use lumis::gpu::GpuScene;
 use lumis::gpu::kernel::run_snippet;
 use lumis::integrator::Settings;
 use lumis::integrator::optimal::{Moments, balance_ratios, is_stage_start};
 use lumis::rng::Rng;
-
-/// Random systems compared.
-const N: usize = 8192;
-
-/// Any scene: the snippets read only their inputs.
-const SCENE: &str = r#"{
-  "camera": {"from": [0, 0, -3], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 40, "width": 4, "height": 4},
-  "materials": {"d": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
-  "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "d"}]
-}"#;
-
-fn gpu() -> Option<GpuScene> {
-    Some(GpuScene::new(context()?, build(SCENE)).expect("upload"))
-}
 
 /// `optimal.wgsl` against `integrator::optimal`: the balance ratios (1e-6 relative, as the MIS
 /// weights they are), the stage schedule (exact) and the 2×2 solve for α. The moments are sums of
@@ -36,7 +22,7 @@ fn gpu() -> Option<GpuScene> {
 /// systems.
 #[test]
 fn optimal_mis_matches() {
-    let Some(gpu) = gpu() else {
+    let Some(gpu) = any_scene_gpu() else {
         return;
     };
     let mut r = Rng::new(13, 0, 0);

@@ -30,8 +30,7 @@
 
 mod gpu_common;
 
-use gpu_common::*;
-use lumis::gpu::GpuScene;
+use gpu_common::parity::any_scene_gpu;
 use lumis::gpu::kernel::run_snippet;
 use lumis::gpu::scene::SamplerTag;
 use lumis::integrator::Settings;
@@ -40,17 +39,6 @@ use lumis::sampler::owen::{hash3, hash32, mix64, owen_scramble};
 use lumis::sampler::sobol::sobol_1;
 use lumis::sampler::zsobol::permute_index;
 use lumis::sampler::{Sampler, SamplerKind, morton::morton_encode};
-
-/// Any scene: the snippets read only their inputs.
-const SCENE: &str = r#"{
-  "camera": {"from": [0, 0, -3], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 40, "width": 4, "height": 4},
-  "materials": {"d": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
-  "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "d"}]
-}"#;
-
-fn gpu() -> Option<GpuScene> {
-    Some(GpuScene::new(context()?, build(SCENE)).expect("upload"))
-}
 
 fn bits(v: u32) -> f32 {
     f32::from_bits(v)
@@ -207,7 +195,7 @@ fn tag(kind: SamplerKind) -> u32 {
 /// samplers, bit for bit, on the inputs of the module doc.
 #[test]
 fn every_dimension_matches_the_cpu_bit_for_bit() {
-    let Some(gpu) = gpu() else {
+    let Some(gpu) = any_scene_gpu() else {
         return;
     };
     let items = items();
@@ -271,7 +259,7 @@ fn every_dimension_matches_the_cpu_bit_for_bit() {
 /// wrong where the draws above say only which dimension.
 #[test]
 fn building_blocks_match_bit_for_bit() {
-    let Some(gpu) = gpu() else {
+    let Some(gpu) = any_scene_gpu() else {
         return;
     };
     let mut r = Rng::new(19, 1, 0);
@@ -351,7 +339,7 @@ fn building_blocks_match_bit_for_bit() {
 /// kernel then counts it non-finite) and every draw is NaN, instead of silently drawing zeros.
 #[test]
 fn an_unknown_sampler_tag_is_flagged() {
-    let Some(gpu) = gpu() else {
+    let Some(gpu) = any_scene_gpu() else {
         return;
     };
     let bad = SamplerTag::ALL.len() as u32;

@@ -89,3 +89,15 @@ pub const N: usize = 8192;
 /// How closely the GPU's and the CPU's sampled light directions agree where the geometry is
 /// well conditioned, in radians (measured on an NVIDIA H100: ~4e-6).
 pub const DIRECTION_AGREEMENT: f32 = 1e-5;
+
+/// A small scene for snippets that read only their inputs.
+pub const ANY_SCENE: &str = r#"{
+  "camera": {"from": [0, 0, -3], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 40, "width": 4, "height": 4},
+  "materials": {"d": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
+  "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "d"}]
+}"#;
+
+/// [`ANY_SCENE`] uploaded to the shared device; `None` where GPU tests are skipped.
+pub fn any_scene_gpu() -> Option<GpuScene> {
+    Some(GpuScene::new(context()?, build(ANY_SCENE)).expect("upload"))
+}
