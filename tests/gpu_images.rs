@@ -281,18 +281,21 @@ fn local_bias_is_detected() {
 ///   glass room (transmitting receivers fall back to solid angle);
 /// - light selection by the light BVH (issue 19 item 3) with light-only, the mixture and MIS on
 ///   the scenes with more than one light.
+/// The shared scenes the same-seed tests render.
+const SAME_SEED_SCENES: [&str; 6] = [
+    "analytic_polygon",
+    "analytic_disk",
+    "seed_cornell",
+    "veach_mis",
+    "glass_room",
+    "envmap_objects",
+];
+
 #[test]
 fn same_seed_gives_the_cpu_image() {
     let light_strategies = [STRATEGIES[0], STRATEGIES[2], MIS];
     let mut cases = Vec::new();
-    for name in [
-        "analytic_polygon",
-        "analytic_disk",
-        "seed_cornell",
-        "veach_mis",
-        "glass_room",
-        "envmap_objects",
-    ] {
+    for name in SAME_SEED_SCENES {
         for strategy in STRATEGIES {
             for ls in [LightSampling::SolidAngle, LightSampling::Area] {
                 if !(strategy == Strategy::Bsdf && ls == LightSampling::Area) {
@@ -368,14 +371,7 @@ fn same_seed_gives_the_cpu_image() {
 #[test]
 fn mis_optimal_same_seed_gives_the_cpu_image() {
     let mut cases = Vec::new();
-    for name in [
-        "analytic_polygon",
-        "analytic_disk",
-        "seed_cornell",
-        "veach_mis",
-        "glass_room",
-        "envmap_objects",
-    ] {
+    for name in SAME_SEED_SCENES {
         cases.push((name, LightSampling::SolidAngle));
     }
     cases.push(("analytic_polygon", LightSampling::Area));
