@@ -266,6 +266,16 @@ fn local_bias_is_detected() {
     }
 }
 
+/// The shared scenes the same-seed tests render.
+const SAME_SEED_SCENES: [&str; 6] = [
+    "analytic_polygon",
+    "analytic_disk",
+    "seed_cornell",
+    "veach_mis",
+    "glass_room",
+    "envmap_objects",
+];
+
 /// Same seed, same samples, on every shared scene with every strategy and light-sampling method
 /// and both light selections (`same_seed_check`: at most 0.1% of the pixels diverged, relMSE
 /// below [`SAME_SEED_MAX_RELMSE`]). The cases:
@@ -281,16 +291,6 @@ fn local_bias_is_detected() {
 ///   glass room (transmitting receivers fall back to solid angle);
 /// - light selection by the light BVH (issue 19 item 3) with light-only, the mixture and MIS on
 ///   the scenes with more than one light.
-/// The shared scenes the same-seed tests render.
-const SAME_SEED_SCENES: [&str; 6] = [
-    "analytic_polygon",
-    "analytic_disk",
-    "seed_cornell",
-    "veach_mis",
-    "glass_room",
-    "envmap_objects",
-];
-
 #[test]
 fn same_seed_gives_the_cpu_image() {
     let light_strategies = [STRATEGIES[0], STRATEGIES[2], MIS];
