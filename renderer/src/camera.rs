@@ -1,5 +1,7 @@
 //! The pinhole camera of the scene format (Mitsuba `look_at` convention: image left→right along
 //! `cross(forward, up)`, top→bottom along the projection of `-up`).
+//!
+//! WGSL twin: `camera.wgsl` (the primary ray).
 
 pub mod filter;
 

@@ -11,6 +11,8 @@
 //! added in order, α for sample `s` comes from the same earlier samples however the render is
 //! split into passes or threads.
 //!
+//! WGSL twin: `gpu/film.wgsl` (the render kernel and the accumulation).
+//!
 //! [`backend`] puts this engine and the GPU's ([`crate::gpu::GpuProgressive`]) behind one
 //! interface, [`AnyProgressive`].
 

@@ -1,5 +1,5 @@
 //! Showing a GPU lane without a round trip through the CPU: a compute shader
-//! (`shaders/display.wgsl`, the twin of [`super::tonemap::srgb8`]) reads the running mean straight
+//! (`gpu_display.wgsl`, the twin of [`super::tonemap::srgb8`]) reads the running mean straight
 //! from the render's accumulation buffer and writes a texture on the window's own wgpu device,
 //! which egui then draws. The render thread renders on that same device (see
 //! [`lumis::gpu::GpuContext::from_device`]), so a frame costs one small dispatch, not a readback.
@@ -31,7 +31,7 @@ pub struct DisplayKernel {
     layout: wgpu::BindGroupLayout,
 }
 
-/// The uniform block of `display.wgsl`.
+/// The uniform block of `gpu_display.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct DisplayParams {
@@ -49,7 +49,7 @@ impl DisplayKernel {
     pub fn new(device: &wgpu::Device) -> DisplayKernel {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("lumis display"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("shaders/display.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(include_str!("gpu_display.wgsl").into()),
         });
         let storage = |binding, ty| wgpu::BindGroupLayoutEntry {
             binding,

@@ -14,10 +14,10 @@
 //! renormalised. Per axis the film is an interval, so that is the 1-D filter on
 //! `[max(−r, −c), min(r, n − c)]` about the pixel centre `c`: [`PixelFilter::film_position`]
 //! samples exactly that truncated density, by inverting its CDF (Newton steps kept inside a
-//! bisection bracket, a fixed iteration cap, the same code in `shaders/filter.wgsl`, whose
+//! bisection bracket, a fixed iteration cap, the same code in `camera/filter.wgsl`, whose
 //! cap and tolerance are these constants through the generated WGSL prelude).
 //!
-//! WGSL twin: `filter.wgsl`.
+//! WGSL twin: `camera/filter.wgsl`.
 
 use glam::Vec2;
 
@@ -49,7 +49,7 @@ pub const MAX_STEPS: u32 = 40;
 pub const TOLERANCE: f32 = 1e-6;
 
 /// `erfc(x)` to a fractional error below 1.2e-7 (Numerical Recipes' Chebyshev fit `erfcc`), the
-/// same formula as `filter.wgsl`'s, so that CPU and GPU invert the same CDF.
+/// same formula as `camera/filter.wgsl`'s, so that CPU and GPU invert the same CDF.
 pub fn erfc(x: f32) -> f32 {
     let z = x.abs();
     let t = 1.0 / (1.0 + 0.5 * z);

@@ -5,7 +5,7 @@
 //! ([`super::wide_bvh`]), which costs 224 instead of 80 bytes a node and saves decoding the
 //! quantized boxes at every visit. How the tree is built, in parts for large scenes so that the
 //! builder's temporaries stay small: [`super::bvh_build`].
-//! WGSL twin: `bvh.wgsl`.
+//! WGSL twin: `geometry/bvh.wgsl`.
 
 use super::primitive::{Primitive, ShapeHit};
 use super::ray::{Ray, SurfaceHit};

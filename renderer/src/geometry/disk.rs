@@ -1,5 +1,5 @@
 //! Disks: a circle of radius `r` around `center` in the plane with unit normal `n`.
-//! WGSL twin: `disk.wgsl`.
+//! WGSL twin: `geometry/disk.wgsl`.
 
 use super::ray::{Ray, crosses_plane_ahead, gamma};
 use glam::Vec3;

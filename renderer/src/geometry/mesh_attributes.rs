@@ -12,7 +12,7 @@
 //!   the winding, is what the format defines as the outside). Where the interpolation vanishes
 //!   or is not finite, the geometric normal is used.
 //!
-//! WGSL twin: `mesh_attributes.wgsl`.
+//! WGSL twin: `geometry/mesh_attributes.wgsl`.
 
 use super::primitive::NONE;
 use glam::{Vec2, Vec3};

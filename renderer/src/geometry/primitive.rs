@@ -1,5 +1,5 @@
 //! A primitive: one hittable shape with its material and, if it emits, its light.
-//! WGSL twin: `shape.wgsl`.
+//! WGSL twin: `geometry/primitive.wgsl`.
 
 use super::disk::Disk;
 use super::ray::{Ray, SurfaceHit};

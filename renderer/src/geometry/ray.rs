@@ -3,7 +3,7 @@
 //! Every intersection routine returns a conservative bound on the floating-point error of the hit
 //! point (pbrt-v4's `pError`). New rays start just outside that error box, so self-intersection is
 //! avoided at every scene scale without a fixed epsilon.
-//! WGSL twin: `ray.wgsl`.
+//! WGSL twin: `geometry/ray.wgsl`.
 
 use glam::{DVec3, Vec3};
 

@@ -1,6 +1,6 @@
 //! Spheres, with the numerically careful ray intersection of Haines et al., "Precision Improvements
 //! for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7).
-//! WGSL twin: `sphere.wgsl`.
+//! WGSL twin: `geometry/sphere.wgsl`.
 
 use super::ray::{Ray, gamma};
 use glam::Vec3;

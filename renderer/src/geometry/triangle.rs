@@ -1,6 +1,6 @@
 //! Triangles: watertight ray intersection (Woop, Benthin & Wald 2013, as in pbrt-v4), area and
 //! bounds.
-//! WGSL twin: `triangle.wgsl`.
+//! WGSL twin: `geometry/triangle.wgsl`.
 
 use super::ray::{Ray, crosses_plane_ahead, gamma};
 use crate::math::difference_of_products;

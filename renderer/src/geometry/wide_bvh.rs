@@ -6,14 +6,14 @@
 //! that for the GPU, which traverses the compressed nodes); only the node format differs. Children
 //! are visited nearest first, and a closest-hit traversal drops entries that start beyond the
 //! closest hit found so far.
-//! WGSL twin: `bvh.wgsl`.
+//! WGSL twin: `geometry/bvh.wgsl`.
 
 use super::ray::{Ray, gamma};
 use glam::Vec4;
 use obvhs::cwbvh::CwBvh;
 use std::ops::Range;
 
-/// Reciprocal directions are clamped here, as in the GPU's node test (`gpu/shaders/bvh.wgsl`): a
+/// Reciprocal directions are clamped here, as in the GPU's node test (`geometry/bvh.wgsl`): a
 /// clamped slab still spans any scene, and no product overflows to a NaN. Like that test, this one
 /// keeps the ray's true interval `(0, t_max)`: obvhs's own culls boxes that end before a fixed
 /// `1e-4`, which let paths escape closed rooms through their corners.

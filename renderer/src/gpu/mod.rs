@@ -11,7 +11,7 @@
 //!   (the parity tests).
 //!
 //! The CPU is the reference: the GPU draws the same random numbers (the same PCG streams or the
-//! same Owen-scrambled Sobol points, `sampler.wgsl`), evaluates the same
+//! same Owen-scrambled Sobol points, `sampler/mod.wgsl`), evaluates the same
 //! materials, lights, strategies and Russian roulette, and its film reads back into a
 //! [`crate::engine::Film`] so the CPU's metrics and statistical tests apply unchanged.
 

@@ -6,9 +6,9 @@
 //! Kind tags (materials, lights, shapes, strategies, …) are `#[repr(u32)]` enums declared with
 //! `gpu_tags!` next to the record encoder that writes them (`gpu/scene/`): the encoder stores
 //! `tag as u32`, the prelude lists [`Tag::ALL`](super::scene::MaterialTag::ALL) under the names
-//! the WGSL `switch`es use. What a `switch` does with a tag no case knows is in `tags.wgsl`: it
+//! the WGSL `switch`es use. What a `switch` does with a tag no case knows is in `gpu/prelude.wgsl`: it
 //! flags the sample, which the film counts as non-finite.
-//! WGSL twin: `tags.wgsl`.
+//! WGSL twin: `gpu/prelude.wgsl`.
 
 use super::scene::{
     BVH2_STACK_SIZE, CWBVH_STACK_SIZE, ChannelTag, FilterTag, FresnelTag, HeuristicTag,
@@ -308,7 +308,7 @@ pub fn mutant_constants(m: &crate::mutants::Mutant) -> Vec<Constant> {
         u32c("MUTANT_LIGHT_PDF_TAG", light),
         u32c("MUTANT_BSDF_PDF_TAG", bsdf),
         f32c("MUTANT_PLASTIC_EVAL", plastic),
-        // Booleans as 0 or 1: the sampler's dimension-allocation bugs (`sampler.wgsl`).
+        // Booleans as 0 or 1: the sampler's dimension-allocation bugs (`sampler/mod.wgsl`).
         u32c(
             "MUTANT_SAMPLER_LIGHT_CAMERA",
             u32::from(*m == Mutant::SamplerLightCamera),
@@ -317,7 +317,7 @@ pub fn mutant_constants(m: &crate::mutants::Mutant) -> Vec<Constant> {
             "MUTANT_SAMPLER_SHARED_BOUNCES",
             u32::from(*m == Mutant::SamplerSharedBounces),
         ),
-        // mis-optimal's pure samples without their control-variate term (`optimal.wgsl`).
+        // mis-optimal's pure samples without their control-variate term (`integrator/optimal.wgsl`).
         u32c(
             "MUTANT_OPTIMAL_PURE_ZERO",
             u32::from(*m == Mutant::OptimalPureZero),

@@ -10,7 +10,7 @@
 //! would cancel).
 //!
 //! [`Strategy::MisOptimal`] adds five planes per pixel after those three (its moments and the
-//! α of its current stage, `path.wgsl`), and three scratch planes per sample of a multi-sample
+//! α of its current stage, `gpu/film.wgsl`), and three scratch planes per sample of a multi-sample
 //! dispatch for the moments `fold` adds in order; dispatches are split where a stage starts
 //! ([`crate::integrator::optimal::is_stage_start`]), so that α is solved once per stage from the
 //! moments of the samples before it, as on the CPU.
@@ -27,7 +27,7 @@ use std::sync::Arc;
 /// Dispatches recorded per submission (the uniform buffer holds this many parameter slots).
 const DISPATCHES_PER_SUBMIT: u32 = 64;
 
-/// The workgroup of the render kernel (`@workgroup_size(8, 8, 1)` in `path.wgsl`).
+/// The workgroup of the render kernel (`@workgroup_size(8, 8, 1)` in `gpu/film.wgsl`).
 const TILE: u32 = 8;
 
 /// Threads a dispatch should have to fill a large GPU (an H100 holds 132 × 2048): images with
@@ -42,9 +42,9 @@ const MAX_SAMPLES_PER_DISPATCH: u32 = 8;
 /// (adds a multi-sample dispatch's samples to the accumulation).
 #[derive(Clone, Debug)]
 pub struct PathPipelines {
-    /// `path.wgsl`'s `render`.
+    /// `gpu/film.wgsl`'s `render`.
     pub render: wgpu::ComputePipeline,
-    /// `path.wgsl`'s `fold`.
+    /// `gpu/film.wgsl`'s `fold`.
     pub fold: wgpu::ComputePipeline,
 }
 
@@ -365,7 +365,7 @@ impl GpuProgressive {
     }
 }
 
-/// Planes of [`Strategy::MisOptimal`]'s state (`OPT_PLANES` in `path.wgsl`).
+/// Planes of [`Strategy::MisOptimal`]'s state (`OPT_PLANES` in `gpu/film.wgsl`).
 const OPTIMAL_PLANES: u64 = 5;
 
 /// Bytes of the accumulation buffer: three planes of `vec4<f32>` per pixel, mis-optimal's

@@ -1,7 +1,7 @@
 //! WGSL sources and their specialisation.
 //!
 //! The maths lives once per side: one WGSL module per concept in `shaders/`, each the twin of the
-//! Rust module it names (`ggx.wgsl` ↔ `materials/ggx.rs`, `sphere_light.wgsl` ↔
+//! Rust module it names (`materials/ggx.wgsl` ↔ `materials/ggx.rs`, `lights/sphere.wgsl` ↔
 //! `lights/sphere.rs`, …), kept in step by `tests/gpu_parity.rs`; each names its Rust twin in its
 //! header and the twin names it back (checked below). WGSL has no includes, so a program is the
 //! concatenation of the modules it needs, after the generated prelude of shared constants and kind
@@ -20,7 +20,7 @@ use crate::lights::Light;
 use crate::materials::{ConductorFresnel, Material};
 use crate::scene::Scene;
 
-/// One WGSL module: its file name and text.
+/// One WGSL module: its path under `src/` (beside its Rust twin) and text.
 struct Module {
     name: &'static str,
     text: &'static str,
@@ -30,65 +30,73 @@ macro_rules! module {
     ($name:literal) => {
         Module {
             name: $name,
-            text: include_str!(concat!("shaders/", $name)),
+            text: include_str!(concat!("../", $name)),
         }
     };
 }
 
 /// Every module, in concatenation order (WGSL allows any order; this one reads top-down).
 const MODULES: &[Module] = &[
-    module!("tags.wgsl"),
+    module!("gpu/prelude.wgsl"),
     module!("math.wgsl"),
     module!("rng.wgsl"),
-    module!("u64.wgsl"),
-    module!("morton.wgsl"),
-    module!("sobol.wgsl"),
-    module!("owen.wgsl"),
-    module!("zsobol.wgsl"),
-    module!("sampler.wgsl"),
-    module!("filter.wgsl"),
-    module!("warps.wgsl"),
-    module!("spherical_triangle.wgsl"),
-    module!("spherical_rectangle.wgsl"),
-    module!("elliptic.wgsl"),
-    module!("spherical_ellipse.wgsl"),
-    module!("bilinear.wgsl"),
-    module!("projected_solid_angle.wgsl"),
-    module!("fresnel.wgsl"),
-    module!("ggx.wgsl"),
-    module!("mis.wgsl"),
-    module!("optimal.wgsl"),
-    module!("material.wgsl"),
-    module!("diffuse.wgsl"),
-    module!("conductor.wgsl"),
-    module!("plastic.wgsl"),
-    module!("dielectric.wgsl"),
-    module!("light.wgsl"),
-    module!("light_sampler.wgsl"),
-    module!("light_bvh.wgsl"),
-    module!("projected_light.wgsl"),
-    module!("triangle_light.wgsl"),
-    module!("polygon_light.wgsl"),
-    module!("quad_light.wgsl"),
-    module!("disk_light.wgsl"),
-    module!("sphere_light.wgsl"),
-    module!("background_light.wgsl"),
-    module!("envmap_light.wgsl"),
-    module!("ray.wgsl"),
-    module!("triangle.wgsl"),
-    module!("disk.wgsl"),
-    module!("sphere.wgsl"),
-    module!("shape.wgsl"),
-    module!("mesh_attributes.wgsl"),
-    module!("texture.wgsl"),
-    module!("mix.wgsl"),
-    module!("bvh.wgsl"),
-    module!("bvh2.wgsl"),
-    module!("bindings.wgsl"),
+    module!("gpu/u64.wgsl"),
+    module!("sampler/morton.wgsl"),
+    module!("sampler/sobol.wgsl"),
+    module!("sampler/owen.wgsl"),
+    module!("sampler/zsobol.wgsl"),
+    module!("sampler/mod.wgsl"),
+    module!("camera/filter.wgsl"),
+    module!("sampling/disk.wgsl"),
+    module!("sampling/hemisphere.wgsl"),
+    module!("sampling/sphere.wgsl"),
+    module!("sampling/triangle.wgsl"),
+    module!("sampling/spherical_triangle.wgsl"),
+    module!("sampling/spherical_rectangle.wgsl"),
+    module!("sampling/elliptic.wgsl"),
+    module!("sampling/spherical_ellipse.wgsl"),
+    module!("sampling/bilinear.wgsl"),
+    module!("sampling/projected_solid_angle.wgsl"),
+    module!("materials/fresnel.wgsl"),
+    module!("materials/ggx.wgsl"),
+    module!("integrator/mis.wgsl"),
+    module!("integrator/optimal.wgsl"),
+    module!("materials/mod.wgsl"),
+    module!("materials/diffuse.wgsl"),
+    module!("materials/conductor.wgsl"),
+    module!("materials/plastic.wgsl"),
+    module!("materials/dielectric.wgsl"),
+    module!("lights/mod.wgsl"),
+    module!("lights/light_sampler.wgsl"),
+    module!("lights/light_bvh.wgsl"),
+    module!("lights/projected.wgsl"),
+    module!("lights/triangle.wgsl"),
+    module!("lights/polygon.wgsl"),
+    module!("lights/quad.wgsl"),
+    module!("lights/disk.wgsl"),
+    module!("lights/sphere.wgsl"),
+    module!("lights/background.wgsl"),
+    module!("lights/envmap.wgsl"),
+    module!("geometry/ray.wgsl"),
+    module!("geometry/triangle.wgsl"),
+    module!("geometry/disk.wgsl"),
+    module!("geometry/sphere.wgsl"),
+    module!("geometry/primitive.wgsl"),
+    module!("geometry/mesh_attributes.wgsl"),
+    module!("textures/mod.wgsl"),
+    module!("materials/mix.wgsl"),
+    module!("geometry/bvh.wgsl"),
+    module!("gpu/bvh2.wgsl"),
+    module!("gpu/bindings.wgsl"),
 ];
 
-/// The render kernel's module (entry point `render`).
-const PATH_MODULE: Module = module!("path.wgsl");
+/// The path tracer's modules after the library: the integrator, the camera's primary ray and the
+/// render kernel (entry points `render` and `fold`), which the parity kernels do without.
+const PATH_MODULES: &[Module] = &[
+    module!("integrator/path.wgsl"),
+    module!("camera.wgsl"),
+    module!("gpu/film.wgsl"),
+];
 
 /// What a scene uses, deciding which code a pipeline contains.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -97,7 +105,7 @@ pub struct Features {
     pub has_lights: bool,
     /// A background light that rays which miss see: a non-black constant or an environment map.
     pub has_background: bool,
-    /// An environment map (its lookup, sampling and texture binding, `envmap_light.wgsl`).
+    /// An environment map (its lookup, sampling and texture binding, `lights/envmap.wgsl`).
     pub has_envmap: bool,
     /// Emitting triangles (`triangles` meshes).
     pub has_triangle_light: bool,
@@ -111,8 +119,8 @@ pub struct Features {
     pub has_sphere_light: bool,
     /// A BVH (more than [`crate::geometry::Accel::LINEAR_LIMIT`] primitives).
     pub use_bvh: bool,
-    /// With [`Features::use_bvh`]: traverse a BVH2 (`bvh2.wgsl`, built at upload) instead of the
-    /// default CWBVH (`bvh.wgsl`). Kept to measure the two against each other; never set by
+    /// With [`Features::use_bvh`]: traverse a BVH2 (`gpu/bvh2.wgsl`, built at upload) instead of the
+    /// default CWBVH (`geometry/bvh.wgsl`). Kept to measure the two against each other; never set by
     /// [`Features::of`], only by an explicit choice ([`crate::gpu::GpuScene::with_bvh2`]).
     pub bvh2: bool,
     /// A microfacet lobe rough enough not to be a mirror (conductor or plastic coat).
@@ -130,14 +138,14 @@ pub struct Features {
     /// Sphere shapes.
     pub has_sphere_shape: bool,
     /// Triangles with vertex normals: the BSDF frame follows the interpolated shading normal and
-    /// the shading-normal rule applies (`mesh_attributes.wgsl`, `same_side` in `path.wgsl`).
+    /// the shading-normal rule applies (`geometry/mesh_attributes.wgsl`, `same_side` in `integrator/path.wgsl`).
     pub has_shading_normals: bool,
     /// Textured materials or emission: texture lookups at each hit's texture coordinates
-    /// (`texture.wgsl`, `material_at` in `material.wgsl`, `surface_uv` in `shape.wgsl`), at
-    /// points sampled on textured lights (`light_sample_textured` in `light.wgsl`) and the
+    /// (`textures/mod.wgsl`, `material_at` in `materials/mod.wgsl`, `surface_uv` in `geometry/primitive.wgsl`), at
+    /// points sampled on textured lights (`light_sample_textured` in `lights/mod.wgsl`) and the
     /// texel binding.
     pub has_textures: bool,
-    /// Mixes of materials, resolved at each hit (`mix.wgsl`; a textured weight also sets
+    /// Mixes of materials, resolved at each hit (`materials/mix.wgsl`; a textured weight also sets
     /// [`Features::has_textures`]).
     pub has_mixes: bool,
 }
@@ -287,35 +295,39 @@ impl Features {
     fn wants(&self, name: &str) -> bool {
         let lights = self.has_lights;
         match name {
-            "spherical_triangle.wgsl"
-            | "light_sampler.wgsl"
-            | "light_bvh.wgsl"
-            | "bilinear.wgsl" => lights,
-            "projected_solid_angle.wgsl" | "projected_light.wgsl" => {
+            "sampling/spherical_triangle.wgsl"
+            | "lights/light_sampler.wgsl"
+            | "lights/light_bvh.wgsl"
+            | "sampling/bilinear.wgsl" => lights,
+            "sampling/projected_solid_angle.wgsl" | "lights/projected.wgsl" => {
                 lights && (self.has_triangle_light || self.has_quad_light || self.has_polygon_light)
             }
-            "spherical_rectangle.wgsl" | "quad_light.wgsl" => lights && self.has_quad_light,
-            "triangle_light.wgsl" => lights && self.has_triangle_light,
-            "polygon_light.wgsl" => lights && self.has_polygon_light,
-            "disk_light.wgsl" | "elliptic.wgsl" | "spherical_ellipse.wgsl" => {
+            "sampling/spherical_rectangle.wgsl" | "lights/quad.wgsl" => {
+                lights && self.has_quad_light
+            }
+            "lights/triangle.wgsl" => lights && self.has_triangle_light,
+            "lights/polygon.wgsl" => lights && self.has_polygon_light,
+            "lights/disk.wgsl" | "sampling/elliptic.wgsl" | "sampling/spherical_ellipse.wgsl" => {
                 lights && self.has_disk_light
             }
-            "sphere_light.wgsl" => lights && self.has_sphere_light,
-            "background_light.wgsl" => lights && self.has_background,
-            "envmap_light.wgsl" => self.has_envmap,
-            "fresnel.wgsl" => self.has_conductor || self.has_plastic || self.has_dielectric,
-            "ggx.wgsl" => self.has_ggx,
-            "conductor.wgsl" => self.has_conductor,
-            "plastic.wgsl" => self.has_plastic,
-            "dielectric.wgsl" => self.has_dielectric,
+            "lights/sphere.wgsl" => lights && self.has_sphere_light,
+            "lights/background.wgsl" => lights && self.has_background,
+            "lights/envmap.wgsl" => self.has_envmap,
+            "materials/fresnel.wgsl" => {
+                self.has_conductor || self.has_plastic || self.has_dielectric
+            }
+            "materials/ggx.wgsl" => self.has_ggx,
+            "materials/conductor.wgsl" => self.has_conductor,
+            "materials/plastic.wgsl" => self.has_plastic,
+            "materials/dielectric.wgsl" => self.has_dielectric,
             // A disk light's ellipse samples find their point as a disk hit does.
-            "disk.wgsl" => self.has_disk_shape || (lights && self.has_disk_light),
-            "sphere.wgsl" => self.has_sphere_shape,
-            "bvh2.wgsl" => self.use_bvh && self.bvh2,
+            "geometry/disk.wgsl" => self.has_disk_shape || (lights && self.has_disk_light),
+            "geometry/sphere.wgsl" => self.has_sphere_shape,
+            "gpu/bvh2.wgsl" => self.use_bvh && self.bvh2,
             // Texture coordinates of mesh triangles too.
-            "mesh_attributes.wgsl" => self.has_shading_normals || self.has_textures,
-            "texture.wgsl" => self.has_textures,
-            "mix.wgsl" => self.has_mixes,
+            "geometry/mesh_attributes.wgsl" => self.has_shading_normals || self.has_textures,
+            "textures/mod.wgsl" => self.has_textures,
+            "materials/mix.wgsl" => self.has_mixes,
             _ => true,
         }
     }
@@ -370,20 +382,32 @@ pub(crate) fn library_source_with(
     features: &Features,
     kernel: &str,
 ) -> Result<String, GpuError> {
+    let mut src = library(constants, features)?;
+    src += "// ---- kernel ----\n";
+    src += &preprocess("kernel", kernel, features)?;
+    Ok(src)
+}
+
+/// The prelude and every module `features` wants.
+fn library(constants: &[Constant], features: &Features) -> Result<String, GpuError> {
     let mut src = String::from("// ---- prelude ----\n");
     src += &prelude::source(constants);
     for m in MODULES.iter().filter(|m| features.wants(m.name)) {
         src += &format!("// ---- {} ----\n", m.name);
         src += &preprocess(m.name, m.text, features)?;
     }
-    src += "// ---- kernel ----\n";
-    src += &preprocess("kernel", kernel, features)?;
     Ok(src)
 }
 
-/// The path tracer's source for `features` (entry point `render`).
+/// The path tracer's source for `features` (entry points `render` and `fold`): the library and
+/// [`PATH_MODULES`].
 pub fn path_tracer_source(features: &Features) -> Result<String, GpuError> {
-    library_source(features, PATH_MODULE.text)
+    let mut src = library(&prelude::constants(), features)?;
+    for m in PATH_MODULES {
+        src += &format!("// ---- {} ----\n", m.name);
+        src += &preprocess(m.name, m.text, features)?;
+    }
+    Ok(src)
 }
 
 /// Parses and validates `source` with naga, so a broken shader is a [`GpuError::Shader`] with

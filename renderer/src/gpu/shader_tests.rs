@@ -10,11 +10,7 @@ mod tests {
     #[test]
     fn every_prelude_constant_is_used_by_the_shaders() {
         // An unused one is dead, or a module kept a copy under another name.
-        let text: String = MODULES
-            .iter()
-            .chain([&PATH_MODULE])
-            .map(|m| m.text)
-            .collect();
+        let text: String = MODULES.iter().chain(PATH_MODULES).map(|m| m.text).collect();
         let ident = |c: Option<char>| c.is_some_and(|c| c.is_ascii_alphanumeric() || c == '_');
         for c in prelude::constants() {
             let used = text.match_indices(c.name).any(|(i, _)| {
@@ -172,7 +168,7 @@ mod tests {
     /// scene) and without comments.
     fn program_body(f: &Features) -> String {
         let src = path_tracer_source(f).unwrap();
-        let body = src.find("// ---- tags.wgsl").unwrap();
+        let body = src.find("// ---- gpu/prelude.wgsl").unwrap();
         src[body..]
             .lines()
             .map(|l| l.split("//").next().unwrap())
@@ -237,7 +233,7 @@ mod envmap_specialisation {
 
     fn body(f: &Features) -> String {
         let src = path_tracer_source(f).unwrap();
-        let body = src.find("// ---- tags.wgsl").unwrap();
+        let body = src.find("// ---- gpu/prelude.wgsl").unwrap();
         src[body..]
             .lines()
             .map(|l| l.split("//").next().unwrap())
@@ -289,6 +285,7 @@ mod envmap_specialisation {
 
 /// The WGSL twins named in the module docs and headers, for the test that they agree.
 mod twins {
+    use super::*;
     use std::collections::BTreeSet;
     use std::path::{Path, PathBuf};
 
@@ -306,14 +303,10 @@ mod twins {
         Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
     }
 
-    fn shaders() -> PathBuf {
-        src().join("gpu/shaders")
-    }
-
     /// The Rust modules a WGSL file's header (its leading comment lines) names, relative to
     /// `src/`.
     fn wgsl_names(file: &str) -> BTreeSet<String> {
-        let text = std::fs::read_to_string(shaders().join(file)).unwrap();
+        let text = std::fs::read_to_string(src().join(file)).unwrap();
         let header: Vec<&str> = text.lines().take_while(|l| l.starts_with("//")).collect();
         quoted(&header.join("\n"), ".rs")
     }
@@ -335,30 +328,57 @@ mod twins {
         quoted(&twin.join(" "), ".wgsl")
     }
 
-    fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    /// The files under `dir` whose name ends with `ext`.
+    fn files(dir: &Path, ext: &str, out: &mut Vec<PathBuf>) {
         for e in std::fs::read_dir(dir).unwrap() {
             let p = e.unwrap().path();
             if p.is_dir() {
-                rust_files(&p, out);
-            } else if p.extension().is_some_and(|x| x == "rs") {
+                files(&p, ext, out);
+            } else if p.extension().is_some_and(|x| x == ext) {
                 out.push(p);
             }
         }
     }
 
+    fn relative(files: Vec<PathBuf>) -> Vec<String> {
+        let mut rel: Vec<String> = files
+            .iter()
+            .map(|f| f.strip_prefix(src()).unwrap().to_str().unwrap().to_string())
+            .collect();
+        rel.sort();
+        rel
+    }
+
+    /// GPU plumbing with no Rust twin of the same stem: the bindings, the render kernel, the u64
+    /// emulation WGSL lacks and the BVH2 traversal kept for measurements. They live in `gpu/`.
+    const GPU_ONLY: [&str; 4] = [
+        "gpu/bindings.wgsl",
+        "gpu/film.wgsl",
+        "gpu/u64.wgsl",
+        "gpu/bvh2.wgsl",
+    ];
+
     #[test]
     fn every_wgsl_module_and_its_rust_twins_name_each_other() {
         let mut problems = Vec::new();
-        let mut wgsl: Vec<String> = std::fs::read_dir(shaders())
-            .unwrap()
-            .map(|e| e.unwrap().file_name().into_string().unwrap())
-            .filter(|n| n.ends_with(".wgsl"))
-            .collect();
-        wgsl.sort();
+        let mut found = Vec::new();
+        files(&src(), "wgsl", &mut found);
+        let wgsl = relative(found);
+        let modules: BTreeSet<&str> = MODULES.iter().chain(PATH_MODULES).map(|m| m.name).collect();
         for w in &wgsl {
+            if !modules.contains(w.as_str()) {
+                problems.push(format!("{w}: in no program (MODULES or PATH_MODULES)"));
+            }
             let names = wgsl_names(w);
             if names.is_empty() {
                 problems.push(format!("{w}: its header names no Rust module"));
+            }
+            // The twin beside it: same folder, same stem.
+            let stem_twin = w.replace(".wgsl", ".rs");
+            if !GPU_ONLY.contains(&w.as_str()) && !names.contains(&stem_twin) {
+                problems.push(format!(
+                    "{w}: its header does not name `{stem_twin}`, the Rust file of the same stem"
+                ));
             }
             for r in names {
                 match std::fs::read_to_string(src().join(&r)) {
@@ -370,12 +390,17 @@ mod twins {
                 }
             }
         }
-        let mut files = Vec::new();
-        rust_files(&src(), &mut files);
-        files.sort();
-        for f in files {
-            let rel = f.strip_prefix(src()).unwrap().to_str().unwrap().to_string();
-            for w in rust_names(&std::fs::read_to_string(&f).unwrap()) {
+        for m in &modules {
+            if !wgsl.iter().any(|w| w == m) {
+                problems.push(format!(
+                    "{m}: a module of the programs, not a file under src/"
+                ));
+            }
+        }
+        let mut rust = Vec::new();
+        files(&src(), "rs", &mut rust);
+        for rel in relative(rust) {
+            for w in rust_names(&std::fs::read_to_string(src().join(&rel)).unwrap()) {
                 if !wgsl.contains(&w) {
                     problems.push(format!("{rel}: its twin {w} does not exist"));
                 } else if !wgsl_names(&w).contains(&rel) {
@@ -397,7 +422,7 @@ mod shading_normal_specialisation {
 
     fn body(f: &Features) -> String {
         let src = path_tracer_source(f).unwrap();
-        let body = src.find("// ---- tags.wgsl").unwrap();
+        let body = src.find("// ---- gpu/prelude.wgsl").unwrap();
         src[body..]
             .lines()
             .map(|l| l.split("//").next().unwrap())
@@ -487,7 +512,7 @@ mod texture_specialisation {
 
     fn body(f: &Features) -> String {
         let src = path_tracer_source(f).unwrap();
-        let body = src.find("// ---- tags.wgsl").unwrap();
+        let body = src.find("// ---- gpu/prelude.wgsl").unwrap();
         src[body..]
             .lines()
             .map(|l| l.split("//").next().unwrap())
@@ -547,7 +572,7 @@ mod texture_specialisation {
     }
 }
 
-/// `check_param_tags` (`bindings.wgsl`) knows every tag `gpu/scene/params.rs` can write.
+/// `check_param_tags` (`gpu/bindings.wgsl`) knows every tag `gpu/scene/params.rs` can write.
 mod param_tags {
     use crate::gpu::scene::params::{HeuristicTag, LightSamplingTag, StrategyTag};
 
@@ -558,10 +583,10 @@ mod param_tags {
     /// χ² and parity tests (which call the light functions directly) passed.
     #[test]
     fn check_param_tags_accepts_every_tag() {
-        let text = include_str!("shaders/bindings.wgsl");
+        let text = include_str!("bindings.wgsl");
         let start = text
             .find("fn check_param_tags(")
-            .expect("check_param_tags in bindings.wgsl");
+            .expect("check_param_tags in gpu/bindings.wgsl");
         let body = &text[start..];
         let body = &body[..body.find("\n}\n").expect("end of check_param_tags")];
         let names = StrategyTag::ALL

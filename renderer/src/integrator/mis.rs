@@ -1,5 +1,5 @@
 //! Multiple-importance-sampling heuristics (Veach 1997).
-//! WGSL twin: `mis.wgsl`.
+//! WGSL twin: `integrator/mis.wgsl`.
 
 /// Weighting heuristic for two-sample MIS.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

@@ -78,7 +78,7 @@
 //! diagonal (so a pixel whose samples all have the same `r` still gets a finite α, shrunk towards
 //! 0), and returns α = 0 (the balance heuristic) for an empty or non-finite system.
 //!
-//! WGSL twin: `optimal.wgsl` (the GPU keeps the moments in f32).
+//! WGSL twin: `integrator/optimal.wgsl` (the GPU keeps the moments in f32).
 
 use super::Heuristic;
 use glam::Vec3;

@@ -18,7 +18,7 @@
 //!
 //! Emission is looked up through the scene ([`Scene::emitted`] at hits, [`Scene::sample_light`]
 //! for light samples), which evaluates a textured emitter's texture at the point.
-//! WGSL twin: `path.wgsl`.
+//! WGSL twin: `integrator/path.wgsl`.
 
 use super::optimal::{OptimalSample, balance_ratios};
 use super::technique::{Technique, TechniqueSplit};

@@ -1,5 +1,5 @@
 //! The constant background: radiance arriving from every direction that hits nothing.
-//! WGSL twin: `background_light.wgsl`.
+//! WGSL twin: `lights/background.wgsl`.
 
 use super::LightSample;
 use crate::sampling::{sample_uniform_sphere, uniform_sphere_pdf};

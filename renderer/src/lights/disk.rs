@@ -6,7 +6,7 @@
 //! the disk looks small, as it does for the other planar lights; the cosine warp has no corners
 //! to weight here, so [`LightSampling::SolidAngleCosine`] samples the ellipse as `SolidAngle`
 //! does.
-//! WGSL twin: `disk_light.wgsl`.
+//! WGSL twin: `lights/disk.wgsl`.
 
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
 use crate::geometry::disk::Disk;

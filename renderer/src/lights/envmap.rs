@@ -14,7 +14,7 @@
 //! a cell the direction is uniform in solid angle (uniform in φ and in cos θ). The density is then
 //! constant on each cell, with no singularity at the poles, and a constant map is sampled
 //! uniformly. The alternative method, [`LightSampling::Area`], samples the whole sphere uniformly.
-//! WGSL twin: `envmap_light.wgsl`.
+//! WGSL twin: `lights/envmap.wgsl`.
 
 use super::{LightSample, LightSampling};
 use crate::sampling::{Piecewise2D, sample_uniform_sphere, uniform_sphere_pdf};

@@ -2,7 +2,7 @@
 //! to a receiving point (after pbrt-v4's `LightBounds`): the box the emitters lie in, their total
 //! power, and a cone of normals `(w, θo)` from which they emit into a further angle `θe`.
 //! [`crate::lights::light_bvh::LightBvh`] builds its nodes from these.
-//! WGSL twin: `light_bvh.wgsl` (`light_bounds_importance`).
+//! WGSL twin: `lights/light_bvh.wgsl` (`light_bounds_importance`).
 
 use super::Light;
 use crate::math::safe_sqrt;

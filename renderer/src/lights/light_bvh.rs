@@ -8,7 +8,7 @@
 //! The lights at infinity have no bounds: one of them is chosen uniformly with probability
 //! `n_inf / (n_inf + 1)` (`n_inf / n_inf` where there are no finite lights), the tree otherwise.
 //! Lights without positive power are left out (pmf 0), as power selection leaves them.
-//! WGSL twin: `light_bvh.wgsl` (its node and trail records: [`LightBvh::append_tables`]).
+//! WGSL twin: `lights/light_bvh.wgsl` (its node and trail records: [`LightBvh::append_tables`]).
 
 use super::Light;
 use super::light_bounds::{LightBounds, split_cost};
@@ -214,7 +214,7 @@ impl LightBvh {
     /// Layout: a header `[n_nodes, n_infinite, nodes offset, trails offset]`, the indices of the
     /// infinite lights, then 16 words per node (`lo, φ`, `hi, cos θo`, `w, cos θe`,
     /// `child_or_light, flags (1 leaf, 2 two-sided), 0, 0`), then 3 words per scene light (the
-    /// trail's low and high halves, and 1 where the tree holds the light). `light_bvh.wgsl`
+    /// trail's low and high halves, and 1 where the tree holds the light). `lights/light_bvh.wgsl`
     /// reads it.
     pub fn append_tables(&self, tables: &mut Vec<f32>) -> u32 {
         let base = tables.len() as u32;

@@ -8,7 +8,7 @@
 //! light sampling unbiased: the estimators divide by the same probability the sampler used, and
 //! the radiance at the sampled point is the texture's there. The weight only sets how often a
 //! light is picked; a texture that is zero on part of its shape just wastes those samples.
-//! WGSL twin: `light_sampler.wgsl` and `light.wgsl`.
+//! WGSL twin: `lights/light_sampler.wgsl` and `lights/mod.wgsl`.
 
 use super::Light;
 use crate::sampling::DiscreteDistribution;

@@ -1,6 +1,6 @@
 //! Which light next-event estimation samples: the two selection rules, dispatched over a closed
 //! set ([`crate::scene::Scene::select_light`], [`crate::scene::Scene::light_pmf`]).
-//! WGSL twin: `light_bvh.wgsl` (`light_select`, `light_select_pmf`), switching on the same
+//! WGSL twin: `lights/light_bvh.wgsl` (`light_select`, `light_select_pmf`), switching on the same
 //! variant order (`LIGHT_SELECTION_*`, [`crate::gpu::scene::LightSelectionTag`]).
 
 /// How a light is chosen for next-event estimation.

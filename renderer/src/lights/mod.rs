@@ -10,8 +10,8 @@
 //! ([`crate::scene::Scene::sample_light`], [`crate::scene::Scene::emitted`]), with the one rule
 //! for "the uv of a point on a primitive" that materials use ([`crate::scene::Scene::uv_at`]).
 //! The path tracer goes through those two functions only. Untextured lights do no extra work
-//! beyond one comparison. The GPU backend mirrors it (`light.wgsl`).
-//! WGSL twin: `light.wgsl`.
+//! beyond one comparison. The GPU backend mirrors it (`lights/mod.wgsl`).
+//! WGSL twin: `lights/mod.wgsl`.
 
 pub mod background;
 pub mod disk;

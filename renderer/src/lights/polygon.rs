@@ -20,7 +20,7 @@
 //! density is `cos θ / Σ Ω⊥_j` over the whole polygon, concave or not. The triangulation serves
 //! as the convex decomposition the method needs; it exists already, is what the other methods
 //! use, and costs one clipped triangle per piece (a triangle gains at most one vertex).
-//! WGSL twin: `polygon_light.wgsl`.
+//! WGSL twin: `lights/polygon.wgsl`.
 
 use super::projected::{self, Projection};
 use super::triangle::spherical_ok;

@@ -4,7 +4,7 @@
 //! ([`ProjectedPolygon`]), the decision between sampling them and falling back to solid angle,
 //! and the density `cos θ / Ω⊥`. `sample` and `pdf` build the same pieces from the same
 //! arguments, so they decide alike.
-//! WGSL twin: `projected_light.wgsl`.
+//! WGSL twin: `lights/projected.wgsl`.
 
 use crate::math::Frame;
 use crate::sampling::ProjectedPolygon;

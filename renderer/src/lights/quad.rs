@@ -3,7 +3,7 @@
 //! ([`LightSampling::SolidAngleCosine`]), or the one that pays from the shading point
 //! ([`LightSampling::Adaptive`]), or in proportion to the receiver's cos θ over the part above
 //! its horizon ([`LightSampling::ProjectedSolidAngle`]).
-//! WGSL twin: `quad_light.wgsl`.
+//! WGSL twin: `lights/quad.wgsl`.
 
 use super::projected::{self, Projection};
 use super::triangle::spherical_ok;

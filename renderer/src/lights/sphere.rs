@@ -1,6 +1,6 @@
 //! Emitting spheres (outwards): area sampling of the whole surface, or uniform sampling of the cone
 //! of directions the sphere subtends (pbrt-v4's construction, with a Taylor expansion for tiny cones).
-//! WGSL twin: `sphere_light.wgsl`.
+//! WGSL twin: `lights/sphere.wgsl`.
 
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle};
 use crate::geometry::ray::{Ray, gamma};

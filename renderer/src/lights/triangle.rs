@@ -3,7 +3,7 @@
 //! ([`LightSampling::SolidAngleCosine`]), or the one that pays from the shading point
 //! ([`LightSampling::Adaptive`]), or in proportion to the receiver's cos θ
 //! ([`LightSampling::ProjectedSolidAngle`]).
-//! WGSL twin: `triangle_light.wgsl`.
+//! WGSL twin: `lights/triangle.wgsl`.
 
 use super::projected::{self, Projection};
 use super::{LightSample, LightSampling, area_sample, area_to_solid_angle, triangle_sample};

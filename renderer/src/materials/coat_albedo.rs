@@ -8,7 +8,7 @@
 //! ≤ 1e-3 for α ≥ 0.005, ≤ 5e-4 for α ≥ 0.02, ≤ 1.5e-4 at α = 1 (IOR 3, μ = 1; measured by
 //! `tests/plastic_furnace.rs` against an independent adaptive quadrature). Build: ~1.3 ms in
 //! release.
-//! WGSL twin: `plastic.wgsl`.
+//! WGSL twin: `materials/plastic.wgsl`.
 
 use super::{fresnel, ggx};
 use crate::math::reflect;

@@ -1,6 +1,6 @@
 //! GGX microfacet conductor (metal): f = F(wo·h)·D(h)·G1(wo)G1(wi)/(4 cosθo cosθi), sampled by
 //! visible normals; a perfect mirror below [`ggx::SMOOTH_ALPHA`].
-//! WGSL twin: `conductor.wgsl`.
+//! WGSL twin: `materials/conductor.wgsl`.
 
 use super::{BsdfSample, fresnel, ggx};
 use crate::math::reflect;

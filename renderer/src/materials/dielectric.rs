@@ -8,7 +8,7 @@
 //! here as 1/η'² with η' = η(wi side)/η(wo side) (pbrt-v4's radiance mode): `eval` and the sample
 //! weights already hold it, and [`BsdfSample::eta`] reports η' so that Russian roulette can take it
 //! out again. Generalised reciprocity is then `f(wo, wi)/η(wo)² = f(wi, wo)/η(wi)²`.
-//! WGSL twin: `dielectric.wgsl`.
+//! WGSL twin: `materials/dielectric.wgsl`.
 
 use super::fresnel::{fresnel_dielectric, fresnel_dielectric_pair};
 use super::{BsdfSample, ggx};

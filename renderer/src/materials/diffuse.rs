@@ -1,5 +1,5 @@
 //! Lambertian diffuse reflection, sampled by cosine-weighted hemisphere sampling.
-//! WGSL twin: `diffuse.wgsl`.
+//! WGSL twin: `materials/diffuse.wgsl`.
 
 use super::BsdfSample;
 use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};

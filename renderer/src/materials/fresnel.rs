@@ -1,6 +1,6 @@
 //! Fresnel reflectance: exact dielectric and conductor Fresnel (real and complex index of
 //! refraction) and Schlick's approximation.
-//! WGSL twin: `fresnel.wgsl`.
+//! WGSL twin: `materials/fresnel.wgsl`.
 
 use glam::Vec3;
 

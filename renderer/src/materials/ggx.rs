@@ -6,7 +6,7 @@
 //! VNDF (same pdf, `G1(wo)·max(0, wo·h)·D(h)/wo.z`) but needs no orthonormal basis around `wo` and
 //! no branches, so it is cheaper and mirrors one-to-one in WGSL. Eto & Tokuyoshi 2023's bounded
 //! VNDF samples a *different*, more complex pdf, which every caller would then have to match.
-//! WGSL twin: `ggx.wgsl`.
+//! WGSL twin: `materials/ggx.wgsl`.
 
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;

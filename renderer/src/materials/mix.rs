@@ -11,8 +11,8 @@
 //! probability of the second material is `w` to within 2^-24, exactly 0 at `w ≤ 0` and 1 at
 //! `w ≥ 1`. A mix is resolved before textures, so it holds material indices, not materials.
 //!
-//! WGSL twin: `mix.wgsl` (the hash bit for bit and the resolve loop of `Scene::resolve_mix`),
-//! `u64.wgsl` (the u64 arithmetic, emulated in u32 pairs).
+//! WGSL twin: `materials/mix.wgsl` (the hash bit for bit and the resolve loop of `Scene::resolve_mix`),
+//! `gpu/u64.wgsl` (the u64 arithmetic, emulated in u32 pairs).
 
 use crate::sampler::owen;
 use crate::textures::Texture;
@@ -50,11 +50,11 @@ pub fn choice(w: f32, u: f32) -> usize {
 }
 
 /// The golden-ratio constant of SplitMix64: the hash's seed and [`splitmix64`]'s increment
-/// (public for the GPU's twin, `gpu/shaders/mix.wgsl`, whose prelude holds its halves).
+/// (public for the GPU's twin, `materials/mix.wgsl`, whose prelude holds its halves).
 pub const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
 
 /// A value in [0, 1) on a grid of 2^-24, a hash of the bits of `p`, `t` and `salt`.
-/// WGSL twin: `mix_hash_unit` in `gpu/shaders/mix.wgsl` (u64 emulated in u32 pairs).
+/// WGSL twin: `mix_hash_unit` in `materials/mix.wgsl` (u64 emulated in u32 pairs).
 #[inline]
 pub fn hash_unit(p: Vec3, t: f32, salt: u32) -> f32 {
     let mut h = GOLDEN ^ salt as u64;

@@ -11,7 +11,7 @@
 //! density with which `sample` produces `wi` through them, including the lobe-selection
 //! probability; a sample's `weight` is f·cosθi/pdf, or for a delta lobe its reflectance divided by
 //! its discrete selection probability (which is then reported as `pdf`).
-//! WGSL twin: `material.wgsl`. A [`Mix`] of two materials is no BSDF of its own: the scene
+//! WGSL twin: `materials/mod.wgsl`. A [`Mix`] of two materials is no BSDF of its own: the scene
 //! resolves it to one of them per hit ([`mix`]), before any of this code runs (CPU only).
 
 pub mod coat_albedo;

@@ -14,7 +14,7 @@
 //!
 //! This is the original program's "Microfacet" material done right: its F0 was not squared and
 //! both of its lobes used the full colour, so it reflected more energy than it received.
-//! WGSL twin: `plastic.wgsl`.
+//! WGSL twin: `materials/plastic.wgsl`.
 
 use super::coat_albedo::CoatAlbedo;
 use super::plastic_textured::CoatGrid;

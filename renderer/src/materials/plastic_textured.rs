@@ -30,11 +30,11 @@
 //! the hit builds anyway. Memory: [`GRID_SIZE`] × 264 bytes (13 KB) per material.
 //!
 //! **GPU.** `gpu/scene/materials.rs` uploads the [`GRID_SIZE`] tables and their E_avg to the
-//! `tables` buffer (13 KB per such plastic, as here) and `material_at` (`material.wgsl`) locates
+//! `tables` buffer (13 KB per such plastic, as here) and `material_at` (`materials/mod.wgsl`) locates
 //! the hit's α in the grid by the same expression; the blend itself happens lazily where E(μ) is
-//! read (`coat_albedo_eval` in `plastic.wgsl`), entry by entry as `CoatAlbedo::blend` does it.
+//! read (`coat_albedo_eval` in `materials/plastic.wgsl`), entry by entry as `CoatAlbedo::blend` does it.
 //!
-//! WGSL twin: `plastic.wgsl`.
+//! WGSL twin: `materials/plastic.wgsl`.
 
 use super::coat_albedo::CoatAlbedo;
 use super::ggx;
@@ -48,7 +48,7 @@ pub const GRID_SIZE: usize = 48;
 pub const MAX_BLEND_ERROR: f32 = 1e-3;
 
 /// ln of the first node (α = [`ggx::SMOOTH_ALPHA`]); the last node is α = 1 (ln 0). Public for
-/// the GPU's twin of [`CoatGrid::coat`] (`material_at` in `material.wgsl`), whose prelude holds it.
+/// the GPU's twin of [`CoatGrid::coat`] (`material_at` in `materials/mod.wgsl`), whose prelude holds it.
 pub fn ln_first() -> f32 {
     ggx::SMOOTH_ALPHA.ln()
 }

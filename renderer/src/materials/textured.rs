@@ -7,7 +7,7 @@
 //! ≈ 1 ms to build, far too slow per hit: [`MaterialTextures::new`] builds the plastic's tables
 //! on a grid of α once, and a hit blends the two around its α ([`super::plastic_textured`]).
 //!
-//! WGSL twin: `material.wgsl` (`material_at`).
+//! WGSL twin: `materials/mod.wgsl` (`material_at`).
 
 use super::plastic_textured::CoatGrid;
 use super::{ConductorFresnel, Material, Plastic};

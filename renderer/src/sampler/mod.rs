@@ -41,10 +41,10 @@
 //! the test is conservative for noise but still detects bias (`tests/sobol_sampler.rs`).
 //!
 //! **GPU.** Both samplers run on the GPU backend too, bit for bit: the sampler's tag travels in
-//! the per-dispatch parameters ([`crate::gpu::scene::SamplerTag`]) and `sampler.wgsl` switches on
+//! the per-dispatch parameters ([`crate::gpu::scene::SamplerTag`]) and `sampler/mod.wgsl` switches on
 //! it (`tests/gpu_parity_sampler.rs` compares every named dimension; `tests/gpu_sobol_images.rs`
 //! whole renders).
-//! WGSL twin: `sampler.wgsl`.
+//! WGSL twin: `sampler/mod.wgsl`.
 
 pub mod independent;
 pub mod morton;

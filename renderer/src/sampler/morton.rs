@@ -1,7 +1,7 @@
 //! Morton (Z-order) codes of 2-D pixel coordinates: the bits of `x` and `y` interleaved, so that
 //! pixels close in the image get close codes. The ZSobol sampler ([`super::zsobol`]) gives
 //! consecutive blocks of Sobol indices to consecutive Morton codes.
-//! WGSL twin: `morton.wgsl` (the encoding only).
+//! WGSL twin: `sampler/morton.wgsl` (the encoding only).
 
 /// Spreads the low 16 bits of `v` to the even bit positions (bit `i` goes to bit `2i`).
 #[inline]

@@ -11,7 +11,7 @@
 //!
 //! [`mix64`] is also the finaliser of the material mixes' SplitMix64 hash
 //! ([`crate::materials::mix`]), so the two share one definition on each side.
-//! WGSL twin: `owen.wgsl`, `u64.wgsl` (the u64 arithmetic, emulated on u32 pairs).
+//! WGSL twin: `sampler/owen.wgsl`, `gpu/u64.wgsl` (the u64 arithmetic, emulated on u32 pairs).
 
 /// [`mix64`]'s first multiplier (public for the GPU's twin, whose prelude holds its halves).
 pub const MIX64_M1: u64 = 0xbf58_476d_1ce4_e5b9;

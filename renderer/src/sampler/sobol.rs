@@ -3,7 +3,7 @@
 //! of the primitive polynomial `x + 1` (Pascal's triangle mod 2). Together they form a
 //! (0, 2)-sequence: every aligned block of `2^m` consecutive indices puts exactly one point in
 //! each elementary interval of area `2^-m`. Values are 32-bit fixed point in `[0, 1)`.
-//! WGSL twin: `sobol.wgsl`.
+//! WGSL twin: `sampler/sobol.wgsl`.
 
 /// Columns of dimension 1's generator matrix: column `i` is the value of index bit `i`
 /// (`v₀ = ½`, `vᵢ = vᵢ₋₁ ⊕ (vᵢ₋₁ >> 1)`, Sobol's direction numbers 1, 3, 5, 15, 17, 51, …).

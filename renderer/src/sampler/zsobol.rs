@@ -19,7 +19,7 @@
 //! hash that seeds the permutations and scrambles, so tiles and epochs are independent
 //! randomisations of the same construction.
 //!
-//! WGSL twin: `zsobol.wgsl` (its layout constants and [`PERMUTATION_WORDS`] reach it through the
+//! WGSL twin: `sampler/zsobol.wgsl` (its layout constants and [`PERMUTATION_WORDS`] reach it through the
 //! prelude).
 
 use super::morton::morton_encode;
@@ -60,7 +60,7 @@ const PERMUTATIONS: [[u8; 4]; 24] = {
 };
 
 /// [`PERMUTATIONS`] for the GPU's twin: permutation `k` as one word, digit `d` mapping to bits
-/// `2d` and `2d + 1` (WGSL has no u8 arrays; `zsobol.wgsl` unpacks the digit it needs).
+/// `2d` and `2d + 1` (WGSL has no u8 arrays; `sampler/zsobol.wgsl` unpacks the digit it needs).
 pub const PERMUTATION_WORDS: [u32; 24] = {
     let mut words = [0u32; 24];
     let mut k = 0;
@@ -187,7 +187,7 @@ mod tests {
         }));
     }
 
-    /// The GPU's packed table unpacks to the Rust one (so `zsobol.wgsl`'s digit lookup reads the
+    /// The GPU's packed table unpacks to the Rust one (so `sampler/zsobol.wgsl`'s digit lookup reads the
     /// same permutations).
     #[test]
     fn packed_permutations_unpack_to_the_table() {

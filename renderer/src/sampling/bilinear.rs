@@ -8,7 +8,7 @@
 //! order; the density on the square is `4·B(p) / Σw` with `B` the bilinear interpolant, so
 //! `∫ pdf = 1`. All-zero weights mean the uniform density (there is nothing to prefer), and every
 //! function accepts non-negative weights only.
-//! WGSL twin: `bilinear.wgsl`.
+//! WGSL twin: `sampling/bilinear.wgsl`.
 
 use super::ONE_MINUS_EPSILON;
 use glam::{Vec2, Vec3};

@@ -1,5 +1,5 @@
 //! Uniform sampling of the unit disk: Shirley–Chiu concentric and polar mappings.
-//! WGSL twin: `warps.wgsl`.
+//! WGSL twin: `sampling/disk.wgsl`.
 
 use glam::Vec2;
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};

@@ -15,7 +15,7 @@
 //! The step count is bounded ([`MAX_CARLSON_STEPS`]) so that GPU lanes cannot diverge without
 //! bound; the spherical ellipse's arguments take at most 6 (measured in its tests), Carlson's test
 //! values with spreads up to 1e8 at most 10.
-//! WGSL twin: `elliptic.wgsl`.
+//! WGSL twin: `sampling/elliptic.wgsl`.
 
 use crate::math::atan2;
 

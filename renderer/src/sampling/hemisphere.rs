@@ -1,5 +1,5 @@
 //! Sampling the +z hemisphere: cosine-weighted (Malley's method) and uniform.
-//! WGSL twin: `warps.wgsl`.
+//! WGSL twin: `sampling/hemisphere.wgsl`.
 
 use super::disk::{concentric_polar, invert_uniform_disk_concentric};
 use crate::math::safe_sqrt;

@@ -33,7 +33,7 @@
 //! solid-angle sampling where that exceeds [`MAX_CONDITION`] ([`ProjectedPolygon::well_conditioned`]);
 //! the light is then small or near the horizon, where the cosine varies little over it relative
 //! to its value or contributes little.
-//! WGSL twin: `projected_solid_angle.wgsl`.
+//! WGSL twin: `sampling/projected_solid_angle.wgsl`.
 
 use crate::math::{atan2, safe_sqrt};
 use glam::{Vec2, Vec3};

@@ -1,5 +1,5 @@
 //! Uniform sampling of the unit sphere (Archimedes: z is uniform).
-//! WGSL twin: `warps.wgsl`.
+//! WGSL twin: `sampling/sphere.wgsl`.
 
 use crate::math::safe_sqrt;
 use glam::{Vec2, Vec3};

@@ -42,7 +42,7 @@
 //! [`MIN_ELLIPSE_SOLID_ANGLE`], where the area density is within a few percent of uniform anyway.
 //! Near 2π (`p` almost on a huge disk) and for a rim seen from within its own plane (`b` → ∞)
 //! the construction is refused too ([`MAX_ELLIPSE_SOLID_ANGLE`], [`MAX_ELLIPSE_TAN`]).
-//! WGSL twin: `spherical_ellipse.wgsl`.
+//! WGSL twin: `sampling/spherical_ellipse.wgsl`.
 
 use super::elliptic::carlson_rf_rj;
 use crate::math::{Frame, atan2, safe_sqrt};

@@ -6,7 +6,7 @@
 //! `u0·Ω`, and `u1` picks `yv` uniformly in `h = y / √(xu² + z0² + y²)` along that line. The
 //! solid angles use Van Oosterom–Strackee with exact triple products, and the `y` step uses
 //! cancellation-free forms of `1 ± h`, so grazing and tiny rectangles keep their digits.
-//! WGSL twin: `spherical_rectangle.wgsl`.
+//! WGSL twin: `sampling/spherical_rectangle.wgsl`.
 
 use super::spherical_triangle::solid_angle_from_vectors;
 use crate::math::safe_sqrt;

@@ -7,7 +7,7 @@
 //! [`MAX_SPHERICAL_SAMPLE_AREA`]. This version evaluates the arc through versines and half-angle
 //! identities, so it stays accurate far below the minimum (round trip ~1e-5 in `u` at 1e-5 sr,
 //! limited only by f32 directions); towards 2π it still degrades (~3e-4 at 6.23 sr).
-//! WGSL twin: `spherical_triangle.wgsl`.
+//! WGSL twin: `sampling/spherical_triangle.wgsl`.
 
 use crate::math::{difference_of_products, safe_sqrt};
 use glam::{Vec2, Vec3};

@@ -3,7 +3,7 @@
 //! Uses Heitz's low-distortion warp (2019, "A Low-Distortion Map Between Triangle and Square"), as
 //! pbrt-v4 does: a piecewise-linear, area-preserving map (Jacobian 1/2 everywhere) that distorts
 //! strata far less than the classic `√u₀` warp and inverts exactly.
-//! WGSL twin: `warps.wgsl`.
+//! WGSL twin: `sampling/triangle.wgsl`.
 
 use glam::Vec2;
 

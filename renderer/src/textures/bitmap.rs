@@ -3,7 +3,7 @@
 //! coordinate `u'·W − ½`, the two neighbouring integer texels wrapped by the [`WrapMode`], weights
 //! `1 − {x}` and `{x}`; the conventions are in the module doc of [`crate::textures`].
 //!
-//! WGSL twin: `texture.wgsl`.
+//! WGSL twin: `textures/mod.wgsl`.
 
 use super::{Channel, UvTransform};
 use crate::image_io::Image;

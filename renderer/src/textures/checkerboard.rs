@@ -7,7 +7,7 @@
 //! both, so a converter writing a checkerboard into a Mitsuba *scalar* slot swaps `color0` and
 //! `color1` to get the same image.
 //!
-//! WGSL twin: `texture.wgsl`.
+//! WGSL twin: `textures/mod.wgsl`.
 
 use super::UvTransform;
 use glam::{Vec2, Vec3};

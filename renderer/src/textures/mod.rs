@@ -30,7 +30,7 @@
 //!
 //! A texture never changes after it is built; bitmaps share their texels through an `Arc`.
 //!
-//! WGSL twin: `texture.wgsl` (uploaded by `gpu/scene/textures.rs`).
+//! WGSL twin: `textures/mod.wgsl` (uploaded by `gpu/scene/textures.rs`).
 
 pub mod bitmap;
 pub mod checkerboard;

@@ -11,13 +11,13 @@
 //! - normals: `(x, y, z, 0)`;
 //! - uvs, two per vec4: vertex `i` in `.xy` of vec4 `i/2` where `i` is even, in `.zw` where odd.
 //!
-//! WGSL twin: `mesh_attributes.wgsl`.
+//! WGSL twin: `geometry/mesh_attributes.wgsl`.
 
 use super::bits;
 use crate::geometry::mesh_attributes::MeshAttributes;
 
 /// Where the four attribute arrays start in `vertex_data`, in vec4s (`params.attr` in
-/// `bindings.wgsl`): triangles, meshes, normals, uvs.
+/// `gpu/bindings.wgsl`): triangles, meshes, normals, uvs.
 pub type AttrOffsets = [u32; 4];
 
 /// Appends `a`'s records to `vertex_data`; returns where each array starts.

@@ -1,16 +1,16 @@
 //! The BVH as the GPU traverses it: the obvhs CWBVH goes up as it is (its depth checked against
 //! the traversal stack), the optional BVH2 is built here and packed into rows.
-//! WGSL twin: `bvh2.wgsl` (the BVH2 rows; `bvh.wgsl` reads obvhs's own node layout).
+//! WGSL twin: `gpu/bvh2.wgsl` (the BVH2 rows; `geometry/bvh.wgsl` reads obvhs's own node layout).
 
 use crate::geometry::primitive::Primitive;
 use crate::gpu::GpuError;
 use obvhs::cwbvh::CwBvh;
 
-/// Entries of the CWBVH traversal stack (`BVH_STACK_SIZE` in `bvh.wgsl`), one node group per
+/// Entries of the CWBVH traversal stack (`BVH_STACK_SIZE` in `geometry/bvh.wgsl`), one node group per
 /// level: obvhs's own `TRAVERSAL_STACK_SIZE`, which its builder keeps every tree's depth under.
 pub const CWBVH_STACK_SIZE: usize = 32;
 
-/// Entries of the BVH2 traversal stack (`BVH2_STACK_SIZE` in `bvh2.wgsl`), the deepest BVH2 the
+/// Entries of the BVH2 traversal stack (`BVH2_STACK_SIZE` in `gpu/bvh2.wgsl`), the deepest BVH2 the
 /// upload accepts: near-first traversal defers at most one node per level.
 pub const BVH2_STACK_SIZE: usize = 64;
 
@@ -44,7 +44,7 @@ pub(super) fn check_cwbvh(bvh: &CwBvh) -> Result<(), GpuError> {
     Ok(())
 }
 
-/// Builds an obvhs BVH2 over `prims` (the CWBVH's leaf order) and packs it as `bvh2.wgsl` reads
+/// Builds an obvhs BVH2 over `prims` (the CWBVH's leaf order) and packs it as `gpu/bvh2.wgsl` reads
 /// it: node i as two `vec4<u32>` (min.xyz, prim_count) and (max.xyz, first), then the leaves'
 /// primitive ids, four per row. A leaf's `first` becomes the word index of its ids, so the shader
 /// needs no offset uniform (and the bind group layout stays the CWBVH's).

@@ -12,7 +12,7 @@
 //! (`W + 1` each; uniform for a band of zero weight, which the marginal never picks), and the
 //! density of every cell on the unit square (`W` per band, `Piecewise2D::pdf_cell`). The CDFs
 //! are the CPU's f64 ones rounded to f32, like the light-selection CDF.
-//! WGSL twin: `envmap_light.wgsl`.
+//! WGSL twin: `lights/envmap.wgsl`.
 
 use crate::lights::EnvmapLight;
 

@@ -1,7 +1,7 @@
-//! Light records (`Light` in `light.wgsl`), one per [`Light`], the triangles of polygon lights,
+//! Light records (`Light` in `lights/mod.wgsl`), one per [`Light`], the triangles of polygon lights,
 //! the power-proportional selection tables, and the lights' kind tags. An environment map's
 //! texture and tables are in [`super::envmap`].
-//! WGSL twin: `light.wgsl` (the record layout and the `switch` on [`LightTag`]).
+//! WGSL twin: `lights/mod.wgsl` (the record layout and the `switch` on [`LightTag`]).
 
 use super::v4;
 use crate::geometry::primitive::NONE;
@@ -10,10 +10,10 @@ use crate::lights::Light;
 use crate::scene::Scene;
 use bytemuck::{Pod, Zeroable};
 
-/// A light record (`Light` in `light.wgsl`): `h` = (kind, first triangle or a triangle's or
+/// A light record (`Light` in `lights/mod.wgsl`): `h` = (kind, first triangle or a triangle's or
 /// quad's vertex attributes, triangle count, emission texture) (an environment map: kind, width,
 /// height, offset of its tables), four vec4 of geometry per kind and `le` = (radiance, area) (see
-/// the top of `light.wgsl`).
+/// the top of `lights/mod.wgsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuLight {

@@ -1,5 +1,5 @@
-//! Material records (`Material` in `material.wgsl`), one per [`Material`], and their kind tags;
-//! a mix's slot holds a mix record instead (`mix.wgsl`), and a plastic with a textured α points
+//! Material records (`Material` in `materials/mod.wgsl`), one per [`Material`], and their kind tags;
+//! a mix's slot holds a mix record instead (`materials/mix.wgsl`), and a plastic with a textured α points
 //! at its coat grid's tables instead of one table.
 //!
 //! A plastic's coat grid in `tables` ([`crate::materials::plastic_textured`]): the
@@ -9,8 +9,8 @@
 //! `material_at` turns `h.z` into the offset of the hit's lower node table and sets `b.w` to the
 //! blend weight of the next one (`coat_albedo_eval`; 0 is exactly no blend, which every other
 //! plastic has).
-//! WGSL twin: `material.wgsl` (the record layout and the `switch` on [`MaterialTag`]) and
-//! `mix.wgsl` (a mix's record).
+//! WGSL twin: `materials/mod.wgsl` (the record layout and the `switch` on [`MaterialTag`]) and
+//! `materials/mix.wgsl` (a mix's record).
 
 use super::{bits, v4};
 use crate::geometry::primitive::NONE;
@@ -21,8 +21,8 @@ use crate::materials::{ConductorFresnel, Material};
 use crate::scene::Scene;
 use bytemuck::{Pod, Zeroable};
 
-/// A material record (`Material` in `material.wgsl`): `h` = (kind, two-sided, aux, has a smooth
-/// part), then three vec4 of parameters per kind (see the comment at the top of `material.wgsl`);
+/// A material record (`Material` in `materials/mod.wgsl`): `h` = (kind, two-sided, aux, has a smooth
+/// part), then three vec4 of parameters per kind (see the comment at the top of `materials/mod.wgsl`);
 /// `a.w` and `c.w` hold the bits of its colour and roughness textures' ids, `NONE` where constant
 /// ([`super::textures`]).
 #[repr(C)]
@@ -45,7 +45,7 @@ gpu_tags! {
         Plastic => "MATERIAL_PLASTIC",
         /// [`Material::Dielectric`].
         Dielectric => "MATERIAL_DIELECTRIC",
-        /// No [`Material`]: a mix's record ([`crate::materials::mix::Mix`]), which `mix.wgsl`
+        /// No [`Material`]: a mix's record ([`crate::materials::mix::Mix`]), which `materials/mix.wgsl`
         /// resolves before any BSDF function sees the material ([`MaterialTag::of`] never
         /// gives it; the BSDF `switch`es flag it as unknown).
         Mix => "MATERIAL_MIX",

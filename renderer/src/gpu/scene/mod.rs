@@ -4,7 +4,7 @@
 //! [`textures`]), and the per-dispatch uniform ([`params`]). Each kind's tags are a
 //! `#[repr(u32)]` enum next to its encoder, which the generated WGSL prelude (`gpu/prelude.rs`)
 //! names for the shaders.
-//! WGSL twin: `bindings.wgsl` (the bind group this module creates).
+//! WGSL twin: `gpu/bindings.wgsl` (the bind group this module creates).
 //!
 //! Primitives are uploaded in the BVH's leaf order, which is the order of
 //! [`crate::geometry::Accel::primitives`], so the obvhs CWBVH nodes go up byte for byte and a hit's
@@ -175,7 +175,7 @@ impl GpuScene {
     /// (textured materials and emission, mixes and a plastic's textured α since issue 17): the
     /// texture slots are destructured in `textures::slots`, so a slot added to
     /// `MaterialTextures` fails to compile there until the GPU has it. The camera's pixel filter,
-    /// box or gaussian, is the kernel's too (`filter.wgsl`, issue 18), so no scene is refused.
+    /// box or gaussian, is the kernel's too (`camera/filter.wgsl`, issue 18), so no scene is refused.
     pub fn new(ctx: Arc<GpuContext>, scene: Arc<Scene>) -> Result<GpuScene, GpuError> {
         GpuScene::with_bvh2(ctx, scene, false)
     }
@@ -339,7 +339,7 @@ impl GpuScene {
         self.features
     }
 
-    /// The layout of bind group 0 (`bindings.wgsl`).
+    /// The layout of bind group 0 (`gpu/bindings.wgsl`).
     pub fn layout(&self) -> &wgpu::BindGroupLayout {
         &self.layout
     }

@@ -1,5 +1,5 @@
-//! The per-dispatch uniform (`Params` in `bindings.wgsl`) and the tags of the settings it holds.
-//! WGSL twin: `bindings.wgsl` (the uniform's layout).
+//! The per-dispatch uniform (`Params` in `gpu/bindings.wgsl`) and the tags of the settings it holds.
+//! WGSL twin: `gpu/bindings.wgsl` (the uniform's layout).
 
 use super::{GpuScene, v4};
 use crate::camera::PixelFilter;
@@ -10,7 +10,7 @@ use crate::lights::{LightSampling, LightSelection};
 use crate::sampler::SamplerKind;
 use bytemuck::{Pod, Zeroable};
 
-/// The per-sample uniform (`Params` in `bindings.wgsl`).
+/// The per-sample uniform (`Params` in `gpu/bindings.wgsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct GpuParams {
@@ -64,7 +64,7 @@ pub struct GpuParams {
     pub filter_radius: f32,
     /// The sampler ([`SamplerTag`]). A uniform like the strategy rather than a specialisation:
     /// switching samplers (the viewer) then needs no new pipeline, and the one `switch` per draw
-    /// in `sampler.wgsl` is cheap next to the Sobol draw itself. It also takes the slot that
+    /// in `sampler/mod.wgsl` is cheap next to the Sobol draw itself. It also takes the slot that
     /// rounded the struct to a multiple of 16 bytes, so the size is unchanged.
     pub sampler: u32,
     /// Light selection ([`LightSelectionTag`]).
@@ -320,7 +320,7 @@ mod tests {
     }
 
     /// The sampler tags follow [`SamplerKind`]'s variant order (and the prelude's tags are
-    /// consecutive from 0, `prelude.rs`), so `sampler.wgsl`'s cases are `SamplerKind`'s.
+    /// consecutive from 0, `prelude.rs`), so `sampler/mod.wgsl`'s cases are `SamplerKind`'s.
     #[test]
     fn sampler_tags_follow_the_variant_order() {
         for (i, &(tag, _)) in SamplerTag::ALL.iter().enumerate() {
@@ -331,7 +331,7 @@ mod tests {
     }
 
     /// The light-selection tags follow [`LightSelection`]'s variant order, so the `switch`es of
-    /// `light_bvh.wgsl` are its `match`es.
+    /// `lights/light_bvh.wgsl` are its `match`es.
     #[test]
     fn light_selection_tags_follow_the_variant_order() {
         for (i, &(tag, _)) in LightSelectionTag::ALL.iter().enumerate() {

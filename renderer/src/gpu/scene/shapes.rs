@@ -1,6 +1,6 @@
-//! Primitive records (`Prim` in `shape.wgsl`), one per BVH primitive in the BVH's leaf order, and
+//! Primitive records (`Prim` in `geometry/primitive.wgsl`), one per BVH primitive in the BVH's leaf order, and
 //! the shapes' kind tags.
-//! WGSL twin: `shape.wgsl` (the record layout and the `switch` on [`ShapeTag`]).
+//! WGSL twin: `geometry/primitive.wgsl` (the record layout and the `switch` on [`ShapeTag`]).
 
 use super::{bits, v4};
 use crate::geometry::Shape;
@@ -8,8 +8,8 @@ use crate::gpu::prelude::gpu_tags;
 use crate::scene::Scene;
 use bytemuck::{Pod, Zeroable};
 
-/// A primitive record (`Prim` in `shape.wgsl`): a.w, b.w, c.w hold the bits of (kind, material,
-/// light); the rest is the shape (see the top of `shape.wgsl`), and a triangle's d.w (a free slot)
+/// A primitive record (`Prim` in `geometry/primitive.wgsl`): a.w, b.w, c.w hold the bits of (kind, material,
+/// light); the rest is the shape (see the top of `geometry/primitive.wgsl`), and a triangle's d.w (a free slot)
 /// the bits of its attribute index ([`crate::geometry::Primitive::attr`]; disks and spheres,
 /// which have none, use d.w for their radius).
 #[repr(C)]

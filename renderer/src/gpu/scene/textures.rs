@@ -18,13 +18,13 @@
 //!   capacity is `W ×` the device's largest dimension (33.5M texels at wgpu's default 8192);
 //!   [`TextureTexels::layout`] names the texture that does not fit.
 //! - **Materials** name their textures in two slots every record has free (see
-//!   `material.wgsl`): `a.w` the colour texture (albedo of a diffuse or plastic, a conductor's
+//!   `materials/mod.wgsl`): `a.w` the colour texture (albedo of a diffuse or plastic, a conductor's
 //!   reflectance), `c.w` the roughness texture (a conductor's or dielectric's α); the bits of
 //!   `NONE` where the slot is constant.
-//! - **Area lights** name their emission texture in `h.w` of their record (see `light.wgsl`),
+//! - **Area lights** name their emission texture in `h.w` of their record (see `lights/mod.wgsl`),
 //!   `NONE` for a constant radiance.
 //!
-//! Record of a texture (`TextureRecord` in `texture.wgsl`):
+//! Record of a texture (`TextureRecord` in `textures/mod.wgsl`):
 //! - `h` = bits of (kind [`TextureTag`], wrap [`WrapTag`], channel [`ChannelTag`], offset of the
 //!   first texel);
 //! - `uv` = (su, sv, ou, ov), the [`UvTransform`] (identity for a constant);
@@ -32,7 +32,7 @@
 //!   bitmap's width);
 //! - `c1` = (the checkerboard's `color1`; bits of the bitmap's height).
 //!
-//! WGSL twin: `texture.wgsl`.
+//! WGSL twin: `textures/mod.wgsl`.
 
 use super::{bits, v4};
 use crate::gpu::GpuError;
@@ -223,7 +223,7 @@ pub(crate) struct SceneTextures {
     /// Per material: the ids of its colour and roughness textures (`NONE`: constant).
     pub(crate) slots: Vec<[u32; 2]>,
     /// Per material: the id of its weight's texture if it is a mix with a textured weight, else
-    /// `NONE` (`mix.wgsl`).
+    /// `NONE` (`materials/mix.wgsl`).
     pub(crate) mix_weights: Vec<u32>,
     /// Per emission texture ([`Scene::emission_textures`]): its id, after the materials'.
     pub(crate) emission: Vec<u32>,

@@ -1,5 +1,5 @@
 // Owen scrambling and the hashes that seed it, bit for bit the twin of `sampler/owen.rs` (u64
-// emulated on vec2<u32>(lo, hi) by `u64.wgsl`). `mix64` is also the finaliser of `mix.wgsl`'s
+// emulated on vec2<u32>(lo, hi) by `gpu/u64.wgsl`). `mix64` is also the finaliser of `materials/mix.wgsl`'s
 // SplitMix64 step, as on the CPU. The inverse (`owen_unscramble`) has no twin: only the CPU's
 // tests need it.
 

@@ -1,7 +1,7 @@
 // Emitting parallelograms, the twin of `lights/quad.rs`: by area, or by solid angle (spherical
 // rectangle) when the quad is a rectangle and its solid angle suits the warp, optionally through
 // the cosine warp, or by whichever pays from p (`Adaptive`), or by projected solid angle
-// (`projected_light.wgsl`).
+// (`lights/projected.wgsl`).
 
 fn quad_light_faces(l: Light, p: vec3f) -> bool {
     return dot(p - l.a.xyz, l.d.xyz) > 0.0;

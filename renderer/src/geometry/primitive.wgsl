@@ -3,7 +3,7 @@
 //
 // Record layout (see `gpu/scene/shapes.rs`): a.w, b.w, c.w = bits of (kind, material, light).
 //   Triangle: a, b, c = vertices, d.xyz = unit normal, d.w = bits of its attribute index (NONE
-//             without vertex attributes; `mesh_attributes.wgsl`).
+//             without vertex attributes; `geometry/mesh_attributes.wgsl`).
 //   Disk:     a.xyz = centre, d.xyz = unit normal, d.w = radius.
 //   Sphere:   a.xyz = centre, d.w = radius.
 

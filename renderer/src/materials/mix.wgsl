@@ -8,9 +8,9 @@
 //   a.x = the constant weight (when h.w is NONE); a.w, c.w = bits of NONE (no texture slots).
 // No BSDF function takes MATERIAL_MIX (their `switch`es flag it), so a mix left unresolved is loud.
 //
-// u64 arithmetic is emulated on vec2<u32>(lo, hi) (`u64.wgsl`): WGSL has no 64-bit integers.
+// u64 arithmetic is emulated on vec2<u32>(lo, hi) (`gpu/u64.wgsl`): WGSL has no 64-bit integers.
 
-// `splitmix64`: one SplitMix64 step, the golden increment then `owen.wgsl`'s finaliser `mix64`.
+// `splitmix64`: one SplitMix64 step, the golden increment then `sampler/owen.wgsl`'s finaliser `mix64`.
 fn splitmix64(z: vec2<u32>) -> vec2<u32> {
     return mix64(u64_add(z, vec2<u32>(MIX_GOLDEN_LO, MIX_GOLDEN_HI)));
 }

@@ -1,6 +1,6 @@
 // Emitting triangles, the twin of `lights/triangle.rs`: uniform by area, or by solid angle (Arvo),
 // optionally through the cosine warp, or the one that pays from p (`Adaptive`), or by projected
-// solid angle (`projected_light.wgsl`).
+// solid angle (`lights/projected.wgsl`).
 
 fn triangle_solid_angle(v0: vec3f, v1: vec3f, v2: vec3f, p: vec3f) -> f32 {
     return spherical_triangle_area(normalize_or_zero(v0 - p), normalize_or_zero(v1 - p), normalize_or_zero(v2 - p));

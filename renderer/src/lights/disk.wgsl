@@ -1,5 +1,5 @@
 // Emitting disks, the twin of `lights/disk.rs`: uniformly by solid angle through the spherical
-// ellipse (`spherical_ellipse.wgsl`) where the method asks for it and the ellipse suits the warp,
+// ellipse (`sampling/spherical_ellipse.wgsl`) where the method asks for it and the ellipse suits the warp,
 // uniformly by area through the concentric map otherwise.
 
 fn disk_light_area(l: Light) -> f32 {

@@ -10,12 +10,12 @@
 //   Conductor:  a.xyz η (or the tint), b.xyz k, c.x α.
 //   Plastic:    a.xyz albedo, b.xyz coat tint, c = (α, F0, 1/(1 − E_avg) or 0, _); with a textured
 //               α, aux is its coat grid's offset and `material_at` makes it the hit's lower node
-//               table, b.w the blend weight of the next (`plastic.wgsl`); b.w = 0 otherwise.
-//   Mix:        (MATERIAL_MIX) resolved by `mix.wgsl` before anything here sees the material.
+//               table, b.w the blend weight of the next (`materials/plastic.wgsl`); b.w = 0 otherwise.
+//   Mix:        (MATERIAL_MIX) resolved by `materials/mix.wgsl` before anything here sees the material.
 //   Dielectric: a = (ior, α, _, _); never two-sided (its two sides are its two media).
 //   Every kind: a.w, c.w = bits of the ids of its colour texture (a diffuse's or plastic's albedo,
 //       a conductor's reflectance: replaces a.xyz) and its roughness texture (α: replaces a
-//       conductor's c.x, a dielectric's a.y), NONE where constant (`texture.wgsl`).
+//       conductor's c.x, a dielectric's a.y), NONE where constant (`textures/mod.wgsl`).
 
 struct Material {
     h: vec4<u32>,

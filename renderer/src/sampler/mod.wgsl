@@ -2,8 +2,8 @@
 // from. `sampler_init` picks the sampler by its SAMPLER_* tag (`Params::sampler`, in the variant
 // order of `SamplerKind`) and every draw goes through one closed `switch` on it: SAMPLER_INDEPENDENT
 // is the PCG stream of `rng.wgsl` drawn in call order (the dimension unused, so the path tracer
-// draws what it drew before samplers existed), SAMPLER_SOBOL is `zsobol.wgsl`. An unknown tag
-// flags the sample (`tags.wgsl`) and draws NaN. The named draws below allocate the dimensions as
+// draws what it drew before samplers existed), SAMPLER_SOBOL is `sampler/zsobol.wgsl`. An unknown tag
+// flags the sample (`gpu/prelude.wgsl`) and draws NaN. The named draws below allocate the dimensions as
 // the CPU's table does (DIM_* from the prelude; bounce b = path vertex b + 1, 0 at the first hit).
 
 // The sampler of the sample being drawn.

@@ -5,7 +5,7 @@
 // child test: the ray's true interval (0, t_max), the true reciprocal, and each slab widened by a
 // bound on its rounding error, so no box the ray touches is culled. Scenes of at most 4
 // primitives are scanned linearly (no BVH code at all, see `USE_BVH`). With `USE_BVH2` the
-// traversal functions come from `bvh2.wgsl` instead (a BVH2 measured against this one); the node
+// traversal functions come from `gpu/bvh2.wgsl` instead (a BVH2 measured against this one); the node
 // ray below is shared.
 //
 // Node words: d0 = (p.xyz bits, e0 | e1 << 8 | e2 << 16 | imask << 24),

@@ -19,9 +19,9 @@ struct Params {
     light_cdf: u32,
     light_pmf: u32,
     mix_weight: f32,
-    // Samples of this dispatch (its z layers), from `sample` on (`path.wgsl`, `fold`).
+    // Samples of this dispatch (its z layers), from `sample` on (`gpu/film.wgsl`, `fold`).
     samples_per_dispatch: u32,
-    // Where the texture records start in `vertex_data` (`texture.wgsl`).
+    // Where the texture records start in `vertex_data` (`textures/mod.wgsl`).
     textures: u32,
     // Camera: origin, forward, right, up; tan_x, tan_y in origin.w, forward.w.
     cam_origin: vec4f,
@@ -31,20 +31,20 @@ struct Params {
     // Where the mesh attribute arrays start in `vertex_data` (triangles, meshes, normals, uvs).
     attr: vec4<u32>,
     // The camera's pixel filter (FILTER_*) and the gaussian's σ and radius in pixels
-    // (`filter.wgsl`).
+    // (`camera/filter.wgsl`).
     pixel_filter: u32,
     filter_stddev: f32,
     filter_radius: f32,
-    // The sampler (SAMPLER_*, `sampler.wgsl`, which fails an unknown one); also rounds the
+    // The sampler (SAMPLER_*, `sampler/mod.wgsl`, which fails an unknown one); also rounds the
     // struct to the 16 bytes a uniform's size is a multiple of, as `GpuParams` does.
     sampler: u32,
-    // Light selection (LIGHT_SELECTION_*, `light_bvh.wgsl`) and the light BVH's offset in
+    // Light selection (LIGHT_SELECTION_*, `lights/light_bvh.wgsl`) and the light BVH's offset in
     // `tables` (NONE when nothing can be sampled); the struct's size rounds up to 16 bytes.
     light_selection: u32,
     light_bvh: u32,
 }
 
-// The camera's pixel filter (`film_position` in `filter.wgsl`; an unknown tag fails there).
+// The camera's pixel filter (`film_position` in `camera/filter.wgsl`; an unknown tag fails there).
 fn params_filter() -> PixelFilter {
     return PixelFilter(params.pixel_filter, params.filter_stddev, params.filter_radius);
 }
@@ -77,15 +77,15 @@ fn check_param_tags(p: Params) {
 // #if USE_CWBVH
 @group(0) @binding(1) var<storage, read> nodes: array<BvhNode>;
 // #endif
-// The BVH2 alternative shares the binding with its own layout (`bvh2.wgsl`).
+// The BVH2 alternative shares the binding with its own layout (`gpu/bvh2.wgsl`).
 // #if USE_BVH2
 @group(0) @binding(1) var<storage, read> nodes: array<vec4<u32>>;
 // #endif
 @group(0) @binding(2) var<storage, read> prims: array<Prim>;
 @group(0) @binding(3) var<storage, read> materials: array<Material>;
 @group(0) @binding(4) var<storage, read> lights: array<Light>;
-// Polygon lights' triangles (`light.wgsl`), then the mesh vertex attributes at `params.attr`
-// (`mesh_attributes.wgsl`), then the texture records at `params.textures` (`texture.wgsl`): one
+// Polygon lights' triangles (`lights/mod.wgsl`), then the mesh vertex attributes at `params.attr`
+// (`geometry/mesh_attributes.wgsl`), then the texture records at `params.textures` (`textures/mod.wgsl`): one
 // buffer, as the path tracer already binds the 8 storage buffers wgpu's portable limits allow per
 // stage.
 @group(0) @binding(5) var<storage, read> vertex_data: array<vec4f>;
@@ -96,12 +96,12 @@ fn check_param_tags(p: Params) {
 @group(0) @binding(7) var<storage, read_write> accum: array<vec4f>;
 // [0] = samples that were not finite (counted as zero, like the CPU).
 @group(0) @binding(8) var<storage, read_write> counters: array<atomic<u32>>;
-// The environment map's texels (`envmap_light.wgsl`), rgba32float read with textureLoad; the
+// The environment map's texels (`lights/envmap.wgsl`), rgba32float read with textureLoad; the
 // binding holds a 1×1 placeholder in scenes without a map, whose programs do not declare it.
 // #if HAS_ENVMAP
 @group(0) @binding(9) var envmap_texels: texture_2d<f32>;
 // #endif
-// The bitmaps' texels (`texture.wgsl`), one rgba32float texture used as a linear array; a 1×1
+// The bitmaps' texels (`textures/mod.wgsl`), one rgba32float texture used as a linear array; a 1×1
 // placeholder in scenes without bitmaps, whose programs do not declare it unless textured.
 // #if HAS_TEXTURES
 @group(0) @binding(10) var texture_texels: texture_2d<f32>;

@@ -1,6 +1,6 @@
 // Optimal MIS weights (`mis-optimal`), the twin of `integrator/optimal.rs`: the balance ratios of
 // an outcome both techniques can produce, the control-variate terms of one sample (its α and
-// moments live in private variables that `render` in `path.wgsl` loads and stores), the stage
+// moments live in private variables that `render` in `gpu/film.wgsl` loads and stores), the stage
 // schedule and the 2×2 solve for α. The moments are f32 sums here (f64 on the CPU): α differs
 // by rounding, which only changes the variance, never the expected value.
 

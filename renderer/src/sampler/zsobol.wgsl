@@ -1,6 +1,6 @@
 // The ZSobol sampler, bit for bit the twin of `sampler/zsobol.rs`: the sample's Sobol index is
 // the pixel's Morton code within its 64×64 tile above the sample's index within its epoch of
-// 4096; the seed, the tile and the epoch go into a 64-bit key (vec2<u32>(lo, hi), `u64.wgsl`)
+// 4096; the seed, the tile and the epoch go into a 64-bit key (vec2<u32>(lo, hi), `gpu/u64.wgsl`)
 // that seeds each dimension's base-4 index permutation (folded to 32 bits, its digits chosen by
 // `hash32`) and Owen scrambles. The permutation table
 // is the prelude's ZSOBOL_PERMUTATIONS (the Rust table, each permutation packed 2 bits a digit).

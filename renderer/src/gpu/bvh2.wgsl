@@ -1,4 +1,4 @@
-// The BVH2 alternative to `bvh.wgsl`'s CWBVH (`USE_BVH2`, chosen by `Features::bvh2`), kept so
+// The BVH2 alternative to `geometry/bvh.wgsl`'s CWBVH (`USE_BVH2`, chosen by `Features::bvh2`), kept so
 // both can be measured with the real path tracer. Same queries, same names, same guarantee: the
 // node test keeps the ray's true interval (0, t_max) and the true reciprocal (`NodeRay`, shared
 // with the CWBVH), and widens every slab by a bound on its rounding error, so no box the ray

@@ -4,7 +4,7 @@
 //
 // Record layout (see `gpu/scene/lights.rs`): h = (kind, first triangle, triangle count,
 // texture), le = (radiance, area). An area light's h.w is the id of its emission texture
-// (`texture.wgsl`), NONE where it emits its constant radiance; a textured light's le.xyz is its
+// (`textures/mod.wgsl`), NONE where it emits its constant radiance; a textured light's le.xyz is its
 // selection radiance only, the texture is evaluated at the sampled or hit point (the twin of
 // `Scene::sample_light` and `Scene::emitted`, below).
 //   Triangle:   a, b, c = vertices, d.xyz = normal, h.y = its vertex attributes (NONE: none).
@@ -16,7 +16,7 @@
 //   Sphere:     a.xyz = centre, a.w = radius.
 //   Background: le.xyz only.
 //   Envmap:     h.yzw = (width, height, offset of its tables), a.xy = (sin, cos) of its
-//               rotation; texels in `envmap_texels` (`envmap_light.wgsl`).
+//               rotation; texels in `envmap_texels` (`lights/envmap.wgsl`).
 
 struct Light {
     h: vec4<u32>,

@@ -1,7 +1,7 @@
 // Uniform solid-angle sampling of a disk through its spherical ellipse (Guillén et al. 2017, the
 // polar parameterisation), the twin of `sampling/spherical_ellipse.rs`: the elliptic cone's frame
 // and tangent-plane semi-axes in closed form, the quadrant's area by Carlson's R_F and R_J
-// (`elliptic.wgsl`), the azimuth by at most MAX_ELLIPSE_NEWTON_STEPS safeguarded Newton steps.
+// (`sampling/elliptic.wgsl`), the azimuth by at most MAX_ELLIPSE_NEWTON_STEPS safeguarded Newton steps.
 
 struct SphericalEllipse {
     // s = minor axis, t = major axis, n = the cone's axis.
