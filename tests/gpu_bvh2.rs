@@ -1,4 +1,4 @@
-//! The BVH2 alternative on the GPU (`bvh2.wgsl`, `GpuScene::with_bvh2`) against the CPU's `Accel`
+//! The BVH2 alternative on the GPU (`gpu/bvh2.wgsl`, `GpuScene::with_bvh2`) against the CPU's `Accel`
 //! and against the default CWBVH: the same closest hits and occlusion answers for random rays,
 //! rays leaving surfaces and shadow rays (the approach of `gpu_parity.rs`'s
 //! `bvh_queries_match_the_cpu`), on the parity scene and on a generated mesh deep enough for

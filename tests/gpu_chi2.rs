@@ -212,7 +212,7 @@ fn material_body(index: usize, wo: Vec3) -> String {
     )
 }
 
-/// The `LightSampling` constant of light.wgsl.
+/// The `LightSampling` constant of lights/mod.wgsl.
 fn wgsl_method(method: LightSampling) -> &'static str {
     match method {
         LightSampling::Area => "LIGHT_SAMPLING_AREA",

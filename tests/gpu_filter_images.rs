@@ -1,4 +1,4 @@
-//! The GPU's gaussian pixel filter in whole images (issue 18; `filter.wgsl` function by function
+//! The GPU's gaussian pixel filter in whole images (issue 18; `camera/filter.wgsl` function by function
 //! in `tests/gpu_parity_filter.rs`): the imported `gaussian_edges.xml` (Mitsuba's default
 //! gaussian, σ = 0.5 px, r = 2 px, sample_border false: sharp tilted edges, one leaving the film)
 //! rendered on the GPU agrees with its Mitsuba 3.9.1 reference by the block z-test of the CPU's

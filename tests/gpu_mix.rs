@@ -1,5 +1,5 @@
 //! Mixes and a plastic's textured α on the GPU (issue 17, items 3 and 5): the WGSL twins
-//! (`mix.wgsl`, `plastic_alpha_from_grid` and `coat_albedo_eval` in `plastic.wgsl`) against the
+//! (`materials/mix.wgsl`, `plastic_alpha_from_grid` and `coat_albedo_eval` in `materials/plastic.wgsl`) against the
 //! Rust functions, and a scene with both rendered on the GPU against the CPU's render.
 //!
 //! - [`hash_is_bit_exact`]: `mix_hash_unit` == `hash_unit` bit for bit at 100k inputs (seed 17/90):

@@ -1041,7 +1041,7 @@ fn light_selection_matches() {
     c.finish(0);
 }
 
-/// Light selection by the light BVH (`LightBvh::sample` and `pmf` against `light_bvh.wgsl`) on
+/// Light selection by the light BVH (`LightBvh::sample` and `pmf` against `lights/light_bvh.wgsl`) on
 /// 300 scattered lights of four kinds with a background (`scattered_lights_scene`, seed 21), at
 /// N random receivers (a quarter without a normal) and uniforms: the same light, and for the
 /// light the GPU chose, and for another random light, the CPU's pmf at 1e-4 relative (the
@@ -1205,7 +1205,7 @@ fn bvh_queries_match_the_cpu() {
 }
 
 /// A record or parameter whose kind tag no `switch` case knows is not quietly black: eval and pdf
-/// are NaN and the invocation is flagged (`unknown_tag_seen` in `tags.wgsl`, which the render
+/// are NaN and the invocation is flagged (`unknown_tag_seen` in `gpu/prelude.wgsl`, which the render
 /// kernel turns into a non-finite sample that the film counts). Each dispatching function is
 /// called with one corrupted record (and with the intact record, which must stay unflagged).
 #[test]

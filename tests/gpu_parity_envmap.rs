@@ -1,4 +1,4 @@
-//! Parity of the environment map's WGSL twin (`envmap_light.wgsl`) with `lights/envmap.rs`, in
+//! Parity of the environment map's WGSL twin (`lights/envmap.wgsl`) with `lights/envmap.rs`, in
 //! the style of `tests/gpu_parity.rs`: the same inputs through `run_snippet` and through the Rust
 //! functions, on maps uploaded as scenes (`stats::suite::envmap_scene`), so the texture, the
 //! tables in `tables` and the light record are checked with the maths.

@@ -1,4 +1,4 @@
-//! Parity of `filter.wgsl` with `camera/filter.rs` (issue 18): the WGSL `film_position`,
+//! Parity of `camera/filter.wgsl` with `camera/filter.rs` (issue 18): the WGSL `film_position`,
 //! `filter_cdf_1d` and `erfc` against the CPU's on the same inputs, for several filters (Mitsuba's
 //! default σ = 0.5, r = 2; a narrow one; a short window whose subtracted floor matters; radius 16
 //! on films of 1–5 pixels, wider than the film; σ = r = 16, nearly flat) and pixels at every film
@@ -244,7 +244,7 @@ fn cdf_and_erfc_match_the_cpu() {
     erf.finish(0);
 }
 
-/// A filter tag `filter.wgsl` does not know flags the sample (NaN position, `unknown_tag_seen`),
+/// A filter tag `camera/filter.wgsl` does not know flags the sample (NaN position, `unknown_tag_seen`),
 /// like every other tag `switch`. Deliberate bug tried: `film_position`'s default case returning
 /// the box's position: failed (a finite position, no flag).
 #[test]

@@ -1,5 +1,5 @@
 //! Mesh vertex attributes on the GPU (issue 17, item 7): the WGSL twins of
-//! `MeshAttributes::shading_normal` and `MeshAttributes::uv` (`mesh_attributes.wgsl`) against the
+//! `MeshAttributes::shading_normal` and `MeshAttributes::uv` (`geometry/mesh_attributes.wgsl`) against the
 //! Rust functions on many (attr, b) inputs, degenerate ones included; hit barycentrics and
 //! primitives' attribute indices against the CPU's; and a mesh with vertex normals rendered on
 //! the GPU against the CPU's render, by the block z-test of `tests/gpu_images.rs` and by the same

@@ -1,4 +1,4 @@
-//! Parity of `optimal.wgsl` with `integrator/optimal.rs` (mis-optimal's balance ratios, stage
+//! Parity of `integrator/optimal.wgsl` with `integrator/optimal.rs` (mis-optimal's balance ratios, stage
 //! schedule and 2×2 solve for α), on the same random inputs.
 //!
 //! Runs on any wgpu adapter (lavapipe where there is no GPU); `LUMIS_SKIP_GPU_TESTS=1` skips.
@@ -13,7 +13,7 @@ use lumis::integrator::Settings;
 use lumis::integrator::optimal::{Moments, balance_ratios, is_stage_start};
 use lumis::rng::Rng;
 
-/// `optimal.wgsl` against `integrator::optimal`: the balance ratios (1e-6 relative, as the MIS
+/// `integrator/optimal.wgsl` against `integrator::optimal`: the balance ratios (1e-6 relative, as the MIS
 /// weights they are), the stage schedule (exact) and the 2×2 solve for α. The moments are sums of
 /// 1 to 40 random samples (combined with contributions in [0, 2), or pure), rounded to f32 and
 /// given to both sides; the CPU solves in f64, the GPU in f32, so α may differ by the f32 solve's

@@ -1,6 +1,6 @@
-//! Parity of the WGSL samplers with `lumis::sampler` (issue 19): `sampler.wgsl` (the closed
-//! `switch` on the sampler tag and the named dimensions), `zsobol.wgsl`, `sobol.wgsl`,
-//! `owen.wgsl`, `morton.wgsl` and `u64.wgsl` against their Rust twins, **bit for bit** (integer
+//! Parity of the WGSL samplers with `lumis::sampler` (issue 19): `sampler/mod.wgsl` (the closed
+//! `switch` on the sampler tag and the named dimensions), `sampler/zsobol.wgsl`, `sampler/sobol.wgsl`,
+//! `sampler/owen.wgsl`, `sampler/morton.wgsl` and `gpu/u64.wgsl` against their Rust twins, **bit for bit** (integer
 //! arithmetic and exact conversions only: any difference is a bug, so no tolerance).
 //!
 //! Inputs, for both samplers, every combination of: seeds 0, 1, 19, 0xdead_beef and 8 random
@@ -169,7 +169,7 @@ fn cpu_draws(it: &Item) -> [f32; 13] {
     ]
 }
 
-/// The same through `sampler.wgsl`; the 14th value is 1 where the sample was flagged.
+/// The same through `sampler/mod.wgsl`; the 14th value is 1 where the sample was flagged.
 const DRAW_SNIPPET: &str =
     "let a = bitcast<vec4<u32>>(inp(0u)); let b = bitcast<vec4<u32>>(inp(1u));
      sampler_init(a.x, a.y, a.z, a.w, b.x, b.y);

@@ -1,5 +1,5 @@
 //! Textured materials on the GPU (issue 17, item 7): the WGSL twins of `Texture::eval` and
-//! `eval_scalar` (`texture.wgsl`), of `MaterialTextures::at` (`material_at`) and of `Scene::uv`
+//! `eval_scalar` (`textures/mod.wgsl`), of `MaterialTextures::at` (`material_at`) and of `Scene::uv`
 //! (`surface_uv`) against the Rust functions, and a textured scene rendered on the GPU against
 //! the CPU's render (`tests/gpu_textured_images.rs`).
 //!

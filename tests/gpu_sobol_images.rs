@@ -1,4 +1,4 @@
-//! The GPU's Sobol sampler (`sampler.wgsl`, issue 19) in whole renders: the same image as the
+//! The GPU's Sobol sampler (`sampler/mod.wgsl`, issue 19) in whole renders: the same image as the
 //! CPU's Sobol sampler with the same seed (so the GPU path tracer draws every number from the
 //! dimension the CPU integrator uses), for every strategy; and its MIS render unbiased against the
 //! stored independent reference by the block z-test.
@@ -40,9 +40,9 @@ fn sobol(strategy: Strategy, light_sampling: LightSampling) -> Settings {
 /// thresholds: at most 0.1% of pixels diverged and relMSE < 1e-5. Scenes: the seed Cornell box
 /// (every material but glass), Veach's MIS scene, the glass room (dielectric lobes); every
 /// strategy of `STRATEGIES`, each light-sampling one with solid-angle and area sampling. Catches a dimension drawn from the wrong place in
-/// `path.wgsl`, which the sampler's own parity test (`gpu_parity_sampler.rs`) cannot see.
+/// `integrator/path.wgsl`, which the sampler's own parity test (`gpu_parity_sampler.rs`) cannot see.
 /// Deliberate bug tried (on the 12 cases this test had then): the light sample drawn with
-/// `sampler_bsdf_2d(bounce)` in `path.wgsl`: failed on the 9 renders that sample lights (seed_cornell light-only: 51 289 of 65 536
+/// `sampler_bsdf_2d(bounce)` in `integrator/path.wgsl`: failed on the 9 renders that sample lights (seed_cornell light-only: 51 289 of 65 536
 /// pixels diverged, relMSE 0.21; the least, glass room light-only, 30 307 of 36 864, relMSE
 /// 6e-3), the three BSDF-only renders unchanged; `gpu_parity_sampler` passed, as it should.
 #[test]

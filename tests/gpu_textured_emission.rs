@@ -1,6 +1,6 @@
 //! Textured emission on the GPU (issue 17, items 5 and 7): the WGSL twins of
 //! `Scene::sample_light`, `Scene::light_uv` and `Scene::emitted` (`light_sample_textured`,
-//! `light_uv` and `light_emitted` in `light.wgsl`) against the Rust functions, and a scene lit
+//! `light_uv` and `light_emitted` in `lights/mod.wgsl`) against the Rust functions, and a scene lit
 //! by textured emitters of every shape rendered on the GPU against the CPU's render. The scene
 //! (after `tests/textured_emission.rs`): a checkerboard quad, a mesh panel with texture
 //! coordinates and a bitmap, a checkerboard sphere, a bitmap disk and a checkerboard polygon,

@@ -171,7 +171,7 @@ fn sampler_setting_reaches_the_engine() {
 }
 
 /// The GPU backend accepts the Sobol sampler (it refused it with `GpuError::Sampler` before
-/// `sampler.wgsl`): a render is created wherever there is an adapter, and without one the only
+/// `sampler/mod.wgsl`): a render is created wherever there is an adapter, and without one the only
 /// error is the missing adapter. Its images are `tests/gpu_sobol_images.rs`.
 #[test]
 fn gpu_backend_accepts_sobol() {

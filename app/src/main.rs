@@ -1,4 +1,7 @@
-//! `lumis`: the command line of the lumis path tracer.
+//! `lumis`: the command line of the lumis path tracer: `render`, `compare`, `bench`, `view`,
+//! `merge` and `export`. The arguments are in `cli.rs`, each command in its own `*_cmd.rs`; the
+//! viewer, the part files and scene loading live in the library (`lib.rs`) so that tests can use
+//! them. Errors, usage errors included, end the process with one `lumis: …` line on stderr.
 
 mod bench_cmd;
 mod cli;

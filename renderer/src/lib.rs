@@ -1,19 +1,31 @@
-//! lumis: a progressive, physically based path tracer.
+//! lumis: a progressive, physically based path tracer, on the CPU or on a GPU through wgpu.
 //!
 //! The crate is organised like pbrt-v4: one file per concept (each light shape, each BxDF,
-//! each sampling routine), closed-set dispatch through enums and `match`.
+//! each sampling routine), closed-set dispatch through enums and `match`. The CPU code is the
+//! reference; each module with a GPU counterpart names its WGSL twin, which lives beside it with
+//! the same stem (`lights/disk.rs` + `lights/disk.wgsl`). The code map is
+//! `docs/architecture.md`.
 //!
-//! * [`scene`]: the JSON scene format, its validation, and the render-ready [`scene::Scene`].
+//! * [`scene`]: scene files (the JSON format, Mitsuba 3 XML in and out, OBJ/PLY/glTF meshes),
+//!   their validation into a [`scene::SceneDesc`], and the render-ready [`scene::Scene`].
+//! * [`camera`]: the pinhole camera and its pixel filter.
 //! * [`geometry`]: rays, shapes, robust ray offsets and the BVH.
 //! * [`sampling`]: pure warping functions with their pdfs and inverses.
-//! * [`sampler`]: where a sample's random numbers come from (independent, Owen-scrambled Sobol).
-//! * [`materials`]: BSDFs (diffuse, GGX conductor, plastic).
-//! * [`lights`]: area lights of every shape, the background, power-based light selection.
-//! * [`integrator`]: the path tracer and its four strategies.
+//! * [`sampler`]: where a sample's random numbers come from (independent, Owen-scrambled Sobol);
+//!   [`rng`]: the counter-based random streams under them.
+//! * [`materials`]: BSDFs (diffuse, GGX conductor, plastic, dielectric) and mixes of two.
+//! * [`textures`]: constant, bitmap and checkerboard textures for material parameters and emission.
+//! * [`lights`]: area lights of every shape, the constant background and environment maps, and
+//!   light selection by power or through a light BVH.
+//! * [`integrator`]: the path tracer and its five direct-lighting strategies.
 //! * [`engine`]: the progressive, multi-threaded CPU accumulation, and
 //!   [`engine::AnyProgressive`], the CPU or the GPU engine behind one interface.
 //! * [`gpu`]: the same estimator in wgpu compute shaders (WGSL), progressive on the GPU.
-//! * [`image_io`] and [`metrics`]: EXR/PFM/PNG and error metrics, statistical image tests.
+//! * [`image_io`] and [`metrics`]: EXR/PFM/PNG and error metrics, statistical image tests;
+//!   [`math`]: frames and small shared functions.
+//! * For measuring the tests and the renderer: [`mutants`] (deliberate, named errors, active only
+//!   with the `mutants` feature), [`alloc_count`] (a counting allocator), and `stats` (the χ²
+//!   harness, compiled only for tests and with the `testing` feature).
 #![warn(missing_docs)]
 
 pub mod alloc_count;
