@@ -3,7 +3,7 @@
 bias (a "mutant", renderer/src/mutants.rs) switched on at a time and records which z-tests catch it.
 
 Every z-test in tests/ prints one line `z-test|WHAT|ok or BIASED|failed blocks|blocks|worst |z||critical`
-(tests/common/mod.rs, check_unbiased); this script collects those lines per mutant, and the names of
+(renderer/tests/common/mod.rs, check_unbiased); this script collects those lines per mutant, and the names of
 the test functions that failed (other kinds of test, e.g. χ², report only pass/fail).
 
 Usage (from the repository root; builds the test binaries with `--features mutants` first):
@@ -29,7 +29,7 @@ SCENES = {
     "analytic_polygon": {
         "cpu": [("reference_scenes", "analytic_polygon_matches_reference"),
                 ("reference_scenes", "analytic_polygon_matches_closed_form")],
-        "gpu": [("gpu_images", "gpu_analytic_polygon_matches_reference")],
+        "gpu": [("gpu", "images::gpu_analytic_polygon_matches_reference")],
         "mutants": ["emission:1", "albedo:floor", "light_pdf:polygon", "bsdf_pdf:diffuse"],
         # A bug in the WGSL twin alone: the GPU tests' comparisons with the CPU must see it too.
         "gpu_mutants": ["light_pdf:polygon@gpu"],
@@ -37,14 +37,14 @@ SCENES = {
     "analytic_disk": {
         "cpu": [("reference_scenes", "analytic_disk_matches_reference"),
                 ("reference_scenes", "analytic_disk_matches_closed_form")],
-        "gpu": [("gpu_images", "gpu_analytic_disk_matches_reference")],
+        "gpu": [("gpu", "images::gpu_analytic_disk_matches_reference")],
         "mutants": ["emission:1", "albedo:floor", "light_pdf:disk", "bsdf_pdf:diffuse"],
         "gpu_mutants": ["light_pdf:disk@gpu"],
     },
     "seed_cornell": {
         "cpu": [("reference_scenes", "seed_cornell_matches_reference"),
                 ("reference_scenes", "seed_cornell_with_area_sampling_matches_reference")],
-        "gpu": [("gpu_images", "gpu_seed_cornell_matches_reference")],
+        "gpu": [("gpu", "images::gpu_seed_cornell_matches_reference")],
         # Shape 3 is one of the two small disk lights; red is the left wall.
         "mutants": ["emission:3", "albedo:red", "light_pdf:polygon", "bsdf_pdf:conductor"],
         "gpu_mutants": ["light_pdf:polygon@gpu", "bsdf_pdf:conductor@gpu"],
@@ -52,7 +52,7 @@ SCENES = {
     "veach_mis": {
         "cpu": [("reference_scenes", "veach_mis_matches_reference"),
                 ("reference_scenes", "veach_mis_with_area_sampling_matches_reference")],
-        "gpu": [("gpu_images", "gpu_veach_mis_matches_reference")],
+        "gpu": [("gpu", "images::gpu_veach_mis_matches_reference")],
         # Shape 7 is the second-smallest sphere light; diffuse is the floor and back wall.
         "mutants": ["emission:7", "albedo:diffuse", "light_pdf:sphere", "bsdf_pdf:conductor"],
         "gpu_mutants": ["light_pdf:sphere@gpu", "bsdf_pdf:conductor@gpu"],
@@ -75,7 +75,7 @@ SWEEPS = {
     "veach_mis": {
         "factors": ["1.03", "1.05", "1.1", "1.2", "1.5"],
         "cpu": [("reference_scenes", "veach_mis_matches_reference")],
-        "gpu": [("gpu_images", "gpu_veach_mis_matches_reference")],
+        "gpu": [("gpu", "images::gpu_veach_mis_matches_reference")],
         "rows": ["veach_mis Light ", "veach_mis Bsdf "],
     },
     "plastic_lights": {

@@ -1,7 +1,7 @@
 //! End-to-end tests of `lumis export`: a JSON scene with inline triangles becomes a Mitsuba XML
 //! file and a PLY beside it, named after the shape, which `lumis render` then renders to the
 //! same pixels as the JSON (same seed and spp; the camera's up is orthogonal to its view, which
-//! Mitsuba's lookat frame keeps bit for bit, tests/mitsuba_export.rs `canonical`); a scene the exporter cannot express fails with
+//! Mitsuba's lookat frame keeps bit for bit, renderer/tests/mitsuba_export.rs `canonical`); a scene the exporter cannot express fails with
 //! one `lumis: ` line naming the file and the JSON path, and writes nothing.
 
 use lumis::image_io::Image;

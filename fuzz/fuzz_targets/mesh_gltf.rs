@@ -3,7 +3,7 @@
 //! `load_mesh`. Buffers come from the GLB's BIN chunk or `data:` URIs; the file is named as if it
 //! lay in a folder that does not exist, so a relative `uri` fails to open rather than reading
 //! whatever lies beside the fuzzer. `mesh_outcome.rs` judges the result as
-//! `tests/mesh_mutations.rs` does: a mesh that passes `mesh::check` with finite values, or a
+//! `renderer/tests/mesh_mutations.rs` does: a mesh that passes `mesh::check` with finite values, or a
 //! one-line error that names the file. Any panic (including debug assertions and integer overflow,
 //! which `cargo fuzz` enables) is a crash.
 

@@ -1,6 +1,6 @@
 //! Fuzz target: arbitrary bytes as an OBJ file, through `obj::load_bytes` (what `load_mesh` runs on
 //! a `.obj` once the file is read). `mesh_outcome.rs` judges the result as
-//! `tests/mesh_mutations.rs` does: a mesh that passes `mesh::check` with finite values, or a
+//! `renderer/tests/mesh_mutations.rs` does: a mesh that passes `mesh::check` with finite values, or a
 //! one-line error that names the file. Any panic (including debug assertions and integer overflow,
 //! which `cargo fuzz` enables) is a crash.
 

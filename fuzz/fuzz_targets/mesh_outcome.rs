@@ -1,4 +1,4 @@
-//! What the mesh fuzz targets hold a reader's result to, as `tests/mesh_mutations.rs` does: a
+//! What the mesh fuzz targets hold a reader's result to, as `renderer/tests/mesh_mutations.rs` does: a
 //! mesh passes `mesh::check` and has at least one triangle and only finite values; an error
 //! starts with the file's name and is one line (no character that breaks a line).
 

@@ -3,7 +3,7 @@
 //! path of `lumis render`, and must either fail with a one-line error or build a scene, from
 //! which a few camera paths are traced. Any panic (including debug assertions and integer
 //! overflow, which `cargo fuzz` enables) is a crash. Non-finite samples are the property test's
-//! business (`tests/scene_mutation.rs`), not this target's.
+//! business (`renderer/tests/scene_mutation.rs`), not this target's.
 
 #![no_main]
 

@@ -1,4 +1,4 @@
-//! A counting heap allocator for measuring memory (the scale test `tests/mesh_scale.rs` and the
+//! A counting heap allocator for measuring memory (the scale test `renderer/tests/mesh_scale.rs` and the
 //! `make_mesh` example): the system allocator, plus the bytes live on the heap and their peak.
 //! The library never installs it; a binary that wants the counts declares
 //! `#[global_allocator] static A: CountingAllocator = CountingAllocator;`.

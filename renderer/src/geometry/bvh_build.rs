@@ -12,7 +12,7 @@
 //! and the large primitives, joins them ([`join`]). Smaller scenes are built whole, exactly as
 //! obvhs builds them.
 //!
-//! The price of the cuts between ranges: on the 1M-triangle sphere of `tests/mesh_scale.rs`
+//! The price of the cuts between ranges: on the 1M-triangle sphere of `renderer/tests/mesh_scale.rs`
 //! the chunked tree costs about 4% more BVH nodes per ray than a whole build (surface-area
 //! estimate; callgrind: 4.3% more instructions per rendered sample), about the same with
 //! 2 ranges as with 8 (the first cut costs it all), and neither deeper opening of the ranges'

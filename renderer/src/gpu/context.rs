@@ -111,7 +111,7 @@ impl GpuContext {
 
 #[cfg(test)]
 impl GpuContext {
-    /// The device the library's own GPU tests share, with the rule of `tests/gpu_common`: `None`
+    /// The device the library's own GPU tests share, with the rule of `renderer/tests/gpu/common`: `None`
     /// (the test passes vacuously) when `LUMIS_SKIP_GPU_TESTS` is set; without an adapter and
     /// without that variable the test fails.
     pub(crate) fn for_tests() -> Option<Arc<GpuContext>> {

@@ -1,5 +1,5 @@
 //! Runs a WGSL snippet on many inputs against the uploaded scene: the GPU half of the parity
-//! tests (`tests/gpu_parity.rs`), which call each WGSL function with the same random inputs as
+//! tests (`renderer/tests/gpu/parity.rs`), which call each WGSL function with the same random inputs as
 //! its Rust twin and compare the results.
 //!
 //! The snippet is the body of a compute kernel with the whole library in scope (every module, as

@@ -2,7 +2,7 @@
 //!
 //! The maths lives once per side: one WGSL module per concept in `shaders/`, each the twin of the
 //! Rust module it names (`materials/ggx.wgsl` ↔ `materials/ggx.rs`, `lights/sphere.wgsl` ↔
-//! `lights/sphere.rs`, …), kept in step by `tests/gpu_parity.rs`; each names its Rust twin in its
+//! `lights/sphere.rs`, …), kept in step by `renderer/tests/gpu/parity.rs`; each names its Rust twin in its
 //! header and the twin names it back (checked below). WGSL has no includes, so a program is the
 //! concatenation of the modules it needs, after the generated prelude of shared constants and kind
 //! tags ([`super::prelude`]).

@@ -6,7 +6,7 @@
 //! Accuracy (|E_table − E|, measured against a 64×256-node quadrature over μ): ≤ 2.6e-3 at
 //! α = [`ggx::SMOOTH_ALPHA`] (E has a dip of width ~α near μ ≈ α that falls between nodes),
 //! ≤ 1e-3 for α ≥ 0.005, ≤ 5e-4 for α ≥ 0.02, ≤ 1.5e-4 at α = 1 (IOR 3, μ = 1; measured by
-//! `tests/plastic_furnace.rs` against an independent adaptive quadrature). Build: ~1.3 ms in
+//! `renderer/tests/plastic_furnace.rs` against an independent adaptive quadrature). Build: ~1.3 ms in
 //! release.
 //! WGSL twin: `materials/plastic.wgsl`.
 

@@ -38,11 +38,11 @@
 //!
 //! **Tests and QMC.** The image tests' block z-test uses the per-pixel sample variance, which for
 //! scrambled nets overestimates the error of the mean (the samples are negatively correlated), so
-//! the test is conservative for noise but still detects bias (`tests/sobol_sampler.rs`).
+//! the test is conservative for noise but still detects bias (`renderer/tests/sobol_sampler.rs`).
 //!
 //! **GPU.** Both samplers run on the GPU backend too, bit for bit: the sampler's tag travels in
 //! the per-dispatch parameters ([`crate::gpu::scene::SamplerTag`]) and `sampler/mod.wgsl` switches on
-//! it (`tests/gpu_parity_sampler.rs` compares every named dimension; `tests/gpu_sobol_images.rs`
+//! it (`renderer/tests/gpu/parity_sampler.rs` compares every named dimension; `renderer/tests/gpu/sobol_images.rs`
 //! whole renders).
 //! WGSL twin: `sampler/mod.wgsl`.
 

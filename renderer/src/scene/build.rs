@@ -169,7 +169,7 @@ pub fn box_faces(min: DVec3, max: DVec3, rot_deg: f64, translate: DVec3) -> [[DV
 }
 
 /// A quad's two primitives. [`QuadLight::triangle_point`] finds a textured quad light's sampled
-/// points in this split; the two change together (`tests/textured_emission.rs` checks them).
+/// points in this split; the two change together (`renderer/tests/textured_emission.rs` checks them).
 fn quad_triangles(corner: Vec3, eu: Vec3, ev: Vec3) -> [[Vec3; 3]; 2] {
     [
         [corner, corner + eu, corner + eu + ev],

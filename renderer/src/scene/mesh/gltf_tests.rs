@@ -495,7 +495,7 @@ fn bad_indices_and_non_finite_values_are_named() {
     );
 }
 
-/// Found by `tests/mesh_mutations.rs`: f32::MAX is a finite position and 2 a finite scale, but
+/// Found by `renderer/tests/mesh_mutations/`: f32::MAX is a finite position and 2 a finite scale, but
 /// the placed position was infinite and loaded.
 #[test]
 fn a_position_that_its_transform_overflows_is_named() {
@@ -520,7 +520,7 @@ fn a_position_that_its_transform_overflows_is_named() {
     assert_eq!(mesh.positions[3].x, f32::MAX);
 }
 
-/// Found by `tests/mesh_mutations.rs` (in PLY files): a message quotes the file, and a JSON
+/// Found by `renderer/tests/mesh_mutations/` (in PLY files): a message quotes the file, and a JSON
 /// string may hold a newline or U+2028, which must not break the message's line.
 #[test]
 fn quoted_line_breaks_are_escaped() {

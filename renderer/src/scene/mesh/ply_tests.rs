@@ -636,7 +636,7 @@ fn structural_errors_are_named() {
     }
 }
 
-/// Found by `tests/mesh_mutations.rs`: the header splits at ASCII whitespace, which U+000B,
+/// Found by `renderer/tests/mesh_mutations/`: the header splits at ASCII whitespace, which U+000B,
 /// U+0085 and U+2028 are not, so a quoted keyword or value carried the line break into the
 /// message.
 #[test]

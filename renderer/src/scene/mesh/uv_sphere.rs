@@ -1,6 +1,6 @@
 //! A generated test mesh: a UV sphere of at least a given number of triangles, with vertex normals
 //! and texture coordinates, optionally bumped. The `make_mesh` example writes it to a file; the
-//! scale test (`tests/mesh_scale.rs`) makes its 1M-triangle PLY with it at test time, so no large
+//! scale test (`renderer/tests/mesh_scale.rs`) makes its 1M-triangle PLY with it at test time, so no large
 //! mesh is committed.
 //!
 //! The sphere has `s` stacks and `2s` segments, `s` the smallest with `4s(s − 1) ≥ N` triangles

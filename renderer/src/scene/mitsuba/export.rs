@@ -1,6 +1,6 @@
 //! Export: a [`SceneDesc`] as a Mitsuba 3 XML scene (`lumis export scene.json -o scene.xml`),
 //! the inverse of the importer in this module, so that importing the written file gives a scene
-//! that renders like the original (`tests/mitsuba_export.rs`). Meshes Mitsuba cannot read from
+//! that renders like the original (`renderer/tests/mitsuba_export.rs`). Meshes Mitsuba cannot read from
 //! the scene's own files (glTF, inline triangles, polygons) go into binary PLY files beside the
 //! XML. Anything the exporter cannot express exactly (a `mix`, a bitmap's `scale`, a textured
 //! sphere, …) is an error naming the JSON path, never a silently different scene.

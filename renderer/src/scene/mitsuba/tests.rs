@@ -1,5 +1,5 @@
 //! Unit tests of the Mitsuba importer's colour conversions and presets (the scene-level tests
-//! are in `tests/mitsuba_xml.rs`).
+//! are in `renderer/tests/mitsuba_xml.rs`).
 
 use super::presets::{conductor_preset, names};
 use super::transform::{coordinate_system, rotation};

@@ -1,0 +1,340 @@
+//! The Mitsuba importer's textures and refusals (a part of `renderer/tests/mitsuba_xml.rs`): every
+//! unsupported feature, and every error the JSON validation finds, is one error naming the
+//! file, line and element path.
+
+use super::*;
+
+#[test]
+fn textures_map_with_their_options() {
+    let dir = Dir::new("textures");
+    let img = lumis::image_io::Image {
+        width: 2,
+        height: 2,
+        data: vec![glam::Vec3::new(0.2, 0.4, 0.6); 4],
+    };
+    img.write(&dir.0.join("wood.png"), 0.0).unwrap();
+    let body = r#"<shape type="rectangle"><bsdf type="diffuse" id="wood">
+    <texture name="reflectance" type="bitmap"><string name="filename" value="wood.png"/>
+        <string name="wrap_mode" value="mirror"/><boolean name="raw" value="true"/>
+        <transform name="to_uv"><scale x="4" y="2"/><translate x="0.5" y="0.25"/></transform>
+    </texture></bsdf></shape>
+<shape type="rectangle"><bsdf type="roughconductor" id="checked"><string name="distribution" value="ggx"/>
+    <texture name="alpha" type="checkerboard"><float name="color0" value="0.1"/><float name="color1" value="0.3"/></texture>
+</bsdf></shape>"#;
+    let m = ok(&dir, body);
+    // to_uv: u' = 4u + 0.5, v' = 2v + 0.25; Mitsuba's eval_1 swaps a checkerboard's colours.
+    let want = expected(
+        &dir,
+        json!({
+            "materials": {
+                "wood": {"type": "diffuse", "two_sided": false, "albedo": {
+                    "type": "bitmap", "file": "wood.png", "wrap": "mirror", "raw": true,
+                    "uv_scale": [4, 2], "uv_offset": [0.5, 0.25]}},
+                "checked": {"type": "conductor", "two_sided": false, "reflectance": [1, 1, 1],
+                    "alpha": {"type": "checkerboard", "color0": 0.3, "color1": 0.1}},
+            },
+            "shapes": [
+                {"type": "quad", "corner": [-1, -1, 0], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], "material": "wood"},
+                {"type": "quad", "corner": [-1, -1, 0], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], "material": "checked"},
+            ],
+        }),
+    );
+    assert_same(&m.desc, &want);
+    refused(
+        &dir,
+        &body.replace(
+            "\"mirror\"/>",
+            "\"mirror\"/><string name=\"filter_type\" value=\"nearest\"/>",
+        ),
+        "nearest",
+        "texture/string[3]@value",
+        "filter_type `nearest` is not supported",
+    );
+    refused(
+        &dir,
+        &body.replace(
+            "<translate x=\"0.5\" y=\"0.25\"/>",
+            "<rotate z=\"1\" angle=\"10\"/>",
+        ),
+        "to_uv",
+        "texture/transform",
+        "to_uv rotates or shears",
+    );
+    // A textured sphere would need Mitsuba's spherical uv, which lumis' sphere has not.
+    refused(
+        &dir,
+        r#"<shape type="sphere"><ref id="wood"/></shape>
+<bsdf type="diffuse" id="wood"><texture name="reflectance" type="checkerboard"/></bsdf>"#,
+        "<shape type=\"sphere\">",
+        "scene/shape",
+        "a textured sphere is not supported",
+    );
+}
+
+/// An error the JSON validation finds is reported at the XML element it came from.
+#[test]
+fn json_validation_errors_name_the_xml() {
+    let dir = Dir::new("validation");
+    refused(
+        &dir,
+        r#"<shape type="sphere"><bsdf type="diffuse"><rgb name="reflectance" value="0.5 1.5 0.5"/></bsdf></shape>"#,
+        "1.5",
+        "scene/shape/bsdf/rgb@value",
+        "is outside [0, 1]",
+    );
+    refused(
+        &dir,
+        r#"<shape type="sphere"><float name="radius" value="0"/></shape>"#,
+        "value=\"0\"",
+        "scene/shape/float@value",
+        "radius must be positive",
+    );
+    refused(
+        &dir,
+        r#"<integrator type="path"><integer name="max_depth" value="0"/></integrator>"#,
+        "max_depth",
+        "scene/integrator/integer@value",
+        "0 is not allowed",
+    );
+}
+
+/// Every unsupported feature is refused with its file, line and element path.
+#[test]
+fn refusals_name_file_line_and_element() {
+    let dir = Dir::new("refusals");
+    let cases: [(&str, &str, &str, &str); 17] = [
+        (
+            r#"<emitter type="point"/>"#,
+            "point",
+            "scene/emitter",
+            "emitter type `point` is not supported",
+        ),
+        (
+            r#"<emitter type="directional"/>"#,
+            "directional",
+            "scene/emitter",
+            "no directional lights",
+        ),
+        (
+            r#"<emitter type="spot"/>"#,
+            "spot",
+            "scene/emitter",
+            "emitter type `spot`",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="bumpmap"/></shape>"#,
+            "bumpmap",
+            "scene/shape/bsdf",
+            "no bump or normal mapping",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="normalmap"/></shape>"#,
+            "normalmap",
+            "scene/shape/bsdf",
+            "BSDF type `normalmap`",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="blendbsdf"/></shape>"#,
+            "blendbsdf",
+            "scene/shape/bsdf",
+            "no BSDF mixtures",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="roughconductor"/></shape>"#,
+            "roughconductor",
+            "scene/shape/bsdf",
+            "Beckmann",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="diffuse"><rgb name="reflectanse" value="1"/></bsdf></shape>"#,
+            "reflectanse",
+            "scene/shape/bsdf/rgb",
+            "property `reflectanse` (an rgb) is not supported",
+        ),
+        (
+            r#"<shape type="cylinder"/>"#,
+            "cylinder",
+            "scene/shape",
+            "shape type `cylinder`",
+        ),
+        (
+            r#"<shape type="sphere"><medium type="homogeneous" name="interior"/></shape>"#,
+            "homogeneous",
+            "scene/shape/medium",
+            "media",
+        ),
+        (
+            r#"<integrator type="volpath"/>"#,
+            "volpath",
+            "scene/integrator",
+            "integrator `volpath` is not supported",
+        ),
+        (
+            r#"<integrator type="path"><boolean name="hide_emitters" value="true"/></integrator>"#,
+            "hide_emitters",
+            "scene/integrator/boolean@value",
+            "hide_emitters",
+        ),
+        (
+            r#"<shape type="sphere"><transform name="to_world"><matrix value="1 2 3"/></transform></shape>"#,
+            "matrix",
+            "transform/matrix@value",
+            "a matrix has 16 numbers",
+        ),
+        (
+            r#"<shape type="sphere"><transform name="to_world"><rotate angle="3"/></transform></shape>"#,
+            "rotate",
+            "transform/rotate",
+            "rotation axis is zero",
+        ),
+        (
+            r#"<shape type="sphere"><transform name="to_world"><translate x="1"/><lookat origin="0 0 0" target="0 0 0"/></transform></shape>"#,
+            "lookat origin=\"0 0 0\"",
+            "transform/lookat",
+            "invalid lookat",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="diffuse"><spectrum name="reflectance" value="500:0.2, 400:0.1"/></bsdf></shape>"#,
+            "400:0.1",
+            "spectrum@value",
+            "wavelengths must increase",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="plastic"><float name="int_ior" value="1.5"/><string name="ext_ior" value="unobtainium"/></bsdf></shape>"#,
+            "unobtainium",
+            "string@value",
+            "unknown index of refraction `unobtainium`",
+        ),
+    ];
+    for (body, marker, path, fragment) in cases {
+        refused(&dir, body, marker, path, fragment);
+    }
+    // The sensor, film and filter, in their own scenes.
+    let sensor = |film: &str| {
+        format!(
+            "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n{film}\n</sensor>\n</scene>"
+        )
+    };
+    let film_cases = [
+        (
+            r#"<film type="hdrfilm"><rfilter type="tent"/></film>"#,
+            4,
+            "scene/sensor/film/rfilter",
+            "lumis has `box` and `gaussian`",
+        ),
+        ("", 2, "scene/sensor", "the sensor has no <film>"),
+        (
+            r#"<film type="hdrfilm"><integer name="crop_width" value="3"/><rfilter type="box"/></film>"#,
+            4,
+            "scene/sensor/film",
+            "crop window",
+        ),
+        (
+            r#"<film type="specfilm"><rfilter type="box"/></film>"#,
+            4,
+            "scene/sensor/film",
+            "film type `specfilm`",
+        ),
+        (
+            r#"<film type="hdrfilm"><rfilter type="box"/></film><transform name="to_world"><scale x="-1"/></transform>"#,
+            4,
+            "scene/sensor/transform",
+            "mirrors the image",
+        ),
+        (
+            r#"<film type="hdrfilm"><rfilter type="box"/></film><transform name="to_world"><scale x="2"/></transform>"#,
+            4,
+            "scene/sensor/transform",
+            "scale factor",
+        ),
+    ];
+    for (film, line, path, fragment) in film_cases {
+        let text = sensor(film);
+        let e = import(&dir, &text, &[]).unwrap_err().to_string();
+        assert!(
+            e.contains(&format!("scene.xml:{line}:")) && e.contains(path) && e.contains(fragment),
+            "{film}: {e}"
+        );
+    }
+    let thin = "<scene version=\"3.0.0\">\n<sensor type=\"thinlens\"/></scene>";
+    let e = import(&dir, thin, &[]).unwrap_err().to_string();
+    assert!(e.contains("scene.xml:2:") && e.contains("thin lens"), "{e}");
+    // Document-level problems.
+    let e = import(
+        &dir,
+        "<scene version=\"3.0.0\">\n  <shape type='sphere'>\n</scene>",
+        &[],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("scene.xml:3:") && e.contains("XML syntax error"),
+        "{e}"
+    );
+    let e = import(&dir, "<scene>\n</scene>", &[])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("scene.xml:1:1: scene") && e.contains("`version`"),
+        "{e}"
+    );
+    let e = import(&dir, "<scene version=\"0.6.0\"/>", &[])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("Mitsuba 0.x"), "{e}");
+    let e = import(&dir, "<scene version=\"3.0.0\"/>", &[])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no <sensor>"), "{e}");
+    let e = import(&dir, &scene("<volume type=\"grid\"/>"), &[])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("scene.xml:8:1: scene/volume") && e.contains("not supported"),
+        "{e}"
+    );
+    // -D applies to .xml only.
+    let json = common::data_dir().join("scenes/analytic_disk.json");
+    let e = lumis::scene::load_scene_with(&json, &[("a".into(), "1".into())]).unwrap_err();
+    assert!(
+        e.to_string().contains("Mitsuba XML scenes (.xml) only"),
+        "{e}"
+    );
+}
+
+/// `hdrfilm`'s `sample_border = true` with a gaussian filter (explicit, or Mitsuba's default when
+/// the film has no `<rfilter>`) is refused at the boolean's line: Mitsuba then samples outside
+/// the film too, so its edge pixels see the whole filter, where lumis renormalises it on the film
+/// (the image would differ near the border). `false`, and `true` with a box (whose samples never
+/// leave the film), import. Catches the importer ignoring the flag (deliberate bug tried:
+/// `film.bool("sample_border", false)` read as `false` always: the first case was accepted).
+#[test]
+fn sample_border_with_a_gaussian_is_refused() {
+    let dir = Dir::new("sample_border");
+    let sensor = |border: &str, filter: &str| {
+        format!(
+            "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n<float name=\"fov\" value=\"30\"/>\n<film type=\"hdrfilm\">\n<boolean name=\"sample_border\" value=\"{border}\"/>\n{filter}</film>\n</sensor>\n</scene>"
+        )
+    };
+    for filter in ["<rfilter type=\"gaussian\"/>\n", ""] {
+        let e = import(&dir, &sensor("true", filter), &[])
+            .err()
+            .unwrap_or_else(|| panic!("sample_border true accepted with {filter:?}"))
+            .to_string();
+        assert!(
+            e.contains("scene.xml:5:")
+                && e.contains("scene/sensor/film/boolean")
+                && e.contains("sample_border = true is not supported with a gaussian filter")
+                && !e.contains('\n'),
+            "{filter:?}: {e}"
+        );
+    }
+    for (border, filter) in [
+        ("false", "<rfilter type=\"gaussian\"/>\n"),
+        ("false", ""),
+        ("true", "<rfilter type=\"box\"/>\n"),
+    ] {
+        import(&dir, &sensor(border, filter), &[])
+            .unwrap_or_else(|e| panic!("sample_border {border} with {filter:?}: {e}"));
+    }
+}
