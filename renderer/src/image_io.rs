@@ -56,39 +56,40 @@ pub fn srgb8(c: Vec3, gain: f32) -> [u8; 3] {
 }
 
 impl Image {
-    /// Reads an EXR or PFM file (RGB; alpha and extra channels ignored).
+    /// Reads an EXR, Radiance HDR (`.hdr`, `.rgbe`) or PFM file (RGB; alpha and extra channels
+    /// ignored).
     pub fn read(path: &Path) -> Result<Image, ImageError> {
         match extension(path).as_str() {
-            "pfm" => return read_pfm(path),
-            "exr" => {}
+            "pfm" => read_pfm(path),
+            "exr" | "hdr" | "rgbe" => Ok(Image::from_dynamic(decode_linear(path)?)),
             // PNG and the like hold display-encoded 8-bit values, not linear radiance.
-            other => {
-                return Err(err(
-                    path,
-                    format!("cannot read '.{other}' as linear radiance (use .exr or .pfm)"),
-                ));
-            }
+            other => Err(err(
+                path,
+                format!("cannot read '.{other}' as linear radiance (use .exr, .hdr or .pfm)"),
+            )),
         }
-        let img = image::open(path).map_err(|e| err(path, e))?;
-        Ok(Image::from_dynamic(img))
     }
 
-    /// Reads a linear RGB EXR and nothing else: another extension, an unreadable file or one
-    /// without colour channels (a grey-scale EXR) is an error. Alpha is ignored.
-    pub fn read_rgb_exr(path: &Path) -> Result<Image, ImageError> {
+    /// Reads the linear RGB image of an environment map: an EXR or a Radiance HDR (`.hdr`,
+    /// `.rgbe`) file and nothing else; another extension, an unreadable file or one without
+    /// colour channels (a grey-scale EXR) is an error. Alpha is ignored.
+    pub fn read_rgb_map(path: &Path) -> Result<Image, ImageError> {
         let ext = extension(path);
-        if ext != "exr" {
+        if !matches!(ext.as_str(), "exr" | "hdr" | "rgbe") {
             return Err(err(
                 path,
-                format!("an environment map must be an RGB EXR file, not '.{ext}'"),
+                format!(
+                    "an environment map must be an RGB EXR or Radiance HDR (.hdr, .rgbe) file, \
+                     not '.{ext}'"
+                ),
             ));
         }
-        let img = image::open(path).map_err(|e| err(path, e))?;
+        let img = decode_linear(path)?;
         if !img.color().has_color() {
             return Err(err(
                 path,
                 format!(
-                    "has no RGB channels ({:?}); an environment map must be an RGB EXR",
+                    "has no RGB channels ({:?}); an environment map must be an RGB EXR or HDR",
                     img.color()
                 ),
             ));
@@ -135,6 +136,19 @@ impl Image {
             )),
         }
     }
+}
+
+/// Decodes a linear float file, EXR or Radiance HDR, by its extension (`.rgbe` is HDR too,
+/// which the `image` crate would not guess from the name).
+fn decode_linear(path: &Path) -> Result<image::DynamicImage, ImageError> {
+    let format = match extension(path).as_str() {
+        "exr" => image::ImageFormat::OpenExr,
+        _ => image::ImageFormat::Hdr,
+    };
+    let file = std::fs::File::open(path).map_err(|e| err(path, e))?;
+    image::ImageReader::with_format(std::io::BufReader::new(file), format)
+        .decode()
+        .map_err(|e| err(path, e))
 }
 
 fn extension(path: &Path) -> String {

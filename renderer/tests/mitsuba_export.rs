@@ -15,7 +15,9 @@ use glam::DVec3;
 use lumis::engine::Progressive;
 use lumis::integrator::Settings;
 use lumis::scene::mitsuba::export::{ExportOptions, write_export};
-use lumis::scene::{GeometryDesc, Scene, SceneDesc, load_scene, load_scene_with, parse_scene_in};
+use lumis::scene::{
+    BackgroundDesc, GeometryDesc, Scene, SceneDesc, load_scene, load_scene_with, parse_scene_in,
+};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -165,6 +167,32 @@ fn every_stored_scene_round_trips_bit_for_bit() {
             .unwrap_or_else(|e| panic!("{e}"));
         assert_round_trip(&desc, &name);
     }
+}
+
+/// An environment map turned by a general rotation and then about +y exports as one `to_world`
+/// (the matrix, then the turn) and comes back as the same rotation to 1e-12, as the background's
+/// `rotation` (issue 38, item 1).
+#[test]
+fn an_envmap_rotation_round_trips() {
+    use glam::DMat3;
+    let mut desc = load_scene(&scenes_dir().join("envmap_objects.json")).unwrap();
+    let tilt = DMat3::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 0.9);
+    let BackgroundDesc::Envmap(e) = &mut desc.background else {
+        panic!("envmap_objects has an envmap")
+    };
+    e.rotation = Some(tilt);
+    let want = DMat3::from_rotation_y(e.rotate_y_deg.to_radians()) * tilt;
+    let dir = Dir::new("envmap_rotation");
+    let (_, back) = round_trip(&desc, &dir, "envmap_rotation");
+    let BackgroundDesc::Envmap(b) = &back.desc.background else {
+        panic!("the envmap came back as {:?}", back.desc.background)
+    };
+    let got = DMat3::from_rotation_y(b.rotate_y_deg.to_radians()) * b.rotation.unwrap();
+    let off = (got - want)
+        .to_cols_array()
+        .iter()
+        .fold(0.0f64, |a, x| a.max(x.abs()));
+    assert!(off < 1e-12, "{got} against {want}: {off:e}");
 }
 
 /// A scene with every material kind, both texture kinds in colour and scalar slots (uv scale

@@ -12,7 +12,7 @@ mod refusals;
 
 use glam::DVec3;
 use lumis::scene::mitsuba::{self, Imported, conductor_preset};
-use lumis::scene::{GeometryDesc, SceneDesc, SceneError, parse_scene_value_in};
+use lumis::scene::{BackgroundDesc, GeometryDesc, SceneDesc, SceneError, parse_scene_value_in};
 use serde_json::{Value, json};
 use std::path::PathBuf;
 
@@ -608,6 +608,57 @@ fn values_spectra_and_emitters() {
     assert_eq!(m["background"]["envmap"], "sky.exr");
     assert!((m["background"]["rotate_y_deg"].as_f64().unwrap() - 30.0).abs() < 1e-12);
     assert_eq!(m["background"]["scale"], 2.0);
+}
+
+/// Any proper rotation of an envmap (a z-up scene turns its map by −90° about +x, then maybe
+/// about +z) is imported as the background's `rotation`, the translation dropped; a mirror or a
+/// scale is one error at the transform, which names what is wrong (issue 38, item 1).
+#[test]
+fn envmap_rotations_are_imported_and_non_rotations_refused() {
+    let dir = Dir::new("envmap_rotation");
+    let sky = lumis::image_io::Image {
+        width: 4,
+        height: 2,
+        data: vec![glam::Vec3::splat(0.5); 8],
+    };
+    sky.write(&dir.0.join("sky.exr"), 0.0).unwrap();
+    let emitter = |transform: &str| {
+        format!(
+            r#"<emitter type="envmap"><string name="filename" value="sky.exr"/>
+    <transform name="to_world">{transform}</transform></emitter>"#
+        )
+    };
+    let m = ok(
+        &dir,
+        &emitter(r#"<rotate x="1" angle="-90"/><rotate z="1" angle="40"/><translate x="3"/>"#),
+    );
+    let BackgroundDesc::Envmap(e) = &m.desc.background else {
+        panic!("not an envmap: {:?}", m.desc.background)
+    };
+    let want = glam::DMat3::from_rotation_z(40f64.to_radians())
+        * glam::DMat3::from_rotation_x(-90f64.to_radians());
+    let r = e.rotation.expect("a general rotation");
+    assert!(
+        (r - want).to_cols_array().iter().all(|x| x.abs() < 1e-12),
+        "{r} against {want}"
+    );
+    assert_eq!(e.rotate_y_deg, 0.0);
+    for (transform, why) in [
+        (r#"<scale x="-1"/>"#, "mirrors"),
+        (r#"<scale value="2"/>"#, "not a rotation"),
+        (
+            r#"<matrix value="1 1 0 0 0 1 0 0 0 0 1 0 0 0 0 1"/>"#,
+            "not a rotation",
+        ),
+    ] {
+        refused(
+            &dir,
+            &emitter(transform),
+            transform,
+            "emitter/transform",
+            why,
+        );
+    }
 }
 
 /// A cube's 12 triangles all face away from its centre (or towards it, flipped), and cover

@@ -2,7 +2,8 @@
 //! hits nothing, exactly as Mitsuba 3.9.1's `envmap` looks it up (scene format Version 2), and
 //! importance-sampled.
 //!
-//! Lookup: a world direction `d` is rotated by −`rotate_y_deg` about +y, mapped to
+//! Lookup: a world direction `d` is taken to the map's frame by the inverse of the map's rotation
+//! (`to_world`, any proper rotation: Mitsuba's `to_world`, or lumis' `rotate_y_deg`), mapped to
 //! `u = atan2(x, −z) / 2π` (wrapped into [0, 1)) and `v = acos(y) / π`, and the image is
 //! interpolated bilinearly at column `u·W − 0.5` (periodic) and row `v·(H − 1)` (row 0's centre at
 //! the zenith, row H−1's at the nadir, clamped).
@@ -18,7 +19,7 @@
 
 use super::{LightSample, LightSampling};
 use crate::sampling::{Piecewise2D, sample_uniform_sphere, uniform_sphere_pdf};
-use glam::{Vec2, Vec3};
+use glam::{DMat3, Mat3, Vec2, Vec3};
 use std::f32::consts::{PI, TAU};
 
 /// An environment map light.
@@ -28,8 +29,10 @@ pub struct EnvmapLight {
     height: usize,
     /// Radiance (times the scene's `scale`), row-major, row 0 at the zenith.
     texels: Vec<Vec3>,
-    /// `(sin, cos)` of the rotation about +y from the map's frame to the world.
-    rotation: (f32, f32),
+    /// The rotation from the map's frame to the world (a proper rotation).
+    to_world: Mat3,
+    /// Its inverse, the transpose, kept so both directions are one product each.
+    to_map: Mat3,
     /// Cells: `width` columns × `bands()` rows, weights as in the module comment.
     cells: Piecewise2D,
     /// cos θ at the band edges, `bands() + 1` entries from +1 (zenith) down to −1.
@@ -41,14 +44,27 @@ pub struct EnvmapLight {
 }
 
 impl EnvmapLight {
+    /// The rotation from the map's frame to the world: `rotation` (a proper rotation; the identity
+    /// if `None`), then `rotate_y_deg` about +y.
+    pub fn rotation_matrix(rotate_y_deg: f32, rotation: Option<DMat3>) -> Mat3 {
+        match rotation {
+            None => {
+                let (s, c) = rotate_y_deg.to_radians().sin_cos();
+                Mat3::from_cols(Vec3::new(c, 0.0, -s), Vec3::Y, Vec3::new(s, 0.0, c))
+            }
+            Some(r) => (DMat3::from_rotation_y((rotate_y_deg as f64).to_radians()) * r).as_mat3(),
+        }
+    }
+
     /// The map of `width × height` texels (row 0 at the zenith; finite, non-negative) scaled by
-    /// `scale`, rotated by `rotate_y_deg` about +y. `None` if it emits nothing.
+    /// `scale`, turned by `to_world` (a proper rotation, [`EnvmapLight::rotation_matrix`]).
+    /// `None` if it emits nothing.
     pub fn new(
         width: usize,
         height: usize,
         texels: &[Vec3],
         scale: f32,
-        rotate_y_deg: f32,
+        to_world: Mat3,
         scene_radius: f32,
     ) -> Option<EnvmapLight> {
         assert_eq!(texels.len(), width * height, "texel count");
@@ -78,12 +94,12 @@ impl EnvmapLight {
             }
         }
         let cells = Piecewise2D::new(&weights, width, bands)?;
-        let (s, c) = rotate_y_deg.to_radians().sin_cos();
         Some(EnvmapLight {
             width,
             height,
             texels,
-            rotation: (s, c),
+            to_world,
+            to_map: to_world.transpose(),
             cells,
             band_cos,
             luminance_integral: luminance_integral as f32,
@@ -96,16 +112,14 @@ impl EnvmapLight {
         self.band_cos.len() - 1
     }
 
-    /// World direction → the map's frame (rotation by −`rotate_y_deg` about +y).
+    /// World direction → the map's frame (the inverse rotation).
     fn to_map(&self, d: Vec3) -> Vec3 {
-        let (s, c) = self.rotation;
-        Vec3::new(c * d.x - s * d.z, d.y, s * d.x + c * d.z)
+        self.to_map * d
     }
 
-    /// The map's frame → world (rotation by `rotate_y_deg` about +y, the box's convention).
+    /// The map's frame → world.
     fn to_world(&self, d: Vec3) -> Vec3 {
-        let (s, c) = self.rotation;
-        Vec3::new(c * d.x + s * d.z, d.y, -s * d.x + c * d.z)
+        self.to_world * d
     }
 
     /// `(u, v)` of a direction in the map's frame (not necessarily unit).
@@ -256,9 +270,9 @@ impl EnvmapLight {
         &self.texels
     }
 
-    /// `(sin, cos)` of the rotation about +y, for the GPU's record.
-    pub(crate) fn rotation(&self) -> (f32, f32) {
-        self.rotation
+    /// The rotation from the map's frame to the world, for the GPU's record.
+    pub(crate) fn to_world_matrix(&self) -> Mat3 {
+        self.to_world
     }
 
     /// cos θ at the band edges, for the GPU's tables (so both sides cut the same bands).

@@ -5,7 +5,7 @@
 // the sphere uniformly instead. Compiled only under HAS_ENVMAP.
 //
 // Record: h = (LIGHT_ENVMAP, width W, height H, offset of the tables in `tables`),
-// a.xy = (sin, cos) of the rotation about +y from the map's frame to the world. With
+// a.xyz, b.xyz, c.xyz = the columns of the rotation from the map's frame to the world. With
 // B = max(H − 1, 1) bands the tables hold, in order: B + 1 band-edge cosines, the marginal CDF
 // over bands (B + 1), one conditional CDF over columns per band (W + 1 each), and the density of
 // each cell on the unit square (W per band).
@@ -31,18 +31,18 @@ fn envmap_cells(l: Light) -> u32 {
     return envmap_conditional(l) + envmap_bands(l) * (l.h.y + 1u);
 }
 
-// World → the map's frame (rotation by −rotate_y_deg about +y).
+// World → the map's frame: the transpose's product, in glam's order (`Mat3 * Vec3`).
 fn envmap_to_map(l: Light, d: vec3f) -> vec3f {
-    let s = l.a.x;
-    let c = l.a.y;
-    return vec3f(c * d.x - s * d.z, d.y, s * d.x + c * d.z);
+    return vec3f(
+        l.a.x * d.x + l.a.y * d.y + l.a.z * d.z,
+        l.b.x * d.x + l.b.y * d.y + l.b.z * d.z,
+        l.c.x * d.x + l.c.y * d.y + l.c.z * d.z
+    );
 }
 
-// The map's frame → world.
+// The map's frame → world, in glam's order (columns times components, summed left to right).
 fn envmap_to_world(l: Light, d: vec3f) -> vec3f {
-    let s = l.a.x;
-    let c = l.a.y;
-    return vec3f(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
+    return l.a.xyz * d.x + l.b.xyz * d.y + l.c.xyz * d.z;
 }
 
 // `EnvmapLight::uv`: (u, v) of a direction in the map's frame (not necessarily unit).

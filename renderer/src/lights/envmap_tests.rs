@@ -13,7 +13,15 @@ fn index_map(w: usize, h: usize) -> Vec<Vec3> {
 }
 
 fn light(w: usize, h: usize, texels: &[Vec3], rotate: f32) -> EnvmapLight {
-    EnvmapLight::new(w, h, texels, 1.0, rotate, 1.0).unwrap()
+    EnvmapLight::new(
+        w,
+        h,
+        texels,
+        1.0,
+        EnvmapLight::rotation_matrix(rotate, None),
+        1.0,
+    )
+    .unwrap()
 }
 
 /// World direction of map coordinates `(u, v)` (no rotation).
@@ -74,6 +82,33 @@ fn rotation_turns_the_map_like_a_box() {
         let d = sample_uniform_sphere(rng.next_2d());
         let rd = Vec3::new(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
         assert!(close(turned.eval(rd), plain.eval(d), 1e-3), "{d}");
+    }
+}
+
+/// Any rotation (`rotation`, then `rotate_y_deg`) turns the map with the world: seen along R·d it
+/// is the unturned map seen along d, and sampling, the pdf and the inverse agree under it.
+#[test]
+fn any_rotation_turns_the_map_and_its_sampler() {
+    let (w, h) = (16, 9);
+    let texels = index_map(w, h);
+    let plain = light(w, h, &texels, 0.0);
+    let tilt = crate::stats::suite::envmap_tilt();
+    let r = EnvmapLight::rotation_matrix(20.0, Some(tilt));
+    let want = (glam::DMat3::from_rotation_y(20f64.to_radians()) * tilt).as_mat3();
+    assert!((r - want).abs_diff_eq(Mat3::ZERO, 1e-6), "{r} vs {want}");
+    let turned = EnvmapLight::new(w, h, &texels, 1.0, r, 1.0).unwrap();
+    let mut rng = Rng::new(14, 0, 0);
+    for _ in 0..1000 {
+        let d = sample_uniform_sphere(rng.next_2d());
+        assert!(close(turned.eval(r * d), plain.eval(d), 1e-3), "{d}");
+        let (wi, pdf) = turned.sample_importance(rng.next_2d());
+        assert!(
+            (turned.pdf_importance(wi) - pdf).abs() <= 1e-3 * pdf,
+            "{wi}"
+        );
+        // The turned map's density at R·d is the plain one's at d.
+        let (pd, pp) = (turned.pdf_importance(r * d), plain.pdf_importance(d));
+        assert!((pd - pp).abs() <= 1e-3 * pp.max(1e-3), "{d}: {pd} vs {pp}");
     }
 }
 
@@ -148,7 +183,15 @@ fn pdf_integrates_to_one() {
 fn constant_map_is_uniform_and_has_the_backgrounds_power() {
     let le = Vec3::new(0.3, 0.6, 0.9);
     for (w, h) in [(1, 1), (2, 1), (7, 3), (64, 32)] {
-        let map = EnvmapLight::new(w, h, &vec![le; w * h], 2.0, 40.0, 3.0).unwrap();
+        let map = EnvmapLight::new(
+            w,
+            h,
+            &vec![le; w * h],
+            2.0,
+            EnvmapLight::rotation_matrix(40.0, None),
+            3.0,
+        )
+        .unwrap();
         let mut rng = Rng::new(14, 0, 0);
         for _ in 0..2000 {
             let d = sample_uniform_sphere(rng.next_2d());
@@ -167,6 +210,6 @@ fn constant_map_is_uniform_and_has_the_backgrounds_power() {
 /// A map of zeros is no light.
 #[test]
 fn black_map_is_no_light() {
-    assert!(EnvmapLight::new(3, 2, &[Vec3::ZERO; 6], 1.0, 0.0, 1.0).is_none());
-    assert!(EnvmapLight::new(3, 2, &[Vec3::ONE; 6], 0.0, 0.0, 1.0).is_none());
+    assert!(EnvmapLight::new(3, 2, &[Vec3::ZERO; 6], 1.0, glam::Mat3::IDENTITY, 1.0).is_none());
+    assert!(EnvmapLight::new(3, 2, &[Vec3::ONE; 6], 0.0, glam::Mat3::IDENTITY, 1.0).is_none());
 }

@@ -530,7 +530,7 @@ impl Scene {
                 e.image.height as usize,
                 &e.image.data,
                 e.scale as f32,
-                e.rotate_y_deg as f32,
+                EnvmapLight::rotation_matrix(e.rotate_y_deg as f32, e.rotation),
                 scene_radius,
             )
             .map(Light::Envmap),

@@ -46,8 +46,13 @@ pub struct EnvmapDesc {
     pub image: Arc<Image>,
     /// Radiance multiplier, ≥ 0.
     pub scale: f64,
-    /// Rotation of the map about +y, in degrees (the box's convention).
+    /// Rotation of the map about +y, in degrees (the box's convention), applied after
+    /// [`EnvmapDesc::rotation`].
     pub rotate_y_deg: f64,
+    /// Any rotation from the map's frame to the world (a proper rotation, orthonormalised where
+    /// it was read), applied before `rotate_y_deg`; `None` is the identity (scene format
+    /// Version 3's `rotation`; Mitsuba's `to_world`).
+    pub rotation: Option<glam::DMat3>,
 }
 
 /// A pinhole camera looking from `from` towards `to`.
@@ -377,11 +382,19 @@ impl SceneDesc {
             "max_depth": self.max_depth,
             "background": match &self.background {
                 BackgroundDesc::Constant(c) => vec3(*c),
-                BackgroundDesc::Envmap(e) => json!({
-                    "envmap": e.file.to_string_lossy(),
-                    "scale": e.scale,
-                    "rotate_y_deg": e.rotate_y_deg,
-                }),
+                BackgroundDesc::Envmap(e) => {
+                    let mut v = json!({
+                        "envmap": e.file.to_string_lossy(),
+                        "scale": e.scale,
+                        "rotate_y_deg": e.rotate_y_deg,
+                    });
+                    if let Some(r) = e.rotation {
+                        // Rows, as the key is read.
+                        let t = r.transpose();
+                        v["rotation"] = json!([vec3(t.x_axis), vec3(t.y_axis), vec3(t.z_axis)]);
+                    }
+                    v
+                }
             },
             "materials": materials,
             "shapes": shapes,

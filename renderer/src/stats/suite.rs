@@ -407,6 +407,16 @@ pub fn envmap_maps() -> Vec<TestMap> {
 /// A scene lit only by `map`, rotated by `rotate_y_deg`, with nothing in it but a tiny sphere far
 /// below (a scene needs a shape; it hides almost nothing).
 pub fn envmap_scene(map: &TestMap, rotate_y_deg: f64) -> Arc<Scene> {
+    envmap_scene_rotated(map, rotate_y_deg, None)
+}
+
+/// [`envmap_scene`] with the map turned by `rotation` (scene format Version 3's `rotation`)
+/// before `rotate_y_deg`.
+pub fn envmap_scene_rotated(
+    map: &TestMap,
+    rotate_y_deg: f64,
+    rotation: Option<glam::DMat3>,
+) -> Arc<Scene> {
     use crate::image_io::Image;
     use crate::scene::{BackgroundDesc, EnvmapDesc};
     let (name, w, h, texels) = map;
@@ -425,19 +435,42 @@ pub fn envmap_scene(map: &TestMap, rotate_y_deg: f64) -> Arc<Scene> {
         }),
         scale: 1.0,
         rotate_y_deg,
+        rotation,
     });
     Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{name}: {e}")))
 }
 
-/// Every test map × method, rotated by 30° about +y (the maps' features are then off the grid of
-/// the χ² histogram).
+/// A rotation that is about no coordinate axis: a z-up map (Mitsuba scenes turn theirs by −90°
+/// about +x) then tilted 50° about (1, 2, 3), so the map's poles and seam lie off every axis.
+pub fn envmap_tilt() -> glam::DMat3 {
+    use glam::{DMat3, DVec3};
+    DMat3::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 50f64.to_radians())
+        * DMat3::from_rotation_x(-90f64.to_radians())
+}
+
+/// The scenes of [`envmap_cases`], named: every test map rotated by 30° about +y (the maps'
+/// features are then off the grid of the χ² histogram), and the sun and stripes maps also turned
+/// by [`envmap_tilt`] (`NAME_tilted`).
+pub fn envmap_case_scenes() -> Vec<(String, Arc<Scene>)> {
+    let maps = envmap_maps();
+    let mut out: Vec<(String, Arc<Scene>)> = maps
+        .iter()
+        .map(|m| (m.0.to_string(), envmap_scene(m, 30.0)))
+        .collect();
+    for m in maps.iter().filter(|m| matches!(m.0, "sun" | "stripes")) {
+        let scene = envmap_scene_rotated(m, 0.0, Some(envmap_tilt()));
+        out.push((format!("{}_tilted", m.0), scene));
+    }
+    out
+}
+
+/// Every scene of [`envmap_case_scenes`] × method.
 pub fn envmap_cases() -> Vec<Case> {
     let mut out = Vec::new();
-    for map in envmap_maps() {
-        let scene = envmap_scene(&map, 30.0);
+    for (map, scene) in envmap_case_scenes() {
         let light = scene.background_light.expect("the map emits") as usize;
         for method in [LightSampling::Area, LightSampling::SolidAngle] {
-            let name = format!("envmap/{}/{method:?}", map.0).to_lowercase();
+            let name = format!("envmap/{map}/{method:?}").to_lowercase();
             let sampler = LightDirections {
                 scene: scene.clone(),
                 light,

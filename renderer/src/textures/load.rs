@@ -30,14 +30,15 @@ fn err(path: &Path, message: impl ToString) -> ImageError {
 
 /// Whether a file of this name is read as linear floats (`raw` makes no difference to it).
 pub fn is_float_format(path: &Path) -> bool {
-    matches!(extension(path).as_str(), "exr" | "pfm")
+    matches!(extension(path).as_str(), "exr" | "hdr" | "rgbe" | "pfm")
 }
 
-/// Reads a texture file by its extension (`.png`, `.jpg`/`.jpeg`, `.exr`, `.pfm`): linear RGB,
+/// Reads a texture file by its extension (`.png`, `.jpg`/`.jpeg`, `.exr`, `.hdr`/`.rgbe`, `.pfm`):
+/// linear RGB,
 /// row 0 at the top, 1 to [`MAX_TEXTURE_TEXELS`] texels.
 pub fn load_texture_image(path: &Path, raw: bool) -> Result<Image, ImageError> {
     let image = match extension(path).as_str() {
-        "exr" | "pfm" => Image::read(path)?,
+        "exr" | "hdr" | "rgbe" | "pfm" => Image::read(path)?,
         "png" | "jpg" | "jpeg" => {
             let img = image::open(path).map_err(|e| err(path, e))?;
             from_dynamic(img, raw)
@@ -45,7 +46,9 @@ pub fn load_texture_image(path: &Path, raw: bool) -> Result<Image, ImageError> {
         other => {
             return Err(err(
                 path,
-                format!("unsupported texture format '.{other}' (use .png, .jpg, .jpeg or .exr)"),
+                format!(
+                    "unsupported texture format '.{other}' (use .png, .jpg, .jpeg, .exr or .hdr)"
+                ),
             ));
         }
     };

@@ -623,10 +623,11 @@ fn indexed_light_body(light: usize, method: LightSampling) -> String {
 }
 
 /// The environment map's sampler on the GPU (issue 16), the cases of `stats::suite::envmap_cases`
-/// (`tests/chi2_samplers.rs`'s `chi2_envmaps` on the CPU): every test map of the suite (constant,
-/// a sun 1e5 times its sky, black rows and columns, 1×1, 2×1), rotated by 30°, importance-sampled
+/// (`renderer/tests/chi2_samplers.rs`'s `chi2_envmaps` on the CPU): every test map of the suite (constant,
+/// a sun 1e5 times its sky, black rows and columns, 1×1, 2×1), rotated by 30°, and the sun and
+/// stripes maps turned by a rotation about no axis (`suite::envmap_tilt`), importance-sampled
 /// (`SolidAngle`) and uniform (`Area`), 500,000 samples each, family-wise α = 0.01 Šidák-corrected
-/// over these 10 cases (its own family: the test runs alone under the `envmap` filter).
+/// over these 14 cases (its own family: the test runs alone under the `envmap` filter).
 ///
 /// **Control:** the GPU samples the sun map rotated by half a texel more (360°/64) than the
 /// density it is tested against, as if the half-texel shift between texel centres and cell edges
@@ -639,12 +640,11 @@ fn envmap_samples_pass_chi_square() {
     // (name, uploaded scene, snippet, density), in the order of `suite::envmap_cases`.
     let mut gpus = Vec::new();
     let mut cases = Vec::new();
-    for map in &maps {
-        let scene = suite::envmap_scene(map, 30.0);
+    for (map, scene) in suite::envmap_case_scenes() {
         gpus.push(GpuScene::new(ctx.clone(), Arc::clone(&scene)).expect("upload"));
         let light = scene.background_light.expect("the map emits") as usize;
         for method in METHODS {
-            let name = format!("envmap/{}/{method:?}", map.0).to_lowercase();
+            let name = format!("envmap/{map}/{method:?}").to_lowercase();
             let density = LightDirections {
                 scene: Arc::clone(&scene),
                 light,

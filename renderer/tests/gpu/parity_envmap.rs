@@ -12,7 +12,7 @@
 //! `LUMIS_SKIP_GPU_TESTS=1` skips the file where no adapter exists (see `gpu_common`).
 
 use crate::gpu_common;
-use glam::{Vec2, Vec3};
+use glam::{DMat3, Mat3, Vec2, Vec3};
 use gpu_common::*;
 use lumis::gpu::GpuScene;
 use lumis::gpu::kernel::run_snippet;
@@ -34,8 +34,8 @@ struct Map {
     name: &'static str,
     width: usize,
     height: usize,
-    /// (sin, cos) of `rotate_y_deg`.
-    rotation: (f32, f32),
+    /// The rotation from the map's frame to the world, as the renderer builds it.
+    rotation: Mat3,
     scene: Arc<Scene>,
     gpu: GpuScene,
     light: usize,
@@ -47,8 +47,13 @@ struct Map {
 
 impl Map {
     fn new(map: TestMap, rotate_y_deg: f32) -> Option<Map> {
+        Map::rotated(map, rotate_y_deg, None)
+    }
+
+    /// The map turned by `rotation`, then by `rotate_y_deg` about +y.
+    fn rotated(map: TestMap, rotate_y_deg: f32, rotation: Option<DMat3>) -> Option<Map> {
         let ctx = context()?;
-        let scene = suite::envmap_scene(&map, rotate_y_deg as f64);
+        let scene = suite::envmap_scene_rotated(&map, rotate_y_deg as f64, rotation);
         let gpu = GpuScene::new(ctx, scene.clone()).expect("upload");
         let light = scene.background_light.expect("the map emits") as usize;
         let (name, width, height, texels) = map;
@@ -67,7 +72,7 @@ impl Map {
             name,
             width,
             height,
-            rotation: rotate_y_deg.to_radians().sin_cos(),
+            rotation: EnvmapLight::rotation_matrix(rotate_y_deg, rotation),
             scene,
             gpu,
             light,
@@ -91,15 +96,13 @@ impl Map {
         self.height.saturating_sub(1).max(1)
     }
 
-    /// The map's frame → world (the box's rotation about +y).
+    /// The map's frame → world.
     fn to_world(&self, d: Vec3) -> Vec3 {
-        let (s, c) = self.rotation;
-        Vec3::new(c * d.x + s * d.z, d.y, -s * d.x + c * d.z)
+        self.rotation * d
     }
 
     fn to_map(&self, d: Vec3) -> Vec3 {
-        let (s, c) = self.rotation;
-        Vec3::new(c * d.x - s * d.z, d.y, s * d.x + c * d.z)
+        self.rotation.transpose() * d
     }
 
     /// Runs `body` with `l` bound to the map's light record.
@@ -173,6 +176,11 @@ fn lookup_maps() -> Option<Vec<Map>> {
         Map::new(suite_map("stripes"), 75.0)?,
         Map::new(suite_map("1x1"), 30.0)?,
         Map::new(suite_map("2x1"), 30.0)?,
+        Map::rotated(
+            random_map("random16x9", 16, 9, 1),
+            0.0,
+            Some(suite::envmap_tilt()),
+        )?,
     ])
 }
 
@@ -184,6 +192,11 @@ fn sampling_maps() -> Option<Vec<Map>> {
         maps.push(Map::new(m, 30.0)?);
     }
     maps.push(Map::new(random_map("random16x9", 16, 9, 4), 200.0)?);
+    maps.push(Map::rotated(
+        suite_map("sun"),
+        0.0,
+        Some(suite::envmap_tilt()),
+    )?);
     Some(maps)
 }
 

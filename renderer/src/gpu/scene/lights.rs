@@ -155,8 +155,11 @@ pub(super) fn encode(
                     g.h[1] = w as u32;
                     g.h[2] = h as u32;
                     g.h[3] = super::envmap::append_tables(e, tables);
-                    let (sin, cos) = e.rotation();
-                    g.a = [sin, cos, 0.0, 0.0];
+                    // The rotation's columns (`envmap_to_world`, `envmap_to_map`).
+                    let r = e.to_world_matrix();
+                    g.a = v4(r.x_axis, 0.0);
+                    g.b = v4(r.y_axis, 0.0);
+                    g.c = v4(r.z_axis, 0.0);
                 }
             }
             g

@@ -1,7 +1,9 @@
 //! Emitters: `area` (a shape's `emission`), `constant` and `envmap` (lumis' `background`).
 //! Mitsuba's area emitters emit on the front side only, as lumis' do; an `envmap`'s `to_world`
-//! must be a rotation about +y, the one rotation lumis' environment takes (`rotate_y_deg`, the
-//! same convention: docs/scene-format.md).
+//! is any proper rotation (its translation does not turn directions, so it is dropped): a
+//! rotation about +y becomes `rotate_y_deg` (the same convention: docs/scene-format.md), any
+//! other the background's `rotation`, which the scene parser checks (a scale, shear or mirror is
+//! refused there, at the transform's position).
 
 use super::Ctx;
 use super::plugin::Plugin;
@@ -19,7 +21,7 @@ fn unsupported(ty: &str) -> String {
             " (lumis has no point lights: use a small emitting sphere)"
         }
         "directional" | "directionalarea" => " (lumis has no directional lights)",
-        "sunsky" | "sky" | "sun" => " (lumis' environment is a constant or an EXR map)",
+        "sunsky" | "sky" | "sun" => " (lumis' environment is a constant or an EXR or HDR map)",
         _ => "",
     };
     format!("emitter type `{ty}` is not supported{why}; lumis maps area, constant and envmap")
@@ -62,28 +64,31 @@ pub fn background(ctx: &mut Ctx, e: &Plugin) -> Result<Json, SceneError> {
         "envmap" => {
             let (file, fp) = e
                 .string("filename")?
-                .ok_or_else(|| e.error("an envmap needs `filename` (lumis reads EXR files)"))?;
+                .ok_or_else(|| e.error("an envmap needs `filename` (an EXR or HDR file)"))?;
             ctx.origin("background.envmap", fp.pos());
             let file = ctx.resolve_file(file, fp.el);
             let scale = e.float("scale", 1.0)?;
             if let Some(p) = e.get("scale") {
                 ctx.origin("background.scale", p.pos());
             }
-            let angle = match e.transform("to_world")? {
-                None => 0.0,
-                Some((m, p)) => y_rotation(&m).ok_or_else(|| {
-                    p.el.pos.error(
-                        "an envmap's to_world must be a rotation about +y (lumis' \
-                         environment rotates about +y only)",
-                    )
-                })?,
-            };
+            let mut background = json!({"envmap": file, "scale": scale, "rotate_y_deg": 0.0});
+            if let Some((m, p)) = e.transform("to_world")? {
+                match y_rotation(&m) {
+                    Some(angle) => background["rotate_y_deg"] = json!(angle),
+                    None => {
+                        ctx.origin("background.rotation", p.pos());
+                        // Rows of the linear part, as the `rotation` key is read.
+                        let r = glam::DMat3::from_mat4(m).transpose();
+                        let row = |v: DVec3| json!([v.x, v.y, v.z]);
+                        background["rotation"] =
+                            json!([row(r.x_axis), row(r.y_axis), row(r.z_axis)]);
+                    }
+                }
+            }
             // Importance sampling only: the image is the same.
             e.ignore(&["mis_compensation"]);
-            e.finish(
-                "filename, scale, to_world (a rotation about +y); mis_compensation is ignored",
-            )?;
-            Ok(json!({"envmap": file, "scale": scale, "rotate_y_deg": angle}))
+            e.finish("filename, scale, to_world (a rotation); mis_compensation is ignored")?;
+            Ok(background)
         }
         other => Err(e.error(if other == "area" {
             "an area emitter must be nested in a <shape>".to_owned()

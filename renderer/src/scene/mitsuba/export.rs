@@ -221,10 +221,18 @@ fn background(x: &mut Xml, desc: &SceneDesc, folder: &Path) -> Result<(), SceneE
                 &[("name", "filename"), ("value", &file_name(&e.file, folder))],
             );
             x.leaf("float", &[("name", "scale"), ("value", &num(e.scale))]);
-            if e.rotate_y_deg != 0.0 {
-                // Mitsuba's rotate about +y is lumis' rotate_y_deg (the same convention).
+            if e.rotate_y_deg != 0.0 || e.rotation.is_some() {
+                // Mitsuba applies a transform's elements in order: the rotation, then the turn
+                // about +y, as lumis does. Its rotate about +y is lumis' rotate_y_deg.
                 x.open("transform", &[("name", "to_world")]);
-                x.leaf("rotate", &[("y", "1"), ("angle", &num(e.rotate_y_deg))]);
+                if let Some(r) = e.rotation {
+                    let rows = glam::DMat4::from_mat3(r).transpose().to_cols_array();
+                    let text: Vec<String> = rows.iter().map(|&v| num(v)).collect();
+                    x.leaf("matrix", &[("value", &text.join(" "))]);
+                }
+                if e.rotate_y_deg != 0.0 {
+                    x.leaf("rotate", &[("y", "1"), ("angle", &num(e.rotate_y_deg))]);
+                }
                 x.close("transform");
             }
             x.close("emitter");
