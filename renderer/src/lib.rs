@@ -23,11 +23,15 @@
 //! * [`gpu`]: the same estimator in wgpu compute shaders (WGSL), progressive on the GPU.
 //! * [`image_io`] and [`metrics`]: EXR/PFM/PNG and error metrics, statistical image tests;
 //!   [`math`]: frames and small shared functions.
-//! * For measuring the tests and the renderer: [`mutants`] (deliberate, named errors, active only
-//!   with the `mutants` feature), [`alloc_count`] (a counting allocator), and `stats` (the χ²
-//!   harness, compiled only for tests and with the `testing` feature).
+//! * Test harness, public only with the `testing` feature (which the crate's own tests, examples
+//!   and benches turn on through a dev-dependency on itself, so `cargo build` never exposes it):
+//!   `mutants` (deliberate, named errors for measuring the tests; their mutation points stay in
+//!   the renderer, constant 1 without the `mutants` feature), `alloc_count` (a counting
+//!   allocator), `stats` (the χ² harness) and `scene::mesh::uv_sphere` (a test mesh).
 #![warn(missing_docs)]
 
+// A counting allocator for the memory tests: test code, only with the `testing` feature.
+#[cfg(any(test, feature = "testing"))]
 pub mod alloc_count;
 pub mod camera;
 pub mod engine;
@@ -39,7 +43,13 @@ pub mod lights;
 pub mod materials;
 pub mod math;
 pub mod metrics;
+// The mutation points are in the renderer (constant 1 without the `mutants` feature); choosing
+// and applying a mutant is test harness, public only to the tests.
+#[cfg(any(test, feature = "testing", feature = "mutants"))]
 pub mod mutants;
+#[cfg(not(any(test, feature = "testing", feature = "mutants")))]
+#[allow(dead_code)]
+mod mutants;
 pub mod rng;
 pub mod sampler;
 pub mod sampling;

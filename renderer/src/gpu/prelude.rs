@@ -291,7 +291,7 @@ pub fn constants() -> Vec<Constant> {
 /// The WGSL side of [`crate::mutants`]: the active mutant's factor and the tags it applies to
 /// (`NONE` where it applies to none), read by the `// #if MUTANTS` regions of the shaders.
 #[cfg(feature = "mutants")]
-pub fn mutant_constants(m: &crate::mutants::Mutant) -> Vec<Constant> {
+pub(crate) fn mutant_constants(m: &crate::mutants::Mutant) -> Vec<Constant> {
     use crate::mutants::{FACTOR, Mutant};
     let (light, bsdf) = match m {
         Mutant::LightPdf(t) => (*t, primitive::NONE),

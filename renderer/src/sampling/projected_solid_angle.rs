@@ -174,8 +174,9 @@ impl Wedge {
         }
     }
 
-    /// The azimuth where `C` reaches `target` (`0 ≤ target ≤ area`).
-    fn solve(&self, target: f32, area: f32) -> f32 {
+    /// The azimuth where `C` reaches `target` (`0 ≤ target ≤ area`), and the Newton steps taken
+    /// (for the test of the cap).
+    fn solve(&self, target: f32, area: f32) -> (f32, u32) {
         let width = self.phi1 - self.phi0;
         // Start from the inverse for a density linear between the ends.
         let f0 = self.density(rotate(self.h, self.phi0)).max(0.0);
@@ -189,9 +190,7 @@ impl Wedge {
         let x = if den > 0.0 { t * (f0 + f1) / den } else { t };
         let (mut lo, mut hi) = (self.phi0, self.phi1);
         let mut phi = self.phi0 + x.clamp(0.0, 1.0) * width;
-        for _step in 0..NEWTON_STEPS {
-            #[cfg(test)]
-            tests::STEPS_USED.with(|c| c.borrow_mut()[_step as usize] += 1);
+        for step in 1..=NEWTON_STEPS {
             let hp = rotate(self.h, phi);
             let f = self.cdf(hp) - target;
             if f > 0.0 {
@@ -204,10 +203,10 @@ impl Wedge {
             // end; NaN, where the density is 0, fails the test), and so does a bracket narrower
             // than it (where the rounding of `C` points Newton out of it).
             if (newton - phi).abs() <= NEWTON_TOLERANCE * width {
-                return newton.clamp(lo, hi);
+                return (newton.clamp(lo, hi), step);
             }
             if hi - lo <= NEWTON_TOLERANCE * width {
-                return 0.5 * (lo + hi);
+                return (0.5 * (lo + hi), step);
             }
             // Outside the bracket: bisect.
             phi = if newton > lo && newton < hi {
@@ -216,7 +215,7 @@ impl Wedge {
                 0.5 * (lo + hi)
             };
         }
-        phi
+        (phi, NEWTON_STEPS)
     }
 
     /// The direction at azimuth `phi` whose `r²` is the fraction `uy` of the way from the inner
@@ -421,9 +420,15 @@ impl ProjectedPolygon {
     /// The local direction (unit, `z ≥ 0`) for `u ∈ [0,1)²`, distributed as `cos θ / Ω⊥` over
     /// the polygon.
     pub fn sample(&self, u: Vec2) -> Vec3 {
+        self.sample_steps(u).0
+    }
+
+    /// [`ProjectedPolygon::sample`] and the Newton steps it took (0 around the zenith), which
+    /// the tests count.
+    pub(crate) fn sample_steps(&self, u: Vec2) -> (Vec3, u32) {
         let target = u.x * self.area;
         let Some((start, end)) = self.chains else {
-            return self.sample_around_zenith(target, u.y);
+            return (self.sample_around_zenith(target, u.y), 0);
         };
         let mut acc = 0.0;
         let mut last: Option<(Wedge, f32)> = None;
@@ -432,7 +437,8 @@ impl ProjectedPolygon {
             if area > 0.0 {
                 last = Some((*w, area));
                 if target < acc + area {
-                    out = Some(w.lift(w.solve(target - acc, area), u.y));
+                    let (phi, steps) = w.solve(target - acc, area);
+                    out = Some((w.lift(phi, u.y), steps));
                     return true;
                 }
                 acc += area;
@@ -444,8 +450,11 @@ impl ProjectedPolygon {
         }
         // Rounding left `target` past the last wedge: its far end.
         match last {
-            Some((w, area)) => w.lift(w.solve(area, area), u.y),
-            None => self.v[start],
+            Some((w, area)) => {
+                let (phi, steps) = w.solve(area, area);
+                (w.lift(phi, u.y), steps)
+            }
+            None => (self.v[start], 0),
         }
     }
 

@@ -8,13 +8,6 @@ use crate::math::Frame;
 use crate::rng::Rng;
 use crate::sampling::testing::check_fractions;
 use glam::DVec3;
-use std::cell::RefCell;
-
-thread_local! {
-    /// How many of [`Wedge::solve`]'s calls on this thread reached Newton step `k + 1`.
-    pub(super) static STEPS_USED: RefCell<[u64; NEWTON_STEPS as usize]> =
-        const { RefCell::new([0; NEWTON_STEPS as usize]) };
-}
 
 /// Lambert's formula in f64 for the f32 polygon `w` clipped to z ≥ 0 (the reference).
 fn lambert64(w: &[Vec3]) -> f64 {
@@ -270,19 +263,16 @@ fn newton_converges_within_the_cap() {
         }
         let cond = p.abs_sum() / p.area();
         let mut r = Rng::new(10, k as u32, 0);
-        STEPS_USED.with(|c| *c.borrow_mut() = [0; NEWTON_STEPS as usize]);
         for _ in 0..20 {
             let u = r.next_2d();
-            let back = p.invert(p.sample(u)).unwrap();
+            let (d, steps) = p.sample_steps(u);
+            let back = p.invert(d).unwrap();
             worst = worst.max((back.x - u.x).abs());
             worst_scaled = worst_scaled.max((back.x - u.x).abs() / cond);
-        }
-        if cond < 8.0 {
-            STEPS_USED.with(|c| {
-                for (a, b) in calm.iter_mut().zip(c.borrow().iter()) {
-                    *a += b;
-                }
-            });
+            if cond < 8.0 {
+                // Calls reaching step k + 1, for every k below the steps taken.
+                calm[..steps as usize].iter_mut().for_each(|c| *c += 1);
+            }
         }
     }
     eprintln!(

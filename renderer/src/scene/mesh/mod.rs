@@ -8,6 +8,8 @@ pub mod gltf;
 pub mod obj;
 pub mod ply;
 pub mod serialized;
+// A generated test mesh (the scale tests and `examples/make_mesh`): only with `testing`.
+#[cfg(any(test, feature = "testing"))]
 pub mod uv_sphere;
 
 use glam::{Vec2, Vec3};
