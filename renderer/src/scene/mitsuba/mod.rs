@@ -17,6 +17,7 @@ mod export_bsdf;
 mod export_shape;
 mod plugin;
 mod presets;
+pub mod scope;
 mod sensor;
 mod shape;
 mod texture;
@@ -124,13 +125,7 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Imported, Scene
     // Declarations for <ref>: translated where they are used.
     scene.objects("bsdf");
     scene.objects("texture");
-    for tag in ["medium", "volume", "phase"] {
-        if let Some(p) = scene.objects(tag).first() {
-            return Err(p.el.pos.error(format!(
-                "<{tag}> is not supported (lumis renders surfaces in vacuum)"
-            )));
-        }
-    }
+    // <medium>, <phase> and <volume> are out of scope, refused when the scene was read (`scope`).
     scene.finish("integrator, sensor, shape, emitter, bsdf, texture")?;
 
     let mut json = json!({

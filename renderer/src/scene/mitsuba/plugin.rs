@@ -99,6 +99,8 @@ impl<'a> Plugin<'a> {
         el: &'a Element,
         ids: &HashMap<&str, &'a Element>,
     ) -> Result<Plugin<'a>, SceneError> {
+        // Out of scope first: such a file gets that reason, not a missing-feature message.
+        super::scope::check(el)?;
         let ty = match el.tag.as_str() {
             "scene" => {
                 el.only_attrs(&["version", "type", "id", "name"])?;
