@@ -392,21 +392,29 @@ pub(crate) fn library_source_with(
 fn library(constants: &[Constant], features: &Features) -> Result<String, GpuError> {
     let mut src = String::from("// ---- prelude ----\n");
     src += &prelude::source(constants);
-    for m in MODULES.iter().filter(|m| features.wants(m.name)) {
-        src += &format!("// ---- {} ----\n", m.name);
-        src += &preprocess(m.name, m.text, features)?;
-    }
+    let wanted = MODULES.iter().filter(|m| features.wants(m.name));
+    append_modules(&mut src, wanted, features)?;
     Ok(src)
+}
+
+/// Appends each of `modules`, preprocessed for `features`, under a line naming it.
+fn append_modules<'a>(
+    src: &mut String,
+    modules: impl IntoIterator<Item = &'a Module>,
+    features: &Features,
+) -> Result<(), GpuError> {
+    for m in modules {
+        *src += &format!("// ---- {} ----\n", m.name);
+        *src += &preprocess(m.name, m.text, features)?;
+    }
+    Ok(())
 }
 
 /// The path tracer's source for `features` (entry points `render` and `fold`): the library and
 /// [`PATH_MODULES`].
 pub fn path_tracer_source(features: &Features) -> Result<String, GpuError> {
     let mut src = library(&prelude::constants(), features)?;
-    for m in PATH_MODULES {
-        src += &format!("// ---- {} ----\n", m.name);
-        src += &preprocess(m.name, m.text, features)?;
-    }
+    append_modules(&mut src, PATH_MODULES, features)?;
     Ok(src)
 }
 

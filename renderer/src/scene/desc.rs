@@ -389,9 +389,7 @@ impl SceneDesc {
                         "rotate_y_deg": e.rotate_y_deg,
                     });
                     if let Some(r) = e.rotation {
-                        // Rows, as the key is read.
-                        let t = r.transpose();
-                        v["rotation"] = json!([vec3(t.x_axis), vec3(t.y_axis), vec3(t.z_axis)]);
+                        v["rotation"] = super::parse_background::rotation_json(r);
                     }
                     v
                 }

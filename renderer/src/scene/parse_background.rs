@@ -74,6 +74,13 @@ pub(crate) fn parse_background(v: &Value, folder: &Path) -> Result<BackgroundDes
 /// tighter than any scale or shear a scene would mean.
 pub const ROTATION_TOLERANCE: f64 = 1e-4;
 
+/// `r` as `parse_rotation` reads it back: three rows.
+pub(crate) fn rotation_json(r: DMat3) -> Value {
+    let t = r.transpose();
+    let row = |v: DVec3| serde_json::json!([v.x, v.y, v.z]);
+    serde_json::json!([row(t.x_axis), row(t.y_axis), row(t.z_axis)])
+}
+
 /// A rotation: a 3×3 matrix as three rows, or `{"axis": [x, y, z], "angle_deg": a}` (right-handed
 /// about the axis, as Mitsuba's `rotate`).
 fn parse_rotation(v: &Value, path: &str) -> Result<DMat3, SceneError> {

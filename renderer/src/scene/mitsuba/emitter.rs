@@ -11,6 +11,7 @@ use super::texture::color_param;
 use super::transform::rotation;
 use super::values::{Slot, constant_color};
 use crate::scene::error::SceneError;
+use crate::scene::parse_background::rotation_json;
 use glam::{DMat4, DVec3};
 use serde_json::{Value as Json, json};
 
@@ -77,11 +78,8 @@ pub fn background(ctx: &mut Ctx, e: &Plugin) -> Result<Json, SceneError> {
                     Some(angle) => background["rotate_y_deg"] = json!(angle),
                     None => {
                         ctx.origin("background.rotation", p.pos());
-                        // Rows of the linear part, as the `rotation` key is read.
-                        let r = glam::DMat3::from_mat4(m).transpose();
-                        let row = |v: DVec3| json!([v.x, v.y, v.z]);
-                        background["rotation"] =
-                            json!([row(r.x_axis), row(r.y_axis), row(r.z_axis)]);
+                        // The linear part; the scene parser checks that it is a rotation.
+                        background["rotation"] = rotation_json(glam::DMat3::from_mat4(m));
                     }
                 }
             }

@@ -226,9 +226,10 @@ fn background(x: &mut Xml, desc: &SceneDesc, folder: &Path) -> Result<(), SceneE
                 // about +y, as lumis does. Its rotate about +y is lumis' rotate_y_deg.
                 x.open("transform", &[("name", "to_world")]);
                 if let Some(r) = e.rotation {
-                    let rows = glam::DMat4::from_mat3(r).transpose().to_cols_array();
-                    let text: Vec<String> = rows.iter().map(|&v| num(v)).collect();
-                    x.leaf("matrix", &[("value", &text.join(" "))]);
+                    x.leaf(
+                        "matrix",
+                        &[("value", &matrix_value(&glam::DMat4::from_mat3(r)))],
+                    );
                 }
                 if e.rotate_y_deg != 0.0 {
                     x.leaf("rotate", &[("y", "1"), ("angle", &num(e.rotate_y_deg))]);
@@ -250,6 +251,12 @@ pub(crate) fn file_name(file: &Path, folder: &Path) -> String {
         Ok(rel) => rel.to_string_lossy().into_owned(),
         Err(_) => file.to_string_lossy().into_owned(),
     }
+}
+
+/// A `<matrix value>`: the 16 entries row by row.
+pub(crate) fn matrix_value(m: &glam::DMat4) -> String {
+    let rows = m.transpose().to_cols_array();
+    rows.iter().map(|&v| num(v)).collect::<Vec<_>>().join(" ")
 }
 
 /// `x` in shortest round-trip form (`0.1`, `1e-7`): the importer parses back this very `f64`.

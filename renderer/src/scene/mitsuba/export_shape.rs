@@ -17,7 +17,7 @@
 //! otherwise than lumis (sphere, disk, polygon, triangles, a mesh without uv) is an error, as
 //! the importer refuses the same.
 
-use super::export::{ExportCtx, Xml, file_name, num, vec3};
+use super::export::{ExportCtx, Xml, file_name, matrix_value, num, vec3};
 use super::export_bsdf::{color_value, is_textured, texture_xml};
 use crate::geometry::polygon;
 use crate::scene::build::box_faces;
@@ -243,10 +243,8 @@ fn attachments(
 
 /// `<transform name=…><matrix value="16 numbers, row by row"/></transform>`.
 fn matrix(x: &mut Xml, name: &str, m: &DMat4) {
-    let rows = m.transpose().to_cols_array();
-    let text: Vec<String> = rows.iter().map(|&v| num(v)).collect();
     x.open("transform", &[("name", name)]);
-    x.leaf("matrix", &[("value", &text.join(" "))]);
+    x.leaf("matrix", &[("value", &matrix_value(m))]);
     x.close("transform");
 }
 

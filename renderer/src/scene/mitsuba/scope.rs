@@ -6,24 +6,9 @@
 //! that suggests a missing feature. Anything else lumis does not map is a defect of the importer
 //! (docs/mitsuba.md, "Out of scope").
 
+use super::plugin::OBJECT_TAGS;
 use super::xml::Element;
 use crate::scene::error::SceneError;
-
-/// Element tags that declare an object (a plugin), as opposed to a property.
-const OBJECT_TAGS: [&str; 12] = [
-    "bsdf",
-    "emitter",
-    "film",
-    "integrator",
-    "medium",
-    "phase",
-    "rfilter",
-    "sampler",
-    "sensor",
-    "shape",
-    "texture",
-    "volume",
-];
 
 /// Why `<tag type="ty">` is out of scope, or `None` if it is not.
 pub fn out_of_scope(tag: &str, ty: &str) -> Option<&'static str> {
