@@ -134,7 +134,7 @@ pub fn bench(args: &BenchArgs) -> anyhow::Result<()> {
         check_output_dir(plot)?;
     }
 
-    lumis_app::scene_file::set_defines(&args.scene, args.define.clone());
+    lumis_app::scene_file::set_defines(&args.scene, args.define.clone(), None);
     let (scene, rr_depth) = load_scene(&args.scene, args.film.width, args.film.height)?;
     let scene = Arc::new(scene);
     if let Some(rr) = rr_depth {

@@ -202,7 +202,8 @@ pub struct RenderArgs {
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
     pub define: Vec<(String, String)>,
     /// Samples per pixel (default for a Mitsuba scene: its sampler's `sample_count`; required
-    /// otherwise, unless --sample-range is given).
+    /// otherwise, unless --sample-range is given). In a Mitsuba scene it is also the value of
+    /// `$spp`, as `-D spp=N` would be, but no error where the scene has no `$spp`.
     #[arg(long)]
     pub spp: Option<u32>,
     /// Render only the sample indices START..END (END excluded) of the full render, instead of

@@ -22,7 +22,7 @@ pub fn export(args: &ExportArgs) -> anyhow::Result<()> {
     {
         bail!("{}: no such folder", dir.display());
     }
-    lumis_app::scene_file::set_defines(&args.scene, args.define.clone());
+    lumis_app::scene_file::set_defines(&args.scene, args.define.clone(), args.spp);
     let loaded = lumis_app::scene_file::load_scene_file(&args.scene)?;
     let mut options = ExportOptions {
         spp: args.spp.or(loaded.spp),

@@ -7,6 +7,8 @@
 //! image (block z-test). Scenes are written to temporary folders; nothing runs Mitsuba.
 
 mod common;
+#[path = "mitsuba_xml/grammar.rs"]
+mod grammar;
 #[path = "mitsuba_xml/refusals.rs"]
 mod refusals;
 

@@ -42,6 +42,8 @@ struct Params {
     // `tables` (NONE when nothing can be sampled); the struct's size rounds up to 16 bytes.
     light_selection: u32,
     light_bvh: u32,
+    // 1: camera rays do not see emitters (Mitsuba's hide_emitters, `integrator/path.wgsl`).
+    hide_emitters: u32,
 }
 
 // The camera's pixel filter (`film_position` in `camera/filter.wgsl`; an unknown tag fails there).

@@ -198,8 +198,10 @@ fn trace<const TRANSMISSION: bool>(
                 break;
             }
         }
+        // Mitsuba's hide_emitters: what the camera ray hits does not count its emission.
+        let hidden = scene.hide_emitters && depth == 1;
         let Some(hit) = hit else {
-            if let Some(bg) = scene.background_light {
+            if let Some(bg) = scene.background_light.filter(|_| !hidden) {
                 let light = &scene.lights[bg as usize];
                 let w = emission_weight(scene, settings, weight_rule, bg, prev_p, prev_ns, || {
                     light.pdf(
@@ -217,7 +219,7 @@ fn trace<const TRANSMISSION: bool>(
             break;
         };
         let prim = &scene.accel.primitives()[hit.prim as usize];
-        if prim.light != NONE {
+        if prim.light != NONE && !hidden {
             let light = &scene.lights[prim.light as usize];
             let le = scene.emitted(prim.light, &hit, ray.d);
             if le != Vec3::ZERO {

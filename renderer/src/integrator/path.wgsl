@@ -246,9 +246,11 @@ fn radiance(camera_ray: Ray) -> vec3f {
             }
         }
 // #endif
+        // Mitsuba's hide_emitters: what the camera ray hits does not count its emission.
+        let hidden = params.hide_emitters != 0u && depth == 1;
         if hit.prim == NONE {
 // #if HAS_BACKGROUND
-            if params.background != NONE {
+            if params.background != NONE && !hidden {
                 let bg = lights[params.background];
                 // The pdf light sampling would have had for this direction, with the method in
                 // use (a constant background's is 1/4π either way).
@@ -266,7 +268,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
         }
         let prim = prims[hit.prim];
         let light_index = prim_light(prim);
-        if light_index != NONE {
+        if light_index != NONE && !hidden {
             let light = lights[light_index];
             var le = light_radiance(light, hit.n, ray.d);
 // #if HAS_TEXTURES

@@ -34,6 +34,8 @@ pub struct Scene {
     pub camera: Camera,
     /// Longest path (Mitsuba's convention, `-1` = unlimited).
     pub max_depth: i32,
+    /// Camera rays do not see emitters ([`crate::scene::SceneDesc::hide_emitters`]).
+    pub hide_emitters: bool,
     /// Primitives and their BVH.
     pub accel: Accel,
     /// Materials; the last one is the black diffuse used by shapes without a material.
@@ -544,6 +546,7 @@ impl Scene {
         Ok(Scene {
             camera,
             max_depth: desc.max_depth,
+            hide_emitters: desc.hide_emitters,
             accel,
             materials,
             two_sided,

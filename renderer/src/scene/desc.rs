@@ -18,6 +18,9 @@ pub struct SceneDesc {
     pub camera: CameraDesc,
     /// Longest path in vertices, Mitsuba's convention: `-1` = unlimited, otherwise ≥ 1.
     pub max_depth: i32,
+    /// Emitters (shapes and the background) are not seen directly by camera rays, only through
+    /// the light they cast (Mitsuba's `hide_emitters`).
+    pub hide_emitters: bool,
     /// Radiance from every direction that hits nothing.
     pub background: BackgroundDesc,
     /// All materials, sorted by name; shapes refer to them by index.
@@ -380,6 +383,7 @@ impl SceneDesc {
                 "filter": c.filter.to_json(),
             },
             "max_depth": self.max_depth,
+            "hide_emitters": self.hide_emitters,
             "background": match &self.background {
                 BackgroundDesc::Constant(c) => vec3(*c),
                 BackgroundDesc::Envmap(e) => {

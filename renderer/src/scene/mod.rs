@@ -35,6 +35,6 @@ pub use desc::{
 };
 pub use error::SceneError;
 pub use parse::{
-    LoadedScene, load_scene, load_scene_with, parse_scene, parse_scene_in, parse_scene_value,
-    parse_scene_value_in,
+    LoadedScene, load_scene, load_scene_params, load_scene_with, parse_scene, parse_scene_in,
+    parse_scene_value, parse_scene_value_in,
 };

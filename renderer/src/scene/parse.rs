@@ -60,8 +60,22 @@ pub fn load_scene_with(
     path: &Path,
     defines: &[(String, String)],
 ) -> Result<LoadedScene, SceneError> {
+    let params = super::mitsuba::Params {
+        defines: defines.to_vec(),
+        spp: None,
+    };
+    load_scene_params(path, &params)
+}
+
+/// [`load_scene_with`] with all the command line's parameters for a Mitsuba scene (`-D` and
+/// `--spp`, which gives `$spp`); only the `-D`s are an error for another file.
+pub fn load_scene_params(
+    path: &Path,
+    params: &super::mitsuba::Params,
+) -> Result<LoadedScene, SceneError> {
+    let defines = &params.defines;
     if super::mitsuba::is_mitsuba_file(path) {
-        let m = super::mitsuba::load(path, defines)?;
+        let m = super::mitsuba::load_params(path, params)?;
         return Ok(LoadedScene {
             desc: m.desc,
             spp: Some(m.spp),
@@ -121,7 +135,14 @@ pub(crate) fn parse_scene_value_preloaded(
     }
     let root = Obj::new(value, "")?;
     root.only_keys(
-        &["camera", "max_depth", "background", "materials", "shapes"],
+        &[
+            "camera",
+            "max_depth",
+            "hide_emitters",
+            "background",
+            "materials",
+            "shapes",
+        ],
         true,
     )?;
     let camera = parse_camera(&Obj::new(root.req("camera")?, "camera")?)?;
@@ -136,6 +157,8 @@ pub(crate) fn parse_scene_value_preloaded(
             "0 is not allowed: use -1 (unlimited) or at least 1 (1 = emission seen directly)",
         ));
     }
+
+    let hide_emitters = root.opt_bool("hide_emitters")?.unwrap_or(false);
 
     let background = match root.get("background") {
         None => BackgroundDesc::Constant(DVec3::ZERO),
@@ -159,6 +182,7 @@ pub(crate) fn parse_scene_value_preloaded(
     Ok(SceneDesc {
         camera,
         max_depth,
+        hide_emitters,
         background,
         materials,
         shapes,

@@ -5,6 +5,7 @@
 
 pub mod emitters;
 pub mod ground;
+pub mod hidden;
 
 use glam::Vec3;
 use lumis::engine::Progressive;

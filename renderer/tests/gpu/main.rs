@@ -13,6 +13,7 @@ mod gpu_common;
 mod bvh2;
 mod chi2;
 mod filter_images;
+mod hide_emitters;
 mod images;
 mod mix;
 mod parity;

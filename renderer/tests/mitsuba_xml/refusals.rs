@@ -102,7 +102,7 @@ fn json_validation_errors_name_the_xml() {
 #[test]
 fn refusals_name_file_line_and_element() {
     let dir = Dir::new("refusals");
-    let cases: [(&str, &str, &str, &str); 17] = [
+    let cases: [(&str, &str, &str, &str); 16] = [
         (
             r#"<emitter type="point"/>"#,
             "point",
@@ -168,12 +168,6 @@ fn refusals_name_file_line_and_element() {
             "volpath",
             "scene/integrator",
             "<integrator type=\"volpath\"> is out of scope: participating media",
-        ),
-        (
-            r#"<integrator type="path"><boolean name="hide_emitters" value="true"/></integrator>"#,
-            "hide_emitters",
-            "scene/integrator/boolean@value",
-            "hide_emitters",
         ),
         (
             r#"<shape type="sphere"><transform name="to_world"><matrix value="1 2 3"/></transform></shape>"#,

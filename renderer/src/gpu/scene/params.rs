@@ -71,8 +71,10 @@ pub struct GpuParams {
     pub light_selection: u32,
     /// Offset of the light BVH in the tables (`LightBvh::append_tables`), or `NONE`.
     pub light_bvh: u32,
+    /// 1 when camera rays do not see emitters ([`crate::scene::Scene::hide_emitters`]).
+    pub hide_emitters: u32,
     /// Rounds the struct to the 16 bytes WGSL rounds `Params` to.
-    pub _pad: [u32; 2],
+    pub _pad: [u32; 1],
 }
 
 /// Uniform slots are this far apart (the largest `min_uniform_buffer_offset_alignment` wgpu
@@ -248,7 +250,8 @@ impl GpuScene {
             sampler: SamplerTag::of(settings.sampler).gpu_tag(),
             light_selection: LightSelectionTag::of(settings.light_selection).gpu_tag(),
             light_bvh: self.light_bvh,
-            _pad: [0; 2],
+            hide_emitters: u32::from(scene.hide_emitters),
+            _pad: [0; 1],
         }
     }
 }
@@ -311,6 +314,7 @@ mod tests {
             ("sampler", offset_of!(GpuParams, sampler)),
             ("light_selection", offset_of!(GpuParams, light_selection)),
             ("light_bvh", offset_of!(GpuParams, light_bvh)),
+            ("hide_emitters", offset_of!(GpuParams, hide_emitters)),
         ];
         let wgsl: Vec<(&str, usize)> = members
             .iter()

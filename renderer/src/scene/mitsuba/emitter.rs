@@ -67,7 +67,7 @@ pub fn background(ctx: &mut Ctx, e: &Plugin) -> Result<Json, SceneError> {
                 .string("filename")?
                 .ok_or_else(|| e.error("an envmap needs `filename` (an EXR or HDR file)"))?;
             ctx.origin("background.envmap", fp.pos());
-            let file = ctx.resolve_file(file, fp.el);
+            let file = ctx.resolve_file(file);
             let scale = e.float("scale", 1.0)?;
             if let Some(p) = e.get("scale") {
                 ctx.origin("background.scale", p.pos());

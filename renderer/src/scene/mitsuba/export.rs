@@ -144,6 +144,9 @@ fn integrator(x: &mut Xml, desc: &SceneDesc, options: &ExportOptions) {
             ("value", &options.rr_depth.to_string()),
         ],
     );
+    if desc.hide_emitters {
+        x.leaf("boolean", &[("name", "hide_emitters"), ("value", "true")]);
+    }
     x.close("integrator");
 }
 

@@ -15,6 +15,7 @@ mod emitter;
 pub mod export;
 mod export_bsdf;
 mod export_shape;
+mod integrator;
 mod plugin;
 mod presets;
 pub mod scope;
@@ -39,6 +40,7 @@ use xml::{Element, Pos};
 
 pub use presets::conductor_preset;
 pub use transform::rotation;
+pub use xml::Params;
 
 /// A Mitsuba scene, imported: the description and what Mitsuba keeps outside it.
 #[derive(Clone, Debug)]
@@ -64,27 +66,49 @@ pub fn is_mitsuba_file(path: &Path) -> bool {
 
 /// Reads the Mitsuba scene `path` with the command line's `-D name=value` parameters.
 pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Imported, SceneError> {
-    let doc = xml::load(path, defines)?;
+    let params = Params {
+        defines: defines.to_vec(),
+        spp: None,
+    };
+    load_params(path, &params)
+}
+
+/// Reads the Mitsuba scene `path` with the command line's parameters (`-D`, `--spp`).
+pub fn load_params(path: &Path, params: &Params) -> Result<Imported, SceneError> {
+    let doc = xml::load(path, params)?;
     let ids = doc.ids()?;
     let folder = path.parent().unwrap_or(Path::new("")).to_owned();
     let mut ctx = Ctx {
         ids,
         folder: folder.clone(),
+        search: doc.search.clone(),
         origins: Vec::new(),
         warnings: Vec::new(),
         materials: Map::new(),
         material_names: HashMap::new(),
         used_names: HashMap::new(),
+        area_owners: HashMap::new(),
     };
     let scene = ctx.plugin(&doc.root)?;
 
-    let (max_depth, rr_depth) = match scene.object("integrator")? {
+    let (mapped, integrator_pos) = match scene.object("integrator")? {
         Some(p) => {
             let it = ctx.plugin(target(p))?;
-            sensor::integrator(&mut ctx, &it)?
+            (
+                integrator::integrator(&mut ctx, &it)?,
+                Some(it.pos().clone()),
+            )
         }
         // Mitsuba's default integrator is `path` with its defaults.
-        None => (-1, None),
+        None => (
+            integrator::Mapped {
+                max_depth: -1,
+                rr_depth: None,
+                hide_emitters: false,
+                ptracer: false,
+            },
+            None,
+        ),
     };
     let sensors = scene.objects("sensor");
     let Some(first) = sensors.first() else {
@@ -104,14 +128,22 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Imported, Scene
     let cam = sensor::sensor(&mut ctx, &sensor_plugin)?;
 
     let mut background = None;
+    let mut declared_areas = Vec::new();
     for e in scene.objects("emitter") {
         let plugin = ctx.plugin(target(e))?;
+        // A top-level area emitter is a declaration for a shape's <ref> (Mitsuba ignores one
+        // that no shape takes).
+        if plugin.ty == "area" {
+            declared_areas.push(plugin.el);
+            continue;
+        }
+        let this = emitter::background(&mut ctx, &plugin)?;
         if background.is_some() {
             return Err(plugin.error(
                 "a second environment emitter: lumis has one background (constant or envmap)",
             ));
         }
-        background = Some(emitter::background(&mut ctx, &plugin)?);
+        background = Some(this);
     }
     let mut shapes = Vec::new();
     let mut shape_pos = Vec::new();
@@ -122,16 +154,29 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Imported, Scene
             shape_pos.push(plugin.pos().clone());
         }
     }
-    // Declarations for <ref>: translated where they are used.
-    scene.objects("bsdf");
-    scene.objects("texture");
+    for el in declared_areas {
+        if !ctx.area_owners.contains_key(&(el as *const Element)) {
+            ctx.warnings.push(format!(
+                "{}: an area emitter that no shape takes emits nothing (as in Mitsuba)",
+                el.pos.describe()
+            ));
+        }
+    }
+    // Declarations for <ref>: translated where they are used (Mitsuba ignores the others).
+    for tag in ["bsdf", "texture", "sampler", "film", "rfilter"] {
+        scene.objects(tag);
+    }
     // <medium>, <phase> and <volume> are out of scope, refused when the scene was read (`scope`).
-    scene.finish("integrator, sensor, shape, emitter, bsdf, texture")?;
+    scene.finish(
+        "integrator, sensor, shape, emitter; bsdf, texture, sampler, film and rfilter as \
+         declarations for <ref>",
+    )?;
 
     let mut json = json!({
         "comment": format!("imported from the Mitsuba scene {}", path.display()),
         "camera": cam.camera,
-        "max_depth": max_depth,
+        "max_depth": mapped.max_depth,
+        "hide_emitters": mapped.hide_emitters,
         "materials": Json::Object(ctx.materials.clone()),
         "shapes": shapes,
     });
@@ -139,6 +184,11 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Imported, Scene
         json["background"] = bg;
     }
     let mut desc = parse_scene_value_in(&json, &folder).map_err(|e| ctx.locate(e, path))?;
+    if mapped.ptracer
+        && let (Err(why), Some(pos)) = (integrator::check_ptracer(&desc), &integrator_pos)
+    {
+        return Err(pos.error(why));
+    }
     for (shape, pos) in desc.shapes.iter_mut().zip(&shape_pos) {
         shape.json_path = pos.describe();
         if let GeometryDesc::Mesh {
@@ -161,7 +211,7 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Imported, Scene
     Ok(Imported {
         desc,
         spp: cam.spp,
-        rr_depth,
+        rr_depth: mapped.rr_depth,
         json,
     })
 }
@@ -175,8 +225,10 @@ pub(crate) fn target<'a>(p: &plugin::Prop<'a>) -> &'a Element {
 pub(crate) struct Ctx<'a> {
     /// Elements by `id`.
     ids: HashMap<&'a str, &'a Element>,
-    /// The main file's folder: file names are relative to it (Mitsuba's file resolver).
+    /// The main file's folder: the JSON's file names are relative to it.
     folder: PathBuf,
+    /// The main file's search list, through which objects' file names resolve (`xml`).
+    search: Vec<PathBuf>,
     /// JSON paths written, with where they came from.
     origins: Vec<(String, Pos)>,
     /// Things accepted that do not match Mitsuba exactly.
@@ -187,6 +239,8 @@ pub(crate) struct Ctx<'a> {
     material_names: HashMap<*const Element, Option<String>>,
     /// How often each base name was used, to keep generated names unique.
     used_names: HashMap<String, usize>,
+    /// Each area emitter element with the shape it is attached to.
+    area_owners: HashMap<*const Element, Pos>,
 }
 
 impl<'a> Ctx<'a> {
@@ -229,16 +283,21 @@ impl<'a> Ctx<'a> {
         name
     }
 
-    /// A file a property names, as the JSON should say it: relative to the main file's folder
-    /// when it is there (Mitsuba resolves file names against the main scene's folder), else
-    /// relative to the folder of the XML file that names it.
-    fn resolve_file(&self, name: &str, el: &Element) -> String {
-        let own = el.pos.file.parent().unwrap_or(Path::new("")).join(name);
-        if self.folder.join(name).exists() || !own.exists() {
+    /// A file an object names, resolved as Mitsuba resolves it (the main file's `<path>`s,
+    /// then its folder, then the working directory: `xml`), written as the JSON should say it:
+    /// relative to the main file's folder where it can be, else absolute. A file found nowhere
+    /// keeps its name, and reading the scene then fails naming it.
+    fn resolve_file(&self, name: &str) -> String {
+        let found = xml::resolve(Path::new(name), &self.search);
+        if !found.exists() {
             return name.to_owned();
         }
-        std::path::absolute(&own)
-            .unwrap_or(own)
+        if let Ok(rel) = found.strip_prefix(&self.folder) {
+            return rel.to_string_lossy().into_owned();
+        }
+        // Outside the main folder (an absolute <path>, or the working directory).
+        std::path::absolute(&found)
+            .unwrap_or(found)
             .to_string_lossy()
             .into_owned()
     }

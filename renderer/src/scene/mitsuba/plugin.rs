@@ -114,6 +114,11 @@ impl<'a> Plugin<'a> {
         let mut props: Vec<Prop<'a>> = Vec::new();
         let mut args = 0;
         for child in &el.children {
+            // An alias names an object (`Document::ids`); it is no property.
+            if child.tag == "alias" {
+                child.only_attrs(&["id", "as"])?;
+                continue;
+            }
             let (name, value) = property(child, ids, &mut args)?;
             if let Some(prev) = props.iter().find(|p| p.name == name) {
                 return Err(child.pos.error(format!(
@@ -391,11 +396,6 @@ fn property<'a>(
             return Err(el
                 .pos
                 .error(format!("<{tag}> can only appear inside a <transform>")));
-        }
-        "alias" | "path" => {
-            return Err(el.pos.error(format!(
-                "<{tag}> is not supported by lumis' Mitsuba importer"
-            )));
         }
         _ => {
             return Err(el.pos.error(format!("unknown element <{tag}>")));

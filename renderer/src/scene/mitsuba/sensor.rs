@@ -1,5 +1,5 @@
-//! `<sensor type="perspective">` with its `hdrfilm`, `rfilter` and `sampler`, and the
-//! `<integrator>`: lumis' camera, the sample count and the path settings.
+//! `<sensor type="perspective">` with its `hdrfilm`, `rfilter` and `sampler`: lumis' camera and
+//! the sample count.
 //!
 //! Mitsuba's perspective camera looks along its `to_world`'s +z, with +y up and +x to the left
 //! (`look_at`), which is lumis' camera with `from` = the origin, `to` = origin + z and `up` = y,
@@ -286,47 +286,4 @@ fn sampler(s: &Plugin) -> Result<u32, SceneError> {
             |p| p.error(format!("sample_count {n} must be at least 1")),
         )
     })
-}
-
-/// An `<integrator>`: `path` (`max_depth`, `rr_depth`) or `direct` (lumis' path tracer at
-/// max_depth 2: emission seen directly plus direct lighting, MIS-weighted like Mitsuba's).
-/// Returns `(max_depth, rr_depth)`.
-pub fn integrator(ctx: &mut Ctx, it: &Plugin) -> Result<(i64, Option<u32>), SceneError> {
-    let hide = it.bool("hide_emitters", false)?;
-    if hide {
-        return Err(it.get("hide_emitters").map_or_else(
-            || it.error("hide_emitters"),
-            |p| p.error("hide_emitters = true is not supported (lumis always shows emitters)"),
-        ));
-    }
-    let out = match it.ty {
-        "path" => {
-            let depth = it.int("max_depth", -1)?;
-            let rr = it.int("rr_depth", 5)?;
-            let rr = u32::try_from(rr).ok().filter(|&r| r >= 1).ok_or_else(|| {
-                it.get("rr_depth").map_or_else(
-                    || it.error("rr_depth"),
-                    |p| p.error("rr_depth must be at least 1"),
-                )
-            })?;
-            it.finish("max_depth, rr_depth, hide_emitters = false")?;
-            if let Some(p) = it.get("max_depth") {
-                ctx.origin("max_depth", p.pos());
-            }
-            (depth, Some(rr))
-        }
-        "direct" => {
-            // Sample counts per pixel sample change noise, not the image.
-            it.ignore(&["emitter_samples", "bsdf_samples", "shading_samples"]);
-            it.finish("hide_emitters = false; emitter_samples, bsdf_samples and shading_samples are ignored")?;
-            ctx.origin("max_depth", it.pos());
-            (2, None)
-        }
-        other => {
-            return Err(it.error(format!(
-                "integrator `{other}` is not supported (lumis maps `path` and `direct`)"
-            )));
-        }
-    };
-    Ok(out)
 }

@@ -41,6 +41,14 @@ pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, Sc
     let emission = match s.object("emitter")? {
         Some(p) => {
             let e = ctx.plugin(target(p))?;
+            // Mitsuba: "an endpoint can only be attached to a single shape".
+            if let Some(first) = ctx.area_owners.insert(e.el as *const _, s.pos().clone()) {
+                return Err(p.el.pos.error(format!(
+                    "this area emitter is already attached to the shape at {} (Mitsuba \
+                     attaches an emitter to one shape)",
+                    first.describe()
+                )));
+            }
             Some(area(ctx, &e, &format!("{path}.emission"))?)
         }
         None => None,
@@ -112,7 +120,7 @@ pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, Sc
                 .string("filename")?
                 .ok_or_else(|| s.error(format!("a `{}` shape needs `filename`", s.ty)))?;
             ctx.origin(&format!("{path}.file"), fp.pos());
-            let file = ctx.resolve_file(file, fp.el);
+            let file = ctx.resolve_file(file);
             if flip {
                 return Err(s.get("flip_normals").map_or_else(
                     || s.error("flip_normals"),

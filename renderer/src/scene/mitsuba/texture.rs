@@ -85,7 +85,7 @@ fn texture(ctx: &mut Ctx, prop: &Prop, reads: Reads, json_path: &str) -> Result<
                 .string("filename")?
                 .ok_or_else(|| t.error("a bitmap needs `filename`"))?;
             ctx.origin(&format!("{json_path}.file"), fprop.pos());
-            let file = ctx.resolve_file(file, fprop.el);
+            let file = ctx.resolve_file(file);
             let mut obj = json!({"type": "bitmap", "file": file});
             if let Some((f, p)) = t.string("filter_type")?
                 && f != "bilinear"

@@ -60,7 +60,8 @@ pub enum Spectrum {
     },
 }
 
-/// `<spectrum value="…">` or `<spectrum filename="x.spd">` (relative to the element's file).
+/// `<spectrum value="…">` or `<spectrum filename="x.spd">` (the file name already resolved by
+/// [`super::xml`]).
 pub fn parse_spectrum(el: &Element) -> Result<Spectrum, SceneError> {
     match (el.attr("value"), el.attr("filename")) {
         (Some(a), None) => {
@@ -85,9 +86,8 @@ pub fn parse_spectrum(el: &Element) -> Result<Spectrum, SceneError> {
             list(wl, vals, &a.pos)
         }
         (None, Some(a)) => {
-            let dir = el.pos.file.parent().unwrap_or(std::path::Path::new(""));
-            let path = dir.join(&a.value);
-            let text = std::fs::read_to_string(&path)
+            let path = std::path::Path::new(&a.value);
+            let text = std::fs::read_to_string(path)
                 .map_err(|e| a.pos.error(format!("cannot read {}: {e}", path.display())))?;
             let (wl, vals) = parse_spd(&text).map_err(|(line, msg)| {
                 a.pos

@@ -1,14 +1,26 @@
 //! The Mitsuba 3 XML document: files read with `roxmltree`, `<default>` parameters and `$name`
-//! substitution (overridable by `-D name=value`), `<include>` (relative to the including file,
-//! cycles refused) and the `id` index that `<ref>` resolves against. The result is one owned
-//! element tree in which every element and attribute knows its file, line, column and element
-//! path, for messages.
+//! substitution (overridable by `-D name=value`), `<path>` and `<include>` through Mitsuba's
+//! file resolver (cycles refused), `<alias>` and the `id` index that `<ref>` resolves against.
+//! The result is one owned element tree in which every element and attribute knows its file,
+//! line, column and element path, for messages.
 //!
 //! Mitsuba 3.9.1's rules (`src/core/parser.cpp`) are followed: parameters are substituted in
 //! document order, longest name first, `\$` escapes a dollar sign, an undefined `$name` is an
 //! error, a `<default>` never overrides a parameter already set (a `-D` or an earlier default),
 //! and a `-D` parameter that no attribute uses is an error. An included file whose root is a
 //! `<scene>` contributes its children; any other root element is inserted as one child.
+//!
+//! File names, as Mitsuba 3.9.1 resolves them (each rule checked against Mitsuba itself,
+//! `renderer/tests/mitsuba_xml/grammar.rs`): every file is read with a search list of folders,
+//! its own folder first, then the list of the file that included it as it was at the
+//! `<include>`. A `<path value>` (only a child of the root) is resolved through that list, must
+//! exist, and goes to the front of it: newest first. An `<include filename>` is resolved through
+//! the including file's list. The file names inside objects (meshes, textures, environment
+//! maps) are resolved when the scene is built, through the *main* file's final list: its
+//! `<path>`s newest first (wherever they stand in the file), then its folder; a `<path>` or the
+//! folder of an included file does not count. A `<spectrum filename>`, read while parsing, is
+//! resolved through the main file's list as it is at that point. A name found nowhere is taken
+//! as it is, relative to the working directory, as Mitsuba does.
 
 use crate::scene::error::SceneError;
 use std::collections::HashMap;
@@ -124,40 +136,63 @@ pub struct Document {
     pub root: Element,
     /// The file that was opened.
     pub file: PathBuf,
+    /// The main file's search list after reading it (its `<path>`s newest first, then its
+    /// folder), through which the objects' file names are resolved ([`resolve`]).
+    pub search: Vec<PathBuf>,
 }
 
 impl Document {
-    /// Every element with an `id`, for `<ref id>`; a repeated id is an error naming both places.
+    /// Every element with an `id`, and every `<alias>`'s new name, for `<ref id>`. Visited in
+    /// document order as Mitsuba does: an alias's source must be defined before it and its new
+    /// name must not be taken; a repeated id is an error naming both places.
     pub fn ids(&self) -> Result<HashMap<&str, &Element>, SceneError> {
-        let mut ids = HashMap::new();
+        let mut ids: HashMap<&str, &Element> = HashMap::new();
         let mut stack = vec![&self.root];
         while let Some(el) = stack.pop() {
+            stack.extend(el.children.iter().rev());
+            if el.tag == "alias" {
+                let (id, alias) = (el.required("id")?, el.required("as")?);
+                let Some(&target) = ids.get(id.value.as_str()) else {
+                    return Err(id.pos.error(format!(
+                        "alias of `{}`, which is not defined before this point",
+                        id.value
+                    )));
+                };
+                if let Some(prev) = ids.insert(alias.value.as_str(), target) {
+                    return Err(alias.pos.error(format!(
+                        "alias `{}` is already the id of the object at {}",
+                        alias.value,
+                        prev.pos.describe()
+                    )));
+                }
+                continue;
+            }
             // Objects have ids; a <ref>'s `id` names one.
             if let Some(id) = el.attr("id").filter(|_| el.tag != "ref")
                 && let Some(prev) = ids.insert(id.value.as_str(), el)
             {
-                // Report the later one in document order: the stack pops in reverse.
-                let (first, second) = order(prev, el);
-                return Err(second.pos_of("id").error(format!(
+                return Err(id.pos.error(format!(
                     "duplicate id `{}` (first defined at {})",
                     id.value,
-                    first.pos.describe()
+                    prev.pos.describe()
                 )));
             }
-            stack.extend(el.children.iter().rev());
         }
         Ok(ids)
     }
 }
 
-/// The two elements in document order (by file, then line and column).
-fn order<'a>(a: &'a Element, b: &'a Element) -> (&'a Element, &'a Element) {
-    let key = |e: &Element| (e.pos.line, e.pos.col);
-    if a.pos.file == b.pos.file && key(b) < key(a) {
-        (b, a)
-    } else {
-        (a, b)
+/// `name` through a search list: the first folder that has it, else `name` as it is (relative
+/// to the working directory), as Mitsuba's `FileResolver::resolve`.
+pub fn resolve(name: &Path, search: &[PathBuf]) -> PathBuf {
+    if name.is_absolute() {
+        return name.to_owned();
     }
+    search
+        .iter()
+        .map(|dir| dir.join(name))
+        .find(|p| p.exists())
+        .unwrap_or_else(|| name.to_owned())
 }
 
 /// A `$name` parameter: from the command line (`-D`) or a `<default>`.
@@ -169,14 +204,26 @@ struct Param {
     used: bool,
 }
 
-/// Reads `path` and everything it includes. `defines` are the command line's `-D name=value`
-/// parameters, which take precedence over the file's `<default>`s.
-pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Document, SceneError> {
+/// The command line's parameters for a Mitsuba scene.
+#[derive(Clone, Debug, Default)]
+pub struct Params {
+    /// `-D name=value`: replaces `$name`, overriding a `<default>`; each must be used (Mitsuba
+    /// refuses unused parameters).
+    pub defines: Vec<(String, String)>,
+    /// `--spp N`: the value of `$spp` where the scene has one (overriding its `<default>`, as
+    /// `-D spp=N` would), unused without error: how Mitsuba's gallery renders are given their
+    /// sample count. A `-D spp` takes precedence.
+    pub spp: Option<u32>,
+}
+
+/// Reads `path` and everything it includes, with the command line's parameters.
+pub fn load(path: &Path, params: &Params) -> Result<Document, SceneError> {
     let mut loader = Loader {
         params: Vec::new(),
         stack: Vec::new(),
+        search: Vec::new(),
     };
-    for (name, value) in defines {
+    for (name, value) in &params.defines {
         if !is_param_name(name) {
             return Err(SceneError::new(
                 "",
@@ -186,9 +233,12 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Document, Scene
         }
         loader.add_param(name, value, false);
     }
+    if let Some(spp) = params.spp {
+        loader.add_param("spp", &spp.to_string(), true);
+    }
     // The top file gives its root element (only included scenes contribute children).
-    let root = loader
-        .load_file(path, None)?
+    let (elements, search) = loader.load_file(path, None)?;
+    let root = elements
         .into_iter()
         .next()
         .ok_or_else(|| SceneError::new("", "the file has no root element").in_file(path))?;
@@ -213,6 +263,7 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Document, Scene
     Ok(Document {
         root,
         file: path.to_owned(),
+        search,
     })
 }
 
@@ -226,6 +277,8 @@ struct Loader {
     params: Vec<Param>,
     /// The files being read, outermost first (canonical paths), to refuse cyclic includes.
     stack: Vec<PathBuf>,
+    /// The search list of each file being read, outermost first (the module's rules).
+    search: Vec<Vec<PathBuf>>,
 }
 
 impl Loader {
@@ -274,22 +327,24 @@ impl Loader {
                     .chars()
                     .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
                     .collect();
+                let spp = if name == "spp" { ", or --spp" } else { "" };
                 return Err(pos.error(format!(
                     "undefined parameter `${name}` (define it with <default name=\"{name}\" \
-                     value=\"…\"/> or -D {name}=…)"
+                     value=\"…\"/> or -D {name}=…{spp})"
                 )));
             }
         }
         Ok(out.replace("\\$", "$"))
     }
 
-    /// The elements `path` contributes: its root, or for an included `<scene>` its children.
-    /// `include` is the `<include>` element that names it (for messages), if any.
+    /// The elements `path` contributes (its root, or for an included `<scene>` its children)
+    /// and its search list after reading it. `include` is the `<include>` element that names
+    /// it (for messages), if any.
     fn load_file(
         &mut self,
         path: &Path,
         include: Option<&Pos>,
-    ) -> Result<Vec<Element>, SceneError> {
+    ) -> Result<(Vec<Element>, Vec<PathBuf>), SceneError> {
         let at_include = |msg: String| match include {
             Some(pos) => pos.error(msg),
             None => SceneError::new("", msg).in_file(path),
@@ -341,14 +396,20 @@ impl Loader {
             ))
         })?;
         check_version(version, &root_pos)?;
+        // Its own folder, then the includer's list as it is now.
+        let mut search = vec![path.parent().unwrap_or(Path::new("")).to_owned()];
+        search.extend(self.search.last().into_iter().flatten().cloned());
         self.stack.push(canonical);
+        self.search.push(search);
         let result = self.element(&doc, &file, root, root.tag_name().name().to_owned());
         self.stack.pop();
+        let search = self.search.pop().unwrap_or_default();
         let root = result?;
-        Ok(match (include, root.tag.as_str()) {
+        let elements = match (include, root.tag.as_str()) {
             (Some(_), "scene") => root.children,
             _ => vec![root],
-        })
+        };
+        Ok((elements, search))
     }
 
     /// One element and its subtree (includes expanded in place) at element path `path`.
@@ -375,6 +436,15 @@ impl Loader {
                 pos: apos,
             });
         }
+        if node.tag_name().name() == "spectrum"
+            && let Some(a) = attrs.iter_mut().find(|a| a.name == "filename")
+        {
+            // Read while parsing, through the main file's list as it is at this point.
+            let main = self.search.first().expect("a file is being read");
+            a.value = resolve(Path::new(&a.value), main)
+                .to_string_lossy()
+                .into_owned();
+        }
         let mut el = Element {
             tag: node.tag_name().name().to_owned(),
             attrs,
@@ -396,6 +466,15 @@ impl Loader {
             };
             match tag {
                 "default" => self.default(doc, file, *child, child_path)?,
+                "path" => {
+                    let el = self.element(doc, file, *child, child_path)?;
+                    if node.parent_element().is_some() {
+                        return Err(el.pos.error(
+                            "<path> can only be a child of the root element (as in Mitsuba)",
+                        ));
+                    }
+                    self.path(&el)?;
+                }
                 "include" => {
                     let inc = self.element(doc, file, *child, child_path)?;
                     el.children.extend(self.include(&inc)?);
@@ -434,13 +513,35 @@ impl Loader {
         Ok(())
     }
 
-    /// `<include filename [name]>`: the file's elements, relative to the including file.
+    /// `<path value>`: a folder, resolved through the current file's search list, put first in
+    /// that list.
+    fn path(&mut self, el: &Element) -> Result<(), SceneError> {
+        el.only_attrs(&["value"])?;
+        let value = el.required("value")?;
+        if let Some(c) = el.children.first() {
+            return Err(c.pos.error("<path> has no child elements"));
+        }
+        let search = self.search.last_mut().expect("a file is being read");
+        let dir = resolve(Path::new(&value.value), search);
+        if !dir.is_dir() {
+            return Err(value.pos.error(format!(
+                "<path>: no folder `{}` (searched: {})",
+                value.value,
+                describe_search(search)
+            )));
+        }
+        search.insert(0, dir);
+        Ok(())
+    }
+
+    /// `<include filename [name]>`: the file's elements; the name is resolved through the
+    /// including file's search list.
     fn include(&mut self, inc: &Element) -> Result<Vec<Element>, SceneError> {
         inc.only_attrs(&["filename", "name"])?;
         let name = inc.required("filename")?;
-        let dir = inc.pos.file.parent().unwrap_or(Path::new(""));
-        let target = dir.join(&name.value);
-        let mut elements = self.load_file(&target, Some(&name.pos))?;
+        let search = self.search.last().expect("a file is being read");
+        let target = resolve(Path::new(&name.value), search);
+        let (mut elements, _) = self.load_file(&target, Some(&name.pos))?;
         if let [single] = elements.as_mut_slice()
             && single.tag != "scene"
         {
@@ -453,6 +554,19 @@ impl Loader {
         }
         Ok(elements)
     }
+}
+
+/// A search list for messages: the folders, newest first, then the working directory.
+pub fn describe_search(search: &[PathBuf]) -> String {
+    let mut dirs: Vec<String> = search
+        .iter()
+        .map(|d| match d.as_os_str().is_empty() {
+            true => "./".to_owned(),
+            false => format!("{}/", d.display()),
+        })
+        .collect();
+    dirs.push("the working directory".to_owned());
+    dirs.join(", ")
 }
 
 /// A file position as a [`Pos`].
