@@ -37,8 +37,11 @@ fn main() {
     };
     let mut app = ViewerApp::new(ViewerOptions {
         scene,
-        width: Some(size),
-        height: Some(size),
+        size: lumis_app::image_size::ImageSize {
+            width: Some(size),
+            height: Some(size),
+            resolution_scale: None,
+        },
         ..ViewerOptions::default()
     });
     app.params.backend = backend;

@@ -14,6 +14,7 @@ use lumis::image_io::Image;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::metrics::{relmse, rmse};
 use lumis::scene::Scene;
+use lumis_app::image_size::ImageSize;
 use std::fmt::Write as _;
 use std::path::Path;
 use std::sync::Arc;
@@ -135,7 +136,7 @@ pub fn bench(args: &BenchArgs) -> anyhow::Result<()> {
     }
 
     lumis_app::scene_file::set_defines(&args.scene, args.define.clone(), None);
-    let (scene, rr_depth) = load_scene(&args.scene, args.film.width, args.film.height)?;
+    let (scene, rr_depth) = load_scene(&args.scene, &args.film.size)?;
     let scene = Arc::new(scene);
     if let Some(rr) = rr_depth {
         settings.iter_mut().for_each(|s| s.rr_depth = rr);
@@ -293,26 +294,13 @@ fn schedule(args: &BenchArgs, source: ErrorSource) -> anyhow::Result<Schedule> {
     Ok(Schedule::List(list.clone()))
 }
 
-/// Loads the scene with the image size overridden where asked (a smaller image benchmarks
-/// faster), and the Russian roulette depth a Mitsuba scene sets.
-fn load_scene(
-    path: &Path,
-    width: Option<u32>,
-    height: Option<u32>,
-) -> anyhow::Result<(Scene, Option<u32>)> {
-    for (name, v) in [("--width", width), ("--height", height)] {
-        if v == Some(0) {
-            bail!("{name} must be at least 1");
-        }
-    }
+/// Loads the scene at the image size asked for (a smaller image benchmarks faster), and the
+/// Russian roulette depth a Mitsuba scene sets.
+fn load_scene(path: &Path, size: &ImageSize) -> anyhow::Result<(Scene, Option<u32>)> {
+    size.of(1, 1).map_err(|e| anyhow!(e))?;
     let loaded = lumis_app::scene_file::load_scene_file(path)?;
     let mut desc = loaded.desc;
-    if let Some(w) = width {
-        desc.camera.width = w;
-    }
-    if let Some(h) = height {
-        desc.camera.height = h;
-    }
+    size.apply(&mut desc.camera).map_err(|e| anyhow!(e))?;
     Ok((
         Scene::from_desc(&desc).map_err(|e| e.in_file(path))?,
         loaded.rr_depth,

@@ -4,6 +4,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::{LightSampling, LightSelection};
 use lumis::sampler::SamplerKind;
+use lumis_app::image_size::ImageSize;
 use std::path::PathBuf;
 
 /// lumis: an interactive, progressive, physically based path tracer.
@@ -222,6 +223,9 @@ pub struct RenderArgs {
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
+    /// The image size (the scene's by default).
+    #[command(flatten)]
+    pub size: ImageSize,
     /// Stop after this many seconds even if --spp is not reached.
     #[arg(long)]
     pub time_limit: Option<f64>,
@@ -404,12 +408,9 @@ pub struct FilmOptions {
     /// Rendering threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
-    /// Override the scene's image width.
-    #[arg(long)]
-    pub width: Option<u32>,
-    /// Override the scene's image height.
-    #[arg(long)]
-    pub height: Option<u32>,
+    /// The image size (the scene's by default).
+    #[command(flatten)]
+    pub size: ImageSize,
 }
 
 /// `lumis view`.

@@ -33,7 +33,10 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
     if let Some(rr) = loaded.rr_depth {
         settings.rr_depth = rr;
     }
-    let desc = loaded.desc;
+    let mut desc = loaded.desc;
+    args.size
+        .apply(&mut desc.camera)
+        .map_err(|e| anyhow::anyhow!(e))?;
     let scene = Arc::new(Scene::from_desc(&desc).map_err(|e| e.in_file(&args.scene))?);
     let pool = thread_pool(args.threads)?;
     let mut render = match args.sample_range {

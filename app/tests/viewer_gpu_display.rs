@@ -76,8 +76,11 @@ fn gpu_lanes_are_drawn_from_the_accumulation_buffer() {
     let state = render_state();
     let mut app = ViewerApp::new(ViewerOptions {
         scene: concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/seed_cornell.json").into(),
-        width: Some(size),
-        height: Some(size),
+        size: lumis_app::image_size::ImageSize {
+            width: Some(size),
+            height: Some(size),
+            resolution_scale: None,
+        },
         ..ViewerOptions::default()
     });
     app.params.backend = Backend::Gpu;

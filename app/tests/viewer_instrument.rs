@@ -37,8 +37,11 @@ fn skip_gpu() -> bool {
 fn options(scene: &str, size: Option<u32>, dir: &str) -> ViewerOptions {
     ViewerOptions {
         scene: asset(scene),
-        width: size,
-        height: size,
+        size: lumis_app::image_size::ImageSize {
+            width: size,
+            height: size,
+            resolution_scale: None,
+        },
         screenshot_dir: scratch(dir),
         ..ViewerOptions::default()
     }

@@ -371,8 +371,11 @@ fn dragging_the_image_orbits_the_camera_and_it_can_be_saved_and_reset() {
     std::fs::copy(asset("seed_cornell.json"), &scene).unwrap();
     let app = ViewerApp::new(ViewerOptions {
         scene: scene.clone(),
-        width: Some(24),
-        height: Some(24),
+        size: lumis_app::image_size::ImageSize {
+            width: Some(24),
+            height: Some(24),
+            resolution_scale: None,
+        },
         screenshot_dir: dir,
         ..ViewerOptions::default()
     });
@@ -543,8 +546,11 @@ fn editing_a_textured_colour_replaces_the_texture_by_that_constant() {
     // glyph for: a box in the real window, a panic under the harness's default policy.
     let app = ViewerApp::new(ViewerOptions {
         scene: file,
-        width: Some(16),
-        height: Some(16),
+        size: lumis_app::image_size::ImageSize {
+            width: Some(16),
+            height: Some(16),
+            resolution_scale: None,
+        },
         screenshot_dir: dir,
         ..ViewerOptions::default()
     });

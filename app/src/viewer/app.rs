@@ -149,11 +149,9 @@ impl ViewerApp {
         self.path_field = path.display().to_string();
         match load_scene(path) {
             Ok(mut desc) => {
-                if let Some(w) = self.options.width {
-                    desc.camera.width = w;
-                }
-                if let Some(h) = self.options.height {
-                    desc.camera.height = h;
+                if let Err(e) = self.options.size.apply(&mut desc.camera) {
+                    self.error = Some(e);
+                    return;
                 }
                 self.home_camera = Some(desc.camera.clone());
                 self.desc = Some(desc);

@@ -15,12 +15,10 @@ use std::time::Instant;
 /// only line).
 pub fn render(options: &ViewerOptions, why: &str) -> anyhow::Result<()> {
     let mut desc = load_scene(&options.scene)?;
-    if let Some(w) = options.width {
-        desc.camera.width = w;
-    }
-    if let Some(h) = options.height {
-        desc.camera.height = h;
-    }
+    options
+        .size
+        .apply(&mut desc.camera)
+        .map_err(|e| anyhow::anyhow!(e))?;
     let scene = Arc::new(Scene::from_desc(&desc).map_err(|e| e.in_file(&options.scene))?);
     let lanes = options.params.lanes();
     let spp = match options.params.spp_limit {

@@ -49,6 +49,7 @@ pub mod wipe;
 pub mod worker;
 pub mod zoom;
 
+use crate::image_size::ImageSize;
 pub use app::ViewerApp;
 use params::RenderParams;
 use std::path::PathBuf;
@@ -66,10 +67,8 @@ pub struct ViewerOptions {
     pub seed: u32,
     /// Rendering threads (0: all cores).
     pub threads: usize,
-    /// Overrides the scene's image width.
-    pub width: Option<u32>,
-    /// Overrides the scene's image height.
-    pub height: Option<u32>,
+    /// The image size (`--width`, `--height`, `--resolution-scale`; the scene's by default).
+    pub size: ImageSize,
     /// Initial exposure in stops.
     pub exposure: f32,
     /// Where screenshots go.
@@ -102,8 +101,7 @@ impl Default for ViewerOptions {
             params: RenderParams::default(),
             seed: 0,
             threads: 0,
-            width: None,
-            height: None,
+            size: ImageSize::default(),
             exposure: 0.0,
             screenshot_dir: PathBuf::from("."),
             screenshot_after: None,

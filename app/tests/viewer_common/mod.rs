@@ -31,8 +31,11 @@ pub fn harness(scene: &str, size: u32, dir: PathBuf) -> Harness<'static, ViewerA
 pub fn harness_at(scene: PathBuf, size: u32, dir: PathBuf) -> Harness<'static, ViewerApp> {
     let app = ViewerApp::new(ViewerOptions {
         scene,
-        width: Some(size),
-        height: Some(size),
+        size: lumis_app::image_size::ImageSize {
+            width: Some(size),
+            height: Some(size),
+            resolution_scale: None,
+        },
         screenshot_dir: dir,
         ..ViewerOptions::default()
     });
