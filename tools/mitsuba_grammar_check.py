@@ -136,6 +136,13 @@ def main():
             lambda: mi.load_file("case9.xml", spp=3).sensors()[0].sampler().sample_count())
     attempt("case9b spp=3 for a scene without $spp", lambda: sizes("case2.xml") and
             mi.load_file("case2.xml", spp=3) and "accepted")
+    # Case 10: vertex normals of a mesh file without them (renderer/tests/mitsuba_xml/normals.rs).
+    write(root, "fan.obj", "v 0 0 0.3\nv 1 0 0\nv 0.2 1.1 0.1\nv -0.9 0.4 -0.2\nv -0.3 -1 0.4\n"
+          "v 0.8 -0.7 -0.5\nf 1 2 3\nf 1 3 4\nf 1 4 5\nf 1 5 6\nf 1 6 2\nf 2 6 3\n")
+    fan = mi.load_dict({"type": "obj", "filename": "fan.obj", "to_world":
+                        mi.ScalarTransform4f().scale([2, 1, 0.5]).rotate([0, 0, 1], 30)})
+    n = list(fan.vertex_normals_buffer())
+    print("case10 normals:", [["%.7f" % x for x in n[i:i + 3]] for i in range(0, len(n), 3)])
 
 
 if __name__ == "__main__":

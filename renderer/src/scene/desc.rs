@@ -333,6 +333,9 @@ pub enum GeometryDesc {
         to_world: glam::DMat4,
         /// Whether to ignore the file's vertex normals (flat shading).
         face_normals: bool,
+        /// Whether vertex normals were computed for a file without them (Mitsuba's rule,
+        /// [`crate::scene::mesh::normals`]); they are then in `mesh.normals`.
+        recompute_normals: bool,
         /// What the file holds, in its own coordinates.
         mesh: Arc<crate::scene::mesh::MeshData>,
     },
@@ -427,6 +430,7 @@ impl SceneDesc {
                 shape_index,
                 to_world,
                 face_normals,
+                recompute_normals,
                 ..
             } => {
                 let rows = to_world.transpose().to_cols_array_2d();
@@ -438,6 +442,9 @@ impl SceneDesc {
                 });
                 if *shape_index != 0 {
                     m["shape_index"] = json!(shape_index);
+                }
+                if *recompute_normals {
+                    m["recompute_normals"] = json!(true);
                 }
                 m
             }

@@ -3,11 +3,11 @@
 
 use super::desc::GeometryDesc;
 use super::error::SceneError;
-use super::mesh::{MeshData, load_mesh_index};
+use super::mesh::{MeshData, load_mesh_index, normals};
 use super::parse_mesh::{dropped_list, has_zero_area};
 use super::parse_texture::TextureLoader;
 use super::walk::{Obj, array, integer, number};
-use glam::{DMat4, DVec3, DVec4};
+use glam::{DMat3, DMat4, DVec3, DVec4};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -16,7 +16,8 @@ use std::sync::Arc;
 const SINGULAR: f64 = 1e-12;
 
 /// A `mesh` shape: the file (relative to `folder`; a mesh `loader` holds in memory first),
-/// `to_world`, `face_normals`. Zero-area
+/// `to_world`, `face_normals`, `recompute_normals` (for a file without vertex normals, compute
+/// them as Mitsuba does, [`crate::scene::mesh::normals`], unless `face_normals`). Zero-area
 /// triangles (after `to_world`) are an error when the shape emits (`emits`), otherwise dropped
 /// with a warning.
 pub(crate) fn mesh(
@@ -36,6 +37,7 @@ pub(crate) fn mesh(
         Some(v) => matrix(v, &obj.at("to_world"))?,
     };
     let face_normals = obj.opt_bool("face_normals")?.unwrap_or(false);
+    let recompute = obj.opt_bool("recompute_normals")?.unwrap_or(false);
     // Which mesh of a file that holds several (Mitsuba's `.serialized`).
     let shape_index = match obj.get("shape_index") {
         None => 0,
@@ -99,13 +101,31 @@ pub(crate) fn mesh(
             file.display()
         ));
     }
+    let recompute_normals = recompute && !face_normals && data.normals.is_none();
+    let normals = match recompute_normals {
+        true => {
+            let (world_normals, _) = normals::angle_weighted(&world, &kept);
+            // Stored in the file's coordinates like a file's normals: the inverse of the
+            // normal matrix (the inverse transpose) is the transpose of to_world's linear part.
+            let back = DMat3::from_mat4(to_world).transpose();
+            Some(
+                world_normals
+                    .iter()
+                    .map(|n| (back * *n).as_vec3())
+                    .collect(),
+            )
+        }
+        false => data.normals,
+    };
     Ok(GeometryDesc::Mesh {
         file,
         shape_index,
         to_world,
         face_normals,
+        recompute_normals,
         mesh: Arc::new(MeshData {
             indices: kept,
+            normals,
             ..data
         }),
     })

@@ -50,7 +50,13 @@ fn parse_shape(
         "disk" => &["center", "normal", "radius"],
         "sphere" => &["center", "radius"],
         "box" => &["min", "max", "rotate_y_deg", "translate"],
-        "mesh" => &["file", "shape_index", "to_world", "face_normals"],
+        "mesh" => &[
+            "file",
+            "shape_index",
+            "to_world",
+            "face_normals",
+            "recompute_normals",
+        ],
         other => {
             return Err(SceneError::new(
                 obj.at("type"),

@@ -5,6 +5,7 @@
 //! validation every mesh shares (finite positions, in-range indices, degenerate triangles).
 
 pub mod gltf;
+pub mod normals;
 pub mod obj;
 pub mod ply;
 pub mod serialized;

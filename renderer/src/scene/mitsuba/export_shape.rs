@@ -11,7 +11,9 @@
 //! * a mesh from an `.obj`, `.ply` or `.serialized` file names the file with its `to_world`
 //!   (row-major `matrix`); a glTF mesh, inline triangles and a polygon (triangulated as lumis
 //!   triangulates it) are written to a binary PLY beside the XML. A mesh without vertex normals
-//!   gets `face_normals` true: lumis shades it flat, where Mitsuba would smooth it.
+//!   gets `face_normals` true: lumis shades it flat, where Mitsuba would smooth it; one whose
+//!   normals lumis computed (`recompute_normals`) gets `face_normals` false, and Mitsuba
+//!   computes the same.
 //!
 //! A textured material or emission on a shape whose texture coordinates Mitsuba defines
 //! otherwise than lumis (sphere, disk, polygon, triangles, a mesh without uv) is an error, as
@@ -119,6 +121,7 @@ pub(crate) fn shape(
             to_world,
             face_normals,
             mesh,
+            ..
         } => {
             if mesh.uvs.is_none() {
                 no_uv("mesh without texture coordinates")?;

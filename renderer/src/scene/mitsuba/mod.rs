@@ -29,7 +29,7 @@ pub mod xml;
 #[cfg(test)]
 mod tests;
 
-use crate::scene::desc::{GeometryDesc, SceneDesc};
+use crate::scene::desc::SceneDesc;
 use crate::scene::error::SceneError;
 use crate::scene::parse::parse_scene_value_in;
 use plugin::Plugin;
@@ -191,21 +191,6 @@ pub fn load_params(path: &Path, params: &Params) -> Result<Imported, SceneError>
     }
     for (shape, pos) in desc.shapes.iter_mut().zip(&shape_pos) {
         shape.json_path = pos.describe();
-        if let GeometryDesc::Mesh {
-            face_normals: false,
-            mesh,
-            file,
-            ..
-        } = &shape.geometry
-            && mesh.normals.is_none()
-        {
-            ctx.warnings.push(format!(
-                "{}: {} has no vertex normals; Mitsuba would compute smooth ones \
-                 (face_normals = false), lumis shades it flat",
-                pos.describe(),
-                file.display()
-            ));
-        }
     }
     desc.warnings.extend(ctx.warnings);
     Ok(Imported {

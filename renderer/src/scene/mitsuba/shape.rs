@@ -143,6 +143,8 @@ pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, Sc
             let mut m = json!({
                 "type": "mesh", "file": file, "to_world": rows_json(&to_world),
                 "face_normals": s.bool("face_normals", false)?,
+                // Mitsuba computes smooth normals where the file has none.
+                "recompute_normals": true,
             });
             if s.ty == "serialized" {
                 let index = s.int("shape_index", 0)?;
