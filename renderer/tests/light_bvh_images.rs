@@ -22,6 +22,7 @@
 
 mod common;
 
+use common::protocol::decide;
 use common::*;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSelection;
@@ -48,14 +49,13 @@ fn check(name: &str, runs: &[(Strategy, u32, u32)], seed: u32) -> Vec<String> {
     let reference_var = reference(&format!("{name}.var.exr"));
     let mut failures = Vec::new();
     for (i, &(strategy, spp, block)) in runs.iter().enumerate() {
-        let r = render(&scene, settings(strategy), spp, seed + i as u32);
-        assert_eq!(
-            r.film().nonfinite,
-            0,
-            "{name} {strategy:?}: non-finite samples"
-        );
-        let t = test_against(&r, &reference_img, Some(&reference_var), block);
-        if let Err(msg) = check_unbiased(&format!("{name} light BVH {strategy:?}"), &t) {
+        let what = format!("{name} light BVH {strategy:?}");
+        let decision = decide(&what, seed + i as u32, spp, |seed, n, alpha| {
+            let r = render(&scene, settings(strategy), n, seed);
+            assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
+            test_against_at(&r, &reference_img, Some(&reference_var), block, alpha)
+        });
+        if let Err(msg) = decision {
             failures.push(msg);
         }
     }

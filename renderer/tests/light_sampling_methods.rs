@@ -21,6 +21,7 @@
 
 mod common;
 
+use common::protocol::decide;
 use common::*;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSampling;
@@ -65,14 +66,13 @@ fn check(
     let reference_var = reference(&format!("{name}.var.exr"));
     let mut failures = Vec::new();
     for (i, &strategy) in strategies.iter().enumerate() {
-        let r = render(&scene, settings(strategy, method), spp, seed + i as u32);
-        assert_eq!(
-            r.film().nonfinite,
-            0,
-            "{name} {strategy:?}: non-finite samples"
-        );
-        let t = test_against(&r, &reference_img, Some(&reference_var), 32);
-        if let Err(msg) = check_unbiased(&format!("{name} {method:?} {strategy:?}"), &t) {
+        let what = format!("{name} {method:?} {strategy:?}");
+        let decision = decide(&what, seed + i as u32, spp, |seed, n, alpha| {
+            let r = render(&scene, settings(strategy, method), n, seed);
+            assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
+            test_against_at(&r, &reference_img, Some(&reference_var), 32, alpha)
+        });
+        if let Err(msg) = decision {
             failures.push(msg);
         }
     }

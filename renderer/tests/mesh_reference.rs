@@ -15,7 +15,8 @@
 //!
 //! **Test:** per 32×32 block and channel, z = (lumis block mean − reference block mean) / sd, sd
 //! from lumis' per-pixel sample variances and the reference's variance image; Šidák-corrected
-//! family-wise α = 0.01 per render (60 comparisons, critical |z| 3.76). Every strategy with
+//! family-wise α = 0.01 per render (60 comparisons, critical |z| 3.76), each render one decision
+//! of the suite's two-stage protocol (`common/protocol.rs`). Every strategy with
 //! solid-angle light sampling (BSDF-only sampling does not use the light sampler), and light-only
 //! and MIS (power) also with area sampling. Seeds are fixed ([`SEED`] + the render's index).
 //!
@@ -44,6 +45,7 @@
 
 mod common;
 
+use common::protocol::decide;
 use common::*;
 
 use lumis::integrator::{Heuristic, Settings, Strategy};
@@ -94,18 +96,17 @@ fn settings(strategy: Strategy, light_sampling: LightSampling) -> Settings {
     }
 }
 
-/// The z-test of one render of `scene` against the reference; `Err` with the worst blocks if it
-/// finds a bias. Prints the `z-test|…` line either way.
+/// The z-test of one render of `scene` against the reference, one decision of the suite's
+/// two-stage protocol (`common/protocol.rs`); `Err` with the worst blocks if it finds a bias.
+/// Prints the `z-test|…` line of each stage run.
 fn compare(scene: &Arc<Scene>, what: &str, s: Settings, spp: u32, seed: u32) -> Result<(), String> {
-    let r = render(scene, s, spp, seed);
-    assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
-    let t = test_against(
-        &r,
-        &reference(&format!("{NAME}.exr")),
-        Some(&reference(&format!("{NAME}.var.exr"))),
-        BLOCK,
-    );
-    check_unbiased(what, &t)
+    let reference_img = reference(&format!("{NAME}.exr"));
+    let reference_var = reference(&format!("{NAME}.var.exr"));
+    decide(what, seed, spp, |seed, n, alpha| {
+        let r = render(scene, s, n, seed);
+        assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
+        test_against_at(&r, &reference_img, Some(&reference_var), BLOCK, alpha)
+    })
 }
 
 #[test]

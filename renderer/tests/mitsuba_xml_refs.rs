@@ -34,6 +34,7 @@
 
 mod common;
 
+use common::protocol::decide;
 use common::*;
 
 use lumis::integrator::{Heuristic, Settings, Strategy};
@@ -74,16 +75,14 @@ fn compare(
         rr_depth,
         ..Settings::default()
     };
-    let r = render(&scene, settings, spp, seed);
     let what = format!("{name}.xml {strategy:?} {spp} spp seed {seed}");
-    assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
-    let t = test_against(
-        &r,
-        &reference(&format!("{name}.exr")),
-        Some(&reference(&format!("{name}.var.exr"))),
-        BLOCK,
-    );
-    check_unbiased(&what, &t)
+    let reference_img = reference(&format!("{name}.exr"));
+    let reference_var = reference(&format!("{name}.var.exr"));
+    decide(&what, seed, spp, |seed, n, alpha| {
+        let r = render(&scene, settings, n, seed);
+        assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
+        test_against_at(&r, &reference_img, Some(&reference_var), BLOCK, alpha)
+    })
 }
 
 /// Every strategy of [`STRATEGIES`] with `spp[i]` samples, seed `seed + i`, against the

@@ -4,12 +4,15 @@
 //!
 //! Test: per 32×32 block and channel, z = (our block mean − reference block mean) / sd, where sd
 //! combines our per-pixel sample variances and the reference's variance image; Šidák-corrected
-//! family-wise α = 0.01 per render. Seeds are fixed, so results are deterministic. The sample
+//! family-wise α per render, each render one decision of the suite's two-stage protocol
+//! (`common/protocol.rs`: α = 0.01, and a failure is re-rendered at a derived seed with 4× the
+//! samples at α = 0.005). Seeds are fixed, so results are deterministic. The sample
 //! counts are chosen so that a 3% local bias is detected; `docs/testing.md` has the measured table
 //! (which bias each scene × strategy catches) and `local_bias_is_detected` checks one per scene.
 
 mod common;
 
+use common::protocol::decide;
 use common::*;
 
 use lumis::integrator::{Heuristic, Settings, Strategy};
@@ -96,24 +99,19 @@ fn check_scene(name: &str, light_sampling: LightSampling) -> Vec<String> {
     let reference_var = reference_var_image(name);
     let mut failures = Vec::new();
     for (i, strategy) in strategies().enumerate() {
-        let r = render(
-            &scene,
-            settings(strategy, light_sampling),
-            spp(name, strategy),
+        let what = format!("{name} {strategy:?} {light_sampling:?}");
+        let decision = decide(
+            &what,
             1000 + i as u32,
+            spp(name, strategy),
+            |seed, n, alpha| {
+                let r = render(&scene, settings(strategy, light_sampling), n, seed);
+                assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
+                let block = block_size(name, strategy, light_sampling);
+                test_against_at(&r, &reference, Some(&reference_var), block, alpha)
+            },
         );
-        assert_eq!(
-            r.film().nonfinite,
-            0,
-            "{name} {strategy:?}: non-finite samples"
-        );
-        let t = test_against(
-            &r,
-            &reference,
-            Some(&reference_var),
-            block_size(name, strategy, light_sampling),
-        );
-        if let Err(msg) = check_unbiased(&format!("{name} {strategy:?} {light_sampling:?}"), &t) {
+        if let Err(msg) = decision {
             failures.push(msg);
         }
     }
@@ -180,14 +178,13 @@ fn check_mis_with_area_sampling(name: &str, seed: u32) {
         },
         LightSampling::Area,
     );
-    let r = render(&scene(name), s, 128, seed);
-    let t = test_against(
-        &r,
-        &reference(&format!("{name}.exr")),
-        Some(&reference_var_image(name)),
-        32,
-    );
-    assert_unbiased(&format!("{name} mis area"), &t);
+    let (scene, reference) = (scene(name), reference(&format!("{name}.exr")));
+    let reference_var = reference_var_image(name);
+    let decision = decide(&format!("{name} mis area"), seed, 128, |seed, n, alpha| {
+        let r = render(&scene, s, n, seed);
+        test_against_at(&r, &reference, Some(&reference_var), 32, alpha)
+    });
+    decision.unwrap_or_else(|msg| panic!("{msg}"));
 }
 
 #[test]
@@ -207,9 +204,12 @@ fn check_closed_form(name: &str) {
     let exact = reference(&format!("{name}.exact.exr"));
     let mut failures = Vec::new();
     for ls in [LightSampling::SolidAngle, LightSampling::Area] {
-        let r = render(&scene, settings(Strategy::Light, ls), 64, 5);
-        let t = test_against(&r, &exact, None, 32);
-        if let Err(msg) = check_unbiased(&format!("{name} light {ls:?} vs closed form"), &t) {
+        let what = format!("{name} light {ls:?} vs closed form");
+        let decision = decide(&what, 5, 64, |seed, n, alpha| {
+            let r = render(&scene, settings(Strategy::Light, ls), n, seed);
+            test_against_at(&r, &exact, None, 32, alpha)
+        });
+        if let Err(msg) = decision {
             failures.push(msg);
         }
     }
@@ -228,29 +228,25 @@ fn analytic_disk_matches_closed_form() {
 
 /// The test has power against a local bias, inside the normal suite: one material's albedo
 /// × 1.03 (a wall, or the floor under the light), made through the scene itself so that it reaches
-/// the estimator as a real error would, fails the MIS render of every scene at the spp and seed of
-/// the strategy loop above. The full table (every scene × strategy × backend × kind of bias) is in
+/// the estimator as a real error would, fails the MIS decision of every scene (both stages of the
+/// protocol) at the spp and seed of the strategy loop above. The full table (every scene × strategy × backend × kind of bias) is in
 /// `docs/testing.md` (`tools/power_table.py`).
 #[test]
 fn local_bias_is_detected() {
     for (name, material) in LOCAL_BIAS_MATERIALS {
         let biased = scene_with_scaled_albedo(name, material, 1.03);
         let mis = STRATEGIES[3];
+        let (reference, reference_var) =
+            (reference(&format!("{name}.exr")), reference_var_image(name));
+        let what = format!("{name} MIS, {material} albedo x 1.03");
         // Same seed as the strategy loop's MIS render (index 3).
-        let r = render(
-            &biased,
-            settings(mis, LightSampling::SolidAngle),
-            spp(name, mis),
-            1003,
-        );
-        let t = test_against(
-            &r,
-            &reference(&format!("{name}.exr")),
-            Some(&reference_var_image(name)),
-            block_size(name, mis, LightSampling::SolidAngle),
-        );
+        let decision = decide(&what, 1003, spp(name, mis), |seed, n, alpha| {
+            let r = render(&biased, settings(mis, LightSampling::SolidAngle), n, seed);
+            let block = block_size(name, mis, LightSampling::SolidAngle);
+            test_against_at(&r, &reference, Some(&reference_var), block, alpha)
+        });
         assert!(
-            check_unbiased(&format!("{name} MIS, {material} albedo x 1.03"), &t).is_err(),
+            decision.is_err(),
             "{name}: the albedo of {material} x 1.03 went undetected"
         );
     }

@@ -17,14 +17,16 @@
 
 mod common;
 
+use common::protocol::decide;
 use common::*;
 use lumis::engine::Progressive;
 use lumis::integrator::{Settings, Strategy};
 use lumis::lights::LightSampling;
 use lumis::sampler::SamplerKind;
 
-/// Seed of the first strategy's render (see `seed_cornell_matches_reference_with_sobol`).
-const SEED: u32 = 4000;
+/// Seed of the first strategy's render (see `seed_cornell_matches_reference_with_sobol`): the
+/// first seeds this test ran with, restored under the suite's protocol (issue 36).
+const SEED: u32 = 3000;
 
 fn sobol(strategy: Strategy) -> Settings {
     Settings {
@@ -54,12 +56,15 @@ fn spp(strategy: Strategy) -> u32 {
 
 /// `seed_cornell` rendered with the Sobol sampler agrees with the stored reference
 /// (`tests/data/refs/seed_cornell.exr` and its variance image) for every strategy, seeds
-/// 4000–4006, 32×32 blocks, α = 0.01 per render. The first seeds tried, 3000–3006, passed every
-/// strategy (worst |z| 2.0–3.2) but MIS (power) at seed 3003, one block of 576 comparisons
-/// (block (224, 128), green: 1.2% low, z −4.17, critical 4.04); CLI renders of that block at
-/// seeds 1, 2, 3 give z ≈ +1.1, −1.5, −0.8 (with that render's sd), no sign of a bias there, and
-/// a false failure somewhere in 7 renders at α = 0.01 each has probability 7%. Its power against a scene-level bias is
-/// `sobol_local_bias_is_detected`; no deliberate sampler bug has been run through it yet (the
+/// 3000–3006, 32×32 blocks, each render one decision of the suite's two-stage protocol
+/// (`common/protocol.rs`). History: at these seeds MIS (power) at 3003 failed one block of 192
+/// comparisons at α = 0.01 (block (224, 128), green: 1.2% low, z −4.17, critical 4.04) and the
+/// seeds were moved to 4000–4006; that was a seed chosen after a failure, which the protocol
+/// forbids, so the first seeds are back and a failure goes to the protocol's second stage (a
+/// seed derived from the decision's name, 4× the samples). Today's renderer passes all seven in
+/// stage 1 (MIS at 3003: worst |z| 2.74 of critical 4.05, 2026-12-05; the draws have changed
+/// since that failure). Its power against a scene-level bias
+/// is `sobol_local_bias_is_detected`; no deliberate sampler bug has been run through it yet (the
 /// mutants `sampler:light_camera` and `sampler:shared_bounces` are there for that).
 #[test]
 fn seed_cornell_matches_reference_with_sobol() {
@@ -68,10 +73,13 @@ fn seed_cornell_matches_reference_with_sobol() {
     let reference_var = reference("seed_cornell.var.exr");
     let mut failures = Vec::new();
     for (i, strategy) in strategies().enumerate() {
-        let r = render(&scene, sobol(strategy), spp(strategy), SEED + i as u32);
-        assert_eq!(r.film().nonfinite, 0, "{strategy:?}: non-finite samples");
-        let t = test_against(&r, &reference_img, Some(&reference_var), 32);
-        if let Err(msg) = check_unbiased(&format!("seed_cornell sobol {strategy:?}"), &t) {
+        let what = format!("seed_cornell sobol {strategy:?}");
+        let decision = decide(&what, SEED + i as u32, spp(strategy), |seed, n, alpha| {
+            let r = render(&scene, sobol(strategy), n, seed);
+            assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
+            test_against_at(&r, &reference_img, Some(&reference_var), 32, alpha)
+        });
+        if let Err(msg) = decision {
             failures.push(msg);
         }
     }
@@ -79,21 +87,23 @@ fn seed_cornell_matches_reference_with_sobol() {
 }
 
 /// The z-test keeps its power with the Sobol sampler although the variance estimate is
-/// conservative: the red wall's albedo × 1.03 fails the MIS render at the spp and seed of the
-/// loop above.
+/// conservative: the red wall's albedo × 1.03 fails the MIS decision (both stages) at the spp
+/// and seed of the loop above.
 #[test]
 fn sobol_local_bias_is_detected() {
     let biased = scene_with_scaled_albedo("seed_cornell", "red", 1.03);
     let mis = STRATEGIES[3];
-    let r = render(&biased, sobol(mis), spp(mis), SEED + 3);
-    let t = test_against(
-        &r,
-        &reference("seed_cornell.exr"),
-        Some(&reference("seed_cornell.var.exr")),
-        32,
+    let (reference_img, reference_var) = (
+        reference("seed_cornell.exr"),
+        reference("seed_cornell.var.exr"),
     );
+    let what = "seed_cornell sobol MIS, red albedo x 1.03";
+    let decision = decide(what, SEED + 3, spp(mis), |seed, n, alpha| {
+        let r = render(&biased, sobol(mis), n, seed);
+        test_against_at(&r, &reference_img, Some(&reference_var), 32, alpha)
+    });
     assert!(
-        check_unbiased("seed_cornell sobol MIS, red albedo x 1.03", &t).is_err(),
+        decision.is_err(),
         "the red wall's albedo x 1.03 went undetected with the Sobol sampler"
     );
 }

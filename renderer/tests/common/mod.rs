@@ -6,6 +6,7 @@
 pub mod emitters;
 pub mod ground;
 pub mod hidden;
+pub mod protocol;
 
 use glam::Vec3;
 use lumis::engine::Progressive;
@@ -93,6 +94,23 @@ pub fn test_against(
     reference_var: Option<&Image>,
     block: u32,
 ) -> BlockTest {
+    test_against_at(
+        render,
+        reference,
+        reference_var,
+        block,
+        protocol::ALPHA_FIRST,
+    )
+}
+
+/// [`test_against`] at family-wise `alpha` (the protocol's stages, [`protocol::decide`]).
+pub fn test_against_at(
+    render: &Progressive,
+    reference: &Image,
+    reference_var: Option<&Image>,
+    block: u32,
+    alpha: f64,
+) -> BlockTest {
     let film = render.film();
     let mean = film.mean();
     let var = film.variance_of_mean();
@@ -120,7 +138,7 @@ pub fn test_against(
             var: &ref_var,
         },
         block,
-        0.01,
+        alpha,
     )
 }
 
