@@ -24,18 +24,16 @@
 
 use crate::common;
 use crate::gpu_common;
-use common::{
-    LOCAL_BIAS_MATERIALS, STRATEGIES, check_unbiased, data_dir, reference, scene_with_scaled_albedo,
-};
+use common::protocol::decide;
+use common::{LOCAL_BIAS_MATERIALS, STRATEGIES, data_dir, reference, scene_with_scaled_albedo};
 use gpu_common::images::{
-    SAME_SEED_MAX_RELMSE, film_image_z_test, gpu_render, same_seed_check, same_seed_check_spp,
+    SAME_SEED_MAX_RELMSE, film_image_z_test_at, gpu_render, same_seed_check, same_seed_check_spp,
 };
 use lumis::image_io::Image;
 use lumis::integrator::{Settings, Strategy};
 use lumis::lights::{LightSampling, LightSelection};
 use lumis::scene::Scene;
 use std::sync::Arc;
-use std::time::Instant;
 
 fn scene(name: &str) -> Arc<Scene> {
     let path = data_dir().join("scenes").join(format!("{name}.json"));
@@ -79,28 +77,36 @@ fn block_size(scene: &str) -> u32 {
     }
 }
 
+/// The GPU's render of `scene` with `s` against the reference of the shared scene `name`, one
+/// decision of the suite's two-stage protocol (`common/protocol.rs`) at [`MIS_SEED`] and this
+/// file's spp; `None` when GPU tests are skipped.
+fn decide_against_reference(
+    what: &str,
+    scene: &Arc<Scene>,
+    s: Settings,
+    name: &str,
+) -> Option<Result<(), String>> {
+    gpu_common::context()?;
+    let reference_img = reference(&format!("{name}.exr"));
+    let reference_var = variance_image(&reference(&format!("{name}.var.exr")));
+    Some(decide(what, MIS_SEED, spp(name), |seed, n, alpha| {
+        let film = gpu_render(scene, s, n, seed).expect("a GPU");
+        assert_eq!(film.nonfinite, 0, "{what}: non-finite samples");
+        let block = block_size(name);
+        film_image_z_test_at(&film, &reference_img.data, &reference_var, block, alpha)
+    }))
+}
+
 /// The GPU's MIS (power) render of `name` with `light_sampling` and `selection` against the
 /// reference; the failure, if any.
 fn check_mis(name: &str, light_sampling: LightSampling, selection: LightSelection) -> Vec<String> {
-    let scene = scene(name);
-    let reference_img = reference(&format!("{name}.exr"));
-    let reference_var = variance_image(&reference(&format!("{name}.var.exr")));
     let s = Settings {
         light_selection: selection,
         ..settings(MIS, light_sampling)
     };
-    let n = spp(name);
-    let t = Instant::now();
-    let Some(film) = gpu_render(&scene, s, n, MIS_SEED) else {
-        return Vec::new();
-    };
-    let seconds = t.elapsed().as_secs_f64();
-    let what =
-        format!("gpu {name} {MIS:?} {light_sampling:?} {selection:?} ({n} spp, {seconds:.1} s)");
-    assert_eq!(film.nonfinite, 0, "{what}: non-finite samples");
-    let t = film_image_z_test(&film, &reference_img.data, &reference_var, block_size(name));
-    check_unbiased(&format!("{what} vs reference"), &t)
-        .err()
+    let what = format!("gpu {name} {MIS:?} {light_sampling:?} {selection:?} vs reference");
+    decide_against_reference(&what, &scene(name), s, name)
+        .and_then(Result::err)
         .into_iter()
         .collect()
 }
@@ -176,31 +182,35 @@ fn glass_error_is_detected() {
     let biased = common::build(&desc.to_string());
     // Same seed as `check_mis`'s render.
     let s = settings(MIS, LightSampling::SolidAngle);
-    let Some(film) = gpu_render(&biased, s, spp("glass_room"), MIS_SEED) else {
+    let what = "gpu glass_room MIS, rough glass alpha 0.25";
+    let Some(decision) = decide_against_reference(what, &biased, s, "glass_room") else {
         return;
     };
-    let reference_img = reference("glass_room.exr");
-    let var = variance_image(&reference("glass_room.var.exr"));
-    let t = film_image_z_test(&film, &reference_img.data, &var, block_size("glass_room"));
     assert!(
-        check_unbiased("gpu glass_room MIS, rough glass alpha 0.25", &t).is_err(),
+        decision.is_err(),
         "the rough glass at alpha 0.25 instead of 0.2 went undetected on the GPU"
     );
 }
 
 /// The environment map (issue 16) against Mitsuba 3's `envmap`: `envmap_objects` (a diffuse and a
 /// rough gold sphere and a box on a ground, lit only by a rotated, scaled sky map with a soft sun)
-/// with MIS, the map importance-sampled. Uniform sampling of the map is pinned to the CPU by the
-/// same-seed test and z-tested on the CPU (`reference_scenes.rs`, 128 spp) only: at lavapipe's 16
-/// spp its MIS render is not calibrated, the sun being reached by rare BSDF samples (measured at
-/// seed 2003: block (0, 64) 12% low, z −4.0/−4.3/−6.9 over the channels; seed 2001 had passed).
+/// with MIS, the map importance-sampled and sampled uniformly (area). History: the uniform case
+/// was dropped from this test after it failed at seed 2003 (block (0, 64) 12% low, z
+/// −4.0/−4.3/−6.9 over the channels; seed 2001 had passed), a test weakened after a failure; it
+/// is back under the suite's protocol (issue 36), where that failure goes to stage 2.
 #[test]
 fn gpu_envmap_objects_matches_reference() {
-    assert_none(check_mis(
+    let mut failures = check_mis(
         "envmap_objects",
         LightSampling::SolidAngle,
         LightSelection::Power,
+    );
+    failures.extend(check_mis(
+        "envmap_objects",
+        LightSampling::Area,
+        LightSelection::Power,
     ));
+    assert_none(failures);
 }
 
 /// The environment-map test sees an error in the map or in the light it casts: `envmap_objects`
@@ -213,8 +223,6 @@ fn envmap_error_is_detected() {
     let text = std::fs::read_to_string(data_dir().join("scenes/envmap_objects.json")).unwrap();
     let folder = data_dir().join("scenes");
     let s = settings(MIS, LightSampling::SolidAngle);
-    let reference_img = reference("envmap_objects.exr");
-    let var = variance_image(&reference("envmap_objects.var.exr"));
     for (path, value) in [
         (["background", "rotate_y_deg"], 31.0),
         (["background", "scale"], 0.75 * 1.01),
@@ -231,13 +239,12 @@ fn envmap_error_is_detected() {
         let parsed = lumis::scene::parse_scene_in(&desc.to_string(), &folder).unwrap();
         let biased = Arc::new(Scene::from_desc(&parsed).unwrap());
         // Same seed as `check_mis`'s render.
-        let Some(film) = gpu_render(&biased, s, spp("envmap_objects"), MIS_SEED) else {
+        let what = format!("gpu envmap_objects MIS, {key} {value}");
+        let Some(decision) = decide_against_reference(&what, &biased, s, "envmap_objects") else {
             return;
         };
-        let block = block_size("envmap_objects");
-        let t = film_image_z_test(&film, &reference_img.data, &var, block);
         assert!(
-            check_unbiased(&format!("gpu envmap_objects MIS, {key} {value}"), &t).is_err(),
+            decision.is_err(),
             "the envmap's {key} at {value} went undetected on the GPU"
         );
     }
@@ -252,14 +259,12 @@ fn local_bias_is_detected() {
         let biased = scene_with_scaled_albedo(name, material, 1.03);
         // Same seed as `check_mis`'s render.
         let s = settings(MIS, LightSampling::SolidAngle);
-        let Some(film) = gpu_render(&biased, s, spp(name), MIS_SEED) else {
+        let what = format!("gpu {name} MIS, {material} albedo x 1.03");
+        let Some(decision) = decide_against_reference(&what, &biased, s, name) else {
             return;
         };
-        let reference_img = reference(&format!("{name}.exr"));
-        let var = variance_image(&reference(&format!("{name}.var.exr")));
-        let t = film_image_z_test(&film, &reference_img.data, &var, block_size(name));
         assert!(
-            check_unbiased(&format!("gpu {name} MIS, {material} albedo x 1.03"), &t).is_err(),
+            decision.is_err(),
             "{name}: the albedo of {material} x 1.03 went undetected on the GPU"
         );
     }

@@ -45,6 +45,18 @@ pub fn film_image_z_test(
     other_var: &[[f64; 3]],
     block: u32,
 ) -> BlockTest {
+    film_image_z_test_at(film, other, other_var, block, 0.01)
+}
+
+/// [`film_image_z_test`] at family-wise `alpha` (the protocol's stages,
+/// `common::protocol::decide`).
+pub fn film_image_z_test_at(
+    film: &Film,
+    other: &[glam::Vec3],
+    other_var: &[[f64; 3]],
+    block: u32,
+    alpha: f64,
+) -> BlockTest {
     let mean = film.mean();
     let var = film.variance_of_mean();
     block_z_test(
@@ -59,7 +71,7 @@ pub fn film_image_z_test(
             var: other_var,
         },
         block,
-        0.01,
+        alpha,
     )
 }
 
