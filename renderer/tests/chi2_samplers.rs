@@ -244,6 +244,7 @@ fn ggx(alpha: f32) -> BsdfSampler {
 
 #[test]
 fn chi2_rejects_broken_samplers() {
+    let second_stages = std::cell::Cell::new(0);
     let check = |name: &str, s: &dyn DirectionalSampler, samples: usize| {
         let r = ChiSquareTest::new(s)
             .samples(samples)
@@ -252,6 +253,13 @@ fn chi2_rejects_broken_samplers() {
             .run();
         eprintln!("{name:40} {r}");
         assert!(r.chi2_rejects(), "{name} not rejected: {r}");
+        // A rejection by the statistic alone went through the protocol's second stage, which
+        // rejected too (docs/testing.md, "The protocol"); the others failed a deterministic
+        // check (∫pdf, pdf mismatch), which is never re-run.
+        if let Some(f) = r.failure.as_deref().filter(|f| f.starts_with("χ² rejects")) {
+            assert!(f.contains("at stage 2"), "{name}: {f}");
+            second_stages.set(second_stages.get() + 1);
+        }
     };
     // (a) A 5% pdf error on otherwise exact samplers.
     let plastic = BsdfSampler::at_angle(suite::plastic(0.3, 1.5), 30.0);
@@ -296,6 +304,10 @@ fn chi2_rejects_broken_samplers() {
         "eta x1.002 dielectric a0.05 in th30",
         &WrongEta(narrow_in(), 1.002),
         1_000_000,
+    );
+    assert!(
+        second_stages.get() >= 1,
+        "no rejection went through stage 2"
     );
     // The correct versions pass (the wrappers change nothing at factor 1).
     let correct: [(&str, Box<dyn DirectionalSampler>); 4] = [

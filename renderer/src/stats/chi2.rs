@@ -194,6 +194,21 @@ impl Tally {
     }
 }
 
+/// How a failure of the statistic alone begins (the only failure a second stage re-runs).
+const CHI2_REJECTS: &str = "χ² rejects";
+
+/// The protocol's second stage draws this many times the first stage's samples.
+pub const SECOND_STAGE_SAMPLES: usize = 4;
+
+/// The second stage's seed for a test at `seed`: a fixed mix (splitmix32's finaliser) into
+/// [2³⁰, 2³¹), a range the suite's first-stage seeds do not use.
+pub fn second_stage_seed(seed: u32) -> u32 {
+    let mut h = seed ^ 0x9e37_79b9;
+    h = (h ^ (h >> 16)).wrapping_mul(0x21f0_aaad);
+    h = (h ^ (h >> 15)).wrapping_mul(0x735a_2d97);
+    (1 << 30) | ((h ^ (h >> 15)) >> 2)
+}
+
 impl<'a> ChiSquareTest<'a> {
     /// A test with Mitsuba's defaults: 1M samples, 64 × 128 cells over the sampler's own
     /// [`DirectionalSampler::domain`], α = 0.01 for a single test.
@@ -371,8 +386,41 @@ impl<'a> ChiSquareTest<'a> {
             .reduce(Tally::default, Tally::merge)
     }
 
-    /// Runs the test: quadrature, sampling, pooling and the verdict.
+    /// Runs the test under the suite's two-stage protocol (docs/testing.md, "The protocol"):
+    /// where the χ² statistic alone rejects (malformed samples, zero pdfs, a pdf mismatch or a
+    /// wrong ∫pdf are deterministic failures, never re-run), the test runs again at a seed
+    /// derived from this one ([`second_stage_seed`]: known before any run, chosen by no one) with
+    /// [`SECOND_STAGE_SAMPLES`]× the samples at half the significance, and fails only if that
+    /// rejects too (`failure` then names both). A sampler that cannot draw again
+    /// ([`DirectionalSampler::can_resample`]) has one stage.
     pub fn run(&mut self) -> Chi2Result {
+        let first = self.run_once();
+        let chi2_only = first
+            .failure
+            .as_deref()
+            .is_some_and(|f| f.starts_with(CHI2_REJECTS));
+        if !(chi2_only && self.sampler.can_resample()) {
+            return first;
+        }
+        let (seed, count, alpha) = (self.seed, self.sample_count, self.alpha);
+        self.seed = second_stage_seed(seed);
+        self.sample_count = SECOND_STAGE_SAMPLES * count;
+        self.alpha = alpha / 2.0;
+        let mut second = self.run_once();
+        if let Some(f) = &mut second.failure {
+            *f = format!(
+                "{f} at stage 2 (seed {}, {} samples), after stage 1: {}",
+                self.seed,
+                self.sample_count,
+                first.failure.as_deref().unwrap_or("")
+            );
+        }
+        (self.seed, self.sample_count, self.alpha) = (seed, count, alpha);
+        second
+    }
+
+    /// One stage: quadrature, sampling, pooling and the verdict.
+    fn run_once(&mut self) -> Chi2Result {
         let mut probs = self.integrate();
         let mut tally = self.histogram(&probs);
         self.recheck_empty_cells(&mut probs, &mut tally);
@@ -423,7 +471,7 @@ impl<'a> ChiSquareTest<'a> {
             Some("no degrees of freedom".into())
         } else if r.p_value < r.alpha {
             Some(format!(
-                "χ² rejects: p = {:.3e} < {:.3e}",
+                "{CHI2_REJECTS}: p = {:.3e} < {:.3e}",
                 r.p_value, r.alpha
             ))
         } else {

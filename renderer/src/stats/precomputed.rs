@@ -60,6 +60,11 @@ impl<D: DirectionalSampler> DirectionalSampler for Precomputed<D> {
     fn domain(&self) -> Domain {
         self.density.domain()
     }
+
+    /// Only the precomputed uniforms have samples: no second stage.
+    fn can_resample(&self) -> bool {
+        false
+    }
 }
 
 #[cfg(test)]

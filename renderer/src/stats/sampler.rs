@@ -33,6 +33,13 @@ pub trait DirectionalSampler: Sync {
     fn domain(&self) -> Domain {
         Domain::sphere()
     }
+
+    /// Whether `sample` answers any uniforms, so that a χ² test can draw again with another
+    /// seed and count (its protocol's second stage, [`crate::stats::ChiSquareTest::run`]);
+    /// samples computed beforehand for one seed cannot.
+    fn can_resample(&self) -> bool {
+        true
+    }
 }
 
 impl<S: DirectionalSampler + ?Sized> DirectionalSampler for Box<S> {
@@ -44,5 +51,8 @@ impl<S: DirectionalSampler + ?Sized> DirectionalSampler for Box<S> {
     }
     fn domain(&self) -> Domain {
         (**self).domain()
+    }
+    fn can_resample(&self) -> bool {
+        (**self).can_resample()
     }
 }
