@@ -7,14 +7,14 @@ not yet a CI test). For every scene of ../shared/corpus/mitsuba-data/docs/scenes
   K independent Mitsuba 3.9.1 renders (llvm_ad_rgb, seeds 1..K, N spp) of the same XML at the
   same reduced film size (the film's width and height set in Mitsuba's parsed scene, each side
   rounded as lumis rounds it; nothing else changed, so the field of view and the filter are the
-  scene's), and their means compared per 8x8 block and channel:
-  z = (mean_lumis - mean_mitsuba) / sqrt(v_lumis + v_mitsuba), each v the block mean's variance
-  estimated from the spread *between* the K renders (robust to heavy tails, where a render's own
-  sample variance is not), Sidak-corrected family-wise alpha = 0.01 over the blocks and channels.
+  scene's), compared per 8x8 block and channel by Welch's t-test on the K block means of each
+  side (the variance *between* renders, so heavy tails count as they are, where a render's own
+  sample variance would understate them; Student's t, not the normal, since K is small),
+  Sidak-corrected family-wise alpha = 0.01 over the blocks and channels.
 
     pip install mitsuba==3.9.1; apt-get install libllvm19
     DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so python3 tools/corpus.py \
-        [--scale 0.25] [--spp 64] [--renders 4] [--strategy mis] [SCENE.xml ...]
+        [--scale 0.125] [--spp 32] [--renders 8] [--strategy mis] [SCENE.xml ...]
 
 prints one Markdown row per scene (docs/mitsuba.md keeps the last table with its date).
 """
@@ -53,65 +53,86 @@ def read_pfm(path):
     return rows[::-1]
 
 
-def mean_and_var(images):
-    """Per pixel and channel: the mean of K images and the variance of that mean (between
-    images)."""
-    k = len(images)
+def block_means(images):
+    """Per 8x8 block and channel, the block's mean in each of the K images."""
     h, w = len(images[0]), len(images[0][0])
-    mean = [[[0.0] * 3 for _ in range(w)] for _ in range(h)]
-    var = [[[0.0] * 3 for _ in range(w)] for _ in range(h)]
-    for y in range(h):
-        for x in range(w):
-            for c in range(3):
-                vals = [img[y][x][c] for img in images]
-                m = sum(vals) / k
-                mean[y][x][c] = m
-                var[y][x][c] = sum((v - m) ** 2 for v in vals) / (k - 1) / k
-    return mean, var
-
-
-def normal_critical(alpha):
-    """Two-sided critical |z| for alpha, by bisection on erfc."""
-    lo, hi = 0.0, 40.0
-    for _ in range(200):
-        mid = (lo + hi) / 2
-        if math.erfc(mid / math.sqrt(2)) > alpha:
-            lo = mid
-        else:
-            hi = mid
-    return hi
-
-
-def block_test(a, b):
-    """(failed blocks, comparisons, worst |z|, critical) of two (mean, var) images."""
-    (ma, va), (mb, vb) = a, b
-    h, w = len(ma), len(ma[0])
-    zs = []
+    out = []
     for by in range(0, h, BLOCK):
         for bx in range(0, w, BLOCK):
             pix = [(y, x) for y in range(by, min(by + BLOCK, h)) for x in range(bx, min(bx + BLOCK, w))]
-            n = len(pix)
             for c in range(3):
-                da = sum(ma[y][x][c] for y, x in pix) / n
-                db = sum(mb[y][x][c] for y, x in pix) / n
-                v = (sum(va[y][x][c] for y, x in pix) + sum(vb[y][x][c] for y, x in pix)) / n ** 2
-                if v > 0:
-                    zs.append((da - db) / math.sqrt(v))
-                else:
-                    zs.append(0.0 if abs(da - db) <= 1e-6 * max(abs(da), abs(db), 1e-6) else math.inf)
-    critical = normal_critical(1 - (1 - ALPHA) ** (1 / len(zs)))
-    failed = sum(1 for z in zs if abs(z) > critical)
+                out.append([sum(img[y][x][c] for y, x in pix) / len(pix) for img in images])
+    return out
+
+
+def betacf(a, b, x):
+    """The continued fraction of the regularized incomplete beta (Lentz's method)."""
+    tiny, qab, qap, qam = 1e-300, a + b, a + 1.0, a - 1.0
+    c, d = 1.0, 1.0 - qab * x / qap
+    d = 1.0 / (d if abs(d) > tiny else tiny)
+    h = d
+    for m in range(1, 400):
+        m2 = 2 * m
+        for aa in (m * (b - m) * x / ((qam + m2) * (a + m2)),
+                   -(a + m) * (qab + m) * x / ((a + m2) * (qap + m2))):
+            d = 1.0 + aa * d
+            d = 1.0 / (d if abs(d) > tiny else tiny)
+            c = 1.0 + aa / c
+            c = c if abs(c) > tiny else tiny
+            h *= d * c
+        if abs(d * c - 1.0) < 1e-14:
+            break
+    return h
+
+
+def betai(a, b, x):
+    """The regularized incomplete beta function I_x(a, b)."""
+    if x <= 0.0:
+        return 0.0
+    if x >= 1.0:
+        return 1.0
+    lbt = math.lgamma(a + b) - math.lgamma(a) - math.lgamma(b) + a * math.log(x) + b * math.log(1 - x)
+    if x < (a + 1) / (a + b + 2):
+        return math.exp(lbt) * betacf(a, b, x) / a
+    return 1.0 - math.exp(lbt) * betacf(b, a, 1 - x) / b
+
+
+def t_two_sided_p(t, dof):
+    """P(|T| >= |t|) for Student's t with `dof` degrees of freedom."""
+    return betai(dof / 2.0, 0.5, dof / (dof + t * t))
+
+
+def block_test(ours, theirs):
+    """Welch's t-test per block and channel on the K block means of each side (the variance
+    between renders, so heavy tails are seen as they are), Sidak over all; returns (failed,
+    comparisons, worst |t|, smallest p, per-comparison alpha)."""
+    a, b = block_means(ours), block_means(theirs)
+    ka, kb = len(ours), len(theirs)
+    tests = []
+    for xa, xb in zip(a, b):
+        ma, mb = sum(xa) / ka, sum(xb) / kb
+        va = sum((v - ma) ** 2 for v in xa) / (ka - 1) / ka
+        vb = sum((v - mb) ** 2 for v in xb) / (kb - 1) / kb
+        if va + vb <= 0:
+            same = abs(ma - mb) <= 1e-6 * max(abs(ma), abs(mb), 1e-6)
+            tests.append((0.0 if same else math.inf, 1.0 if same else 0.0))
+            continue
+        t = (ma - mb) / math.sqrt(va + vb)
+        dof = (va + vb) ** 2 / (va * va / (ka - 1) + vb * vb / (kb - 1))
+        tests.append((t, t_two_sided_p(t, dof)))
+    alpha = 1 - (1 - ALPHA) ** (1 / len(tests))
+    failed = sum(1 for _, p in tests if p < alpha)
     if os.environ.get("CORPUS_VERBOSE"):
-        nx = (w + BLOCK - 1) // BLOCK
-        for i, z in enumerate(zs):
-            if abs(z) > critical:
-                blk, c = divmod(i, 3)
-                sys.stderr.write(f"  block ({BLOCK * (blk % nx)}, {BLOCK * (blk // nx)}) ch {c}: z {z:.2f}\n")
-    return failed, len(zs), max(abs(z) for z in zs), critical
+        for i, (t, p) in enumerate(tests):
+            if p < alpha:
+                sys.stderr.write(f"  comparison {i} (block {i // 3}, ch {i % 3}): t {t:.2f}, p {p:.2e}\n")
+    return failed, len(tests), max(abs(t) for t, _ in tests), min(p for _, p in tests), alpha
 
 
-def image_mean(m):
-    return [sum(p[c] for row in m for p in row) / (len(m) * len(m[0])) for c in range(3)]
+def image_mean(images):
+    """The mean over the K images and their pixels, per channel."""
+    n = len(images) * len(images[0]) * len(images[0][0])
+    return [sum(p[c] for img in images for row in img for p in row) / n for c in range(3)]
 
 
 def mitsuba_renders(mi, path, scale, spp, k):
@@ -158,16 +179,17 @@ def lumis_renders(path, scale, spp, k, strategy, tmp):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("scenes", nargs="*")
-    ap.add_argument("--scale", type=float, default=0.25)
-    ap.add_argument("--spp", type=int, default=64)
-    ap.add_argument("--renders", type=int, default=4)
+    ap.add_argument("--scale", type=float, default=0.125)
+    ap.add_argument("--spp", type=int, default=32)
+    ap.add_argument("--renders", type=int, default=8)
     ap.add_argument("--strategy", default="mis")
     args = ap.parse_args()
     import mitsuba as mi
     mi.set_variant("llvm_ad_rgb")
     mi.set_log_level(mi.LogLevel.Error)
     scenes = [Path(s).resolve() for s in args.scenes] or sorted(GALLERY.glob("*.xml"))
-    print(f"| scene | lumis | size | Mitsuba mean (RGB) | lumis − Mitsuba (rel.) | blocks failed | worst z | verdict |")
+    print("| scene | lumis | size | Mitsuba mean (RGB) | lumis − Mitsuba (rel.) | comparisons failed "
+          "| worst |t| (smallest p, per-comparison α) | verdict |")
     print("|---|---|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
         for path in scenes:
@@ -182,15 +204,14 @@ def main():
             except Exception as e:
                 print(f"| {name} | opens | | Mitsuba cannot: {str(e).splitlines()[0][:100]} | | | | |", flush=True)
                 continue
-            a, b = mean_and_var(ours), mean_and_var(theirs)
-            failed, total, worst, critical = block_test(a, b)
-            ma, mb = image_mean(a[0]), image_mean(b[0])
+            failed, total, worst, p_min, alpha = block_test(ours, theirs)
+            ma, mb = image_mean(ours), image_mean(theirs)
             rel = [(x - y) / y if y else 0.0 for x, y in zip(ma, mb)]
-            size = f"{len(a[0][0])}×{len(a[0])}"
+            size = f"{len(ours[0][0])}×{len(ours[0])}"
             verdict = "agrees" if failed == 0 else "DIFFERS"
             print(f"| {name} | opens | {size} | {' '.join('%.4g' % v for v in mb)} | "
                   f"{' '.join('%+.2f%%' % (100 * r) for r in rel)} | {failed}/{total} | "
-                  f"{worst:.1f} (crit {critical:.2f}) | {verdict} |", flush=True)
+                  f"{worst:.1f} (p {p_min:.1e}, α {alpha:.1e}) | {verdict} |", flush=True)
             sys.stderr.write(f"{name}: {time.time() - t:.0f} s\n")
 
 
