@@ -38,9 +38,9 @@
 
 use crate::common;
 use crate::gpu_common;
-use common::check_unbiased;
+use common::protocol::decide;
 use glam::{Vec2, Vec3};
-use gpu_common::images::{cpu_render, film_z_test, gpu_render};
+use gpu_common::images::{CPU_SEED_OFFSET, cpu_render, decide_gpu_vs_cpu, gpu_render};
 use gpu_common::{Compare, build, context};
 use lumis::geometry::primitive::NONE;
 use lumis::geometry::{Ray, SurfaceHit};
@@ -489,19 +489,22 @@ fn gpu_mix_scene_matches_the_cpu() {
         },
         ..Settings::default()
     };
-    let Some(gpu) = gpu_render(&scene, settings, 32, 4300) else {
+    let Some(decision) = decide_gpu_vs_cpu("gpu mix scene vs cpu", &scene, settings, 32, 4300, 8)
+    else {
         return;
     };
-    assert_eq!(gpu.nonfinite, 0, "non-finite samples");
-    let cpu = cpu_render(&scene, settings, 32, 5300);
-    let t = film_z_test(&gpu, &cpu, 8);
-    if let Err(msg) = check_unbiased("gpu mix scene vs cpu", &t) {
-        panic!("{msg}");
-    }
-    let inverted = cpu_render(&image_scene(true), settings, 32, 5300);
-    let t = film_z_test(&gpu, &inverted, 8);
+    decision.unwrap_or_else(|msg| panic!("{msg}"));
+    // The power check through the same two-stage decision: the GPU's render against the CPU's
+    // of the scene with the weight inverted.
+    let inverted = image_scene(true);
+    let what = "gpu mix scene vs the cpu's with the weight inverted";
+    let decision = decide(what, 4300, 32, |seed, n, alpha| {
+        let gpu = gpu_render(&scene, settings, n, seed).expect("a GPU");
+        let cpu = cpu_render(&inverted, settings, n, seed + CPU_SEED_OFFSET);
+        gpu.z_test(&cpu, 8, alpha)
+    });
     assert!(
-        check_unbiased("gpu mix scene vs the cpu's with the weight inverted", &t).is_err(),
+        decision.is_err(),
         "the z-test does not see an inverted mix weight"
     );
 }

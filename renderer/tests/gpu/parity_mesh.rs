@@ -14,11 +14,9 @@
 //! large where they nearly cancel). Everything else (the fallbacks, NONE, the flags, whether a
 //! normal is found) must agree exactly.
 
-use crate::common;
 use crate::gpu_common;
-use common::check_unbiased;
 use glam::{Vec2, Vec3};
-use gpu_common::images::{cpu_render, film_z_test, gpu_render};
+use gpu_common::images::{cpu_render, decide_gpu_vs_cpu, gpu_render};
 use gpu_common::{Compare, context};
 use lumis::geometry::Ray;
 use lumis::geometry::mesh_attributes::{
@@ -511,13 +509,11 @@ fn gpu_smooth_sphere_matches_the_cpu() {
     .enumerate()
     {
         let s = settings(strategy);
-        let Some(gpu) = gpu_render(&scene, s, 32, 4000 + i as u32) else {
+        let what = format!("gpu smooth sphere {strategy:?} vs cpu");
+        let Some(decision) = decide_gpu_vs_cpu(&what, &scene, s, 32, 4000 + i as u32, 8) else {
             return;
         };
-        assert_eq!(gpu.nonfinite, 0, "{strategy:?}: non-finite samples");
-        let cpu = cpu_render(&scene, s, 32, 5000 + i as u32);
-        let t = film_z_test(&gpu, &cpu, 8);
-        if let Err(msg) = check_unbiased(&format!("gpu smooth sphere {strategy:?} vs cpu"), &t) {
+        if let Err(msg) = decision {
             failures.push(msg);
         }
     }

@@ -33,10 +33,9 @@
 
 use crate::common;
 use crate::gpu_common;
-use common::check_unbiased;
 use common::emitters::{Panel, emission_texels, kind, pentagon, scratch_dir};
 use glam::{Vec2, Vec3};
-use gpu_common::images::{cpu_render, film_z_test, gpu_render};
+use gpu_common::images::decide_gpu_vs_cpu;
 use gpu_common::{Compare, context};
 use lumis::geometry::Ray;
 use lumis::geometry::primitive::NONE;
@@ -290,14 +289,11 @@ fn gpu_textured_emission_matches_the_cpu() {
             light_sampling,
             ..Settings::default()
         };
-        let Some(gpu) = gpu_render(&scene, s, 64, 4200 + i as u32) else {
+        let what = format!("gpu textured emission {strategy:?} {light_sampling:?} vs cpu");
+        let Some(decision) = decide_gpu_vs_cpu(&what, &scene, s, 64, 4200 + i as u32, 8) else {
             return;
         };
-        assert_eq!(gpu.nonfinite, 0, "{strategy:?}: non-finite samples");
-        let cpu = cpu_render(&scene, s, 64, 5200 + i as u32);
-        let t = film_z_test(&gpu, &cpu, 8);
-        let what = format!("gpu textured emission {strategy:?} {light_sampling:?} vs cpu");
-        if let Err(msg) = check_unbiased(&what, &t) {
+        if let Err(msg) = decision {
             failures.push(msg);
         }
     }

@@ -14,11 +14,9 @@
 //! rounding with every strategy (seed 11, 4 spp: at most 1 pixel in 1000 diverged, relMSE <
 //! 1e-5, the bound of `renderer/tests/gpu/parity_mesh.rs`).
 
-use crate::common;
 use crate::gpu_common;
-use common::check_unbiased;
 use glam::Vec3;
-use gpu_common::images::{cpu_render, film_z_test, gpu_render};
+use gpu_common::images::{cpu_render, decide_gpu_vs_cpu, gpu_render};
 use lumis::image_io::Image;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSampling;
@@ -114,13 +112,11 @@ fn gpu_textured_scene_matches_the_cpu() {
     let mut failures = Vec::new();
     for (i, strategy) in [Strategy::Light, MIS].into_iter().enumerate() {
         let s = settings(strategy, LightSampling::SolidAngle);
-        let Some(gpu) = gpu_render(&scene, s, 32, 4100 + i as u32) else {
+        let what = format!("gpu textured scene {strategy:?} vs cpu");
+        let Some(decision) = decide_gpu_vs_cpu(&what, &scene, s, 32, 4100 + i as u32, 8) else {
             return;
         };
-        assert_eq!(gpu.nonfinite, 0, "{strategy:?}: non-finite samples");
-        let cpu = cpu_render(&scene, s, 32, 5100 + i as u32);
-        let t = film_z_test(&gpu, &cpu, 8);
-        if let Err(msg) = check_unbiased(&format!("gpu textured scene {strategy:?} vs cpu"), &t) {
+        if let Err(msg) = decision {
             failures.push(msg);
         }
     }

@@ -36,6 +36,35 @@ pub fn film_z_test(film: &Film, other: &Film, block: u32) -> BlockTest {
     film.z_test(other, block, 0.01)
 }
 
+/// The CPU render's seed for a GPU render at `seed` in a GPU-against-CPU test (the tests' old
+/// pairs 4000/5000, 4100/5100, … keep their seeds).
+pub const CPU_SEED_OFFSET: u32 = 1000;
+
+/// The GPU's render of `scene` with `s` against the CPU's, one decision of the suite's protocol
+/// (`common/protocol.rs`): the GPU at `seed`, the CPU at `seed + CPU_SEED_OFFSET`, `spp` each,
+/// `block`×`block` blocks; `None` when GPU tests are skipped.
+pub fn decide_gpu_vs_cpu(
+    what: &str,
+    scene: &Arc<Scene>,
+    s: Settings,
+    spp: u32,
+    seed: u32,
+    block: u32,
+) -> Option<Result<(), String>> {
+    context()?;
+    Some(crate::common::protocol::decide(
+        what,
+        seed,
+        spp,
+        |seed, n, alpha| {
+            let gpu = gpu_render(scene, s, n, seed).expect("a GPU");
+            assert_eq!(gpu.nonfinite, 0, "{what}: non-finite samples");
+            let cpu = cpu_render(scene, s, n, seed.wrapping_add(CPU_SEED_OFFSET));
+            gpu.z_test(&cpu, block, alpha)
+        },
+    ))
+}
+
 /// The block z-test (`block`×`block` pixels, family-wise α = 0.01) of `film` against an image
 /// `other` with the per-pixel variance of its mean `other_var` (a reference and its variance
 /// image, or a CPU film's mean and variance).
