@@ -5,7 +5,7 @@
 //! Test: per 32×32 block and channel, z = (our block mean − reference block mean) / sd, where sd
 //! combines our per-pixel sample variances and the reference's variance image; Šidák-corrected
 //! family-wise α per render, each render one decision of the suite's two-stage protocol
-//! (`common/protocol.rs`: α = 0.01, and a failure is re-rendered at a derived seed with 4× the
+//! (`common/protocol.rs`: α = 0.01, and a failure is re-rendered at a derived seed with 2× the
 //! samples at α = 0.005). Seeds are fixed, so results are deterministic. The sample
 //! counts are chosen so that a 3% local bias is detected; `docs/testing.md` has the measured table
 //! (which bias each scene × strategy catches) and `local_bias_is_detected` checks one per scene.

@@ -61,7 +61,7 @@ fn spp(strategy: Strategy) -> u32 {
 /// comparisons at α = 0.01 (block (224, 128), green: 1.2% low, z −4.17, critical 4.04) and the
 /// seeds were moved to 4000–4006; that was a seed chosen after a failure, which the protocol
 /// forbids, so the first seeds are back and a failure goes to the protocol's second stage (a
-/// seed derived from the decision's name, 4× the samples). Today's renderer passes all seven in
+/// seed derived from the decision's name, 2× the samples). Today's renderer passes all seven in
 /// stage 1 (MIS at 3003: worst |z| 2.74 of critical 4.05, 2026-12-05; the draws have changed
 /// since that failure). Its power against a scene-level bias
 /// is `sobol_local_bias_is_detected`; no deliberate sampler bug has been run through it yet (the
