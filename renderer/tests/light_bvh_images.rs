@@ -22,7 +22,7 @@
 
 mod common;
 
-use common::protocol::decide;
+use common::protocol::decide_against;
 use common::*;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSelection;
@@ -50,11 +50,16 @@ fn check(name: &str, runs: &[(Strategy, u32, u32)], seed: u32) -> Vec<String> {
     let mut failures = Vec::new();
     for (i, &(strategy, spp, block)) in runs.iter().enumerate() {
         let what = format!("{name} light BVH {strategy:?}");
-        let decision = decide(&what, seed + i as u32, spp, |seed, n, alpha| {
-            let r = render(&scene, settings(strategy), n, seed);
-            assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
-            test_against_at(&r, &reference_img, Some(&reference_var), block, alpha)
-        });
+        let var = Some(&reference_var);
+        let decision = decide_against(
+            &what,
+            seed + i as u32,
+            spp,
+            &reference_img,
+            var,
+            block,
+            |seed, n| render(&scene, settings(strategy), n, seed),
+        );
         if let Err(msg) = decision {
             failures.push(msg);
         }

@@ -21,7 +21,7 @@
 
 mod common;
 
-use common::protocol::decide;
+use common::protocol::decide_against;
 use common::*;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSampling;
@@ -67,11 +67,16 @@ fn check(
     let mut failures = Vec::new();
     for (i, &strategy) in strategies.iter().enumerate() {
         let what = format!("{name} {method:?} {strategy:?}");
-        let decision = decide(&what, seed + i as u32, spp, |seed, n, alpha| {
-            let r = render(&scene, settings(strategy, method), n, seed);
-            assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
-            test_against_at(&r, &reference_img, Some(&reference_var), 32, alpha)
-        });
+        let var = Some(&reference_var);
+        let decision = decide_against(
+            &what,
+            seed + i as u32,
+            spp,
+            &reference_img,
+            var,
+            32,
+            |seed, n| render(&scene, settings(strategy, method), n, seed),
+        );
         if let Err(msg) = decision {
             failures.push(msg);
         }

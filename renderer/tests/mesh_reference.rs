@@ -45,7 +45,7 @@
 
 mod common;
 
-use common::protocol::decide;
+use common::protocol::decide_against;
 use common::*;
 
 use lumis::integrator::{Heuristic, Settings, Strategy};
@@ -102,10 +102,9 @@ fn settings(strategy: Strategy, light_sampling: LightSampling) -> Settings {
 fn compare(scene: &Arc<Scene>, what: &str, s: Settings, spp: u32, seed: u32) -> Result<(), String> {
     let reference_img = reference(&format!("{NAME}.exr"));
     let reference_var = reference(&format!("{NAME}.var.exr"));
-    decide(what, seed, spp, |seed, n, alpha| {
-        let r = render(scene, s, n, seed);
-        assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
-        test_against_at(&r, &reference_img, Some(&reference_var), BLOCK, alpha)
+    let var = Some(&reference_var);
+    decide_against(what, seed, spp, &reference_img, var, BLOCK, |seed, n| {
+        render(scene, s, n, seed)
     })
 }
 

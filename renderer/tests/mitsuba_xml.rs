@@ -14,6 +14,7 @@ mod normals;
 #[path = "mitsuba_xml/refusals.rs"]
 mod refusals;
 
+use common::protocol::decide_against;
 use glam::DVec3;
 use lumis::scene::mitsuba::{self, Imported, conductor_preset};
 use lumis::scene::{BackgroundDesc, GeometryDesc, SceneDesc, SceneError, parse_scene_value_in};
@@ -241,14 +242,15 @@ fn imported_analytic_disk_renders_to_the_mitsuba_reference() {
         rr_depth: m.rr_depth.unwrap_or(5),
         ..Default::default()
     };
-    let r = common::render(&scene, settings, m.spp, 77);
-    let t = common::test_against(
-        &r,
-        &common::reference("analytic_disk.exr"),
-        Some(&common::reference("analytic_disk.var.exr")),
-        32,
+    let (reference, var) = (
+        common::reference("analytic_disk.exr"),
+        common::reference("analytic_disk.var.exr"),
     );
-    common::assert_unbiased("imported analytic_disk.xml", &t);
+    let what = "imported analytic_disk.xml";
+    let decision = decide_against(what, 77, m.spp, &reference, Some(&var), 32, |seed, n| {
+        common::render(&scene, settings, n, seed)
+    });
+    decision.unwrap_or_else(|msg| panic!("{msg}"));
 }
 
 #[test]
@@ -839,16 +841,18 @@ fn imported_gaussian_filter_renders_to_the_mitsuba_reference() {
     };
     let reference = common::reference("gaussian_edges.exr");
     let var = common::reference("gaussian_edges.var.exr");
-    let run = |desc: &lumis::scene::SceneDesc| {
+    // One decision of the suite's protocol each, the box filter's too.
+    let run = |what: &str, desc: &lumis::scene::SceneDesc| {
         let scene = std::sync::Arc::new(lumis::scene::Scene::from_desc(desc).unwrap());
-        let r = common::render(&scene, settings, 4096, 1818);
-        common::test_against(&r, &reference, Some(&var), 16)
+        decide_against(what, 1818, 4096, &reference, Some(&var), 16, |seed, n| {
+            common::render(&scene, settings, n, seed)
+        })
     };
-    common::assert_unbiased("imported gaussian_edges.xml", &run(&m.desc));
+    run("imported gaussian_edges.xml", &m.desc).unwrap_or_else(|msg| panic!("{msg}"));
     let mut boxed = m.desc.clone();
     boxed.camera.filter = lumis::scene::FilterDesc::Box;
     assert!(
-        common::check_unbiased("box-filtered gaussian_edges", &run(&boxed)).is_err(),
+        run("box-filtered gaussian_edges", &boxed).is_err(),
         "a box filter must fail against the gaussian reference"
     );
 }

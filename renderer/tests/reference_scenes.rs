@@ -12,7 +12,7 @@
 
 mod common;
 
-use common::protocol::decide;
+use common::protocol::decide_against;
 use common::*;
 
 use lumis::integrator::{Heuristic, Settings, Strategy};
@@ -100,16 +100,16 @@ fn check_scene(name: &str, light_sampling: LightSampling) -> Vec<String> {
     let mut failures = Vec::new();
     for (i, strategy) in strategies().enumerate() {
         let what = format!("{name} {strategy:?} {light_sampling:?}");
-        let decision = decide(
+        let block = block_size(name, strategy, light_sampling);
+        let s = settings(strategy, light_sampling);
+        let decision = decide_against(
             &what,
             1000 + i as u32,
             spp(name, strategy),
-            |seed, n, alpha| {
-                let r = render(&scene, settings(strategy, light_sampling), n, seed);
-                assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
-                let block = block_size(name, strategy, light_sampling);
-                test_against_at(&r, &reference, Some(&reference_var), block, alpha)
-            },
+            &reference,
+            Some(&reference_var),
+            block,
+            |seed, n| render(&scene, s, n, seed),
         );
         if let Err(msg) = decision {
             failures.push(msg);
@@ -180,9 +180,10 @@ fn check_mis_with_area_sampling(name: &str, seed: u32) {
     );
     let (scene, reference) = (scene(name), reference(&format!("{name}.exr")));
     let reference_var = reference_var_image(name);
-    let decision = decide(&format!("{name} mis area"), seed, 128, |seed, n, alpha| {
-        let r = render(&scene, s, n, seed);
-        test_against_at(&r, &reference, Some(&reference_var), 32, alpha)
+    let what = format!("{name} mis area");
+    let var = Some(&reference_var);
+    let decision = decide_against(&what, seed, 128, &reference, var, 32, |seed, n| {
+        render(&scene, s, n, seed)
     });
     decision.unwrap_or_else(|msg| panic!("{msg}"));
 }
@@ -205,9 +206,8 @@ fn check_closed_form(name: &str) {
     let mut failures = Vec::new();
     for ls in [LightSampling::SolidAngle, LightSampling::Area] {
         let what = format!("{name} light {ls:?} vs closed form");
-        let decision = decide(&what, 5, 64, |seed, n, alpha| {
-            let r = render(&scene, settings(Strategy::Light, ls), n, seed);
-            test_against_at(&r, &exact, None, 32, alpha)
+        let decision = decide_against(&what, 5, 64, &exact, None, 32, |seed, n| {
+            render(&scene, settings(Strategy::Light, ls), n, seed)
         });
         if let Err(msg) = decision {
             failures.push(msg);
@@ -240,11 +240,18 @@ fn local_bias_is_detected() {
             (reference(&format!("{name}.exr")), reference_var_image(name));
         let what = format!("{name} MIS, {material} albedo x 1.03");
         // Same seed as the strategy loop's MIS render (index 3).
-        let decision = decide(&what, 1003, spp(name, mis), |seed, n, alpha| {
-            let r = render(&biased, settings(mis, LightSampling::SolidAngle), n, seed);
-            let block = block_size(name, mis, LightSampling::SolidAngle);
-            test_against_at(&r, &reference, Some(&reference_var), block, alpha)
-        });
+        let s = settings(mis, LightSampling::SolidAngle);
+        let block = block_size(name, mis, LightSampling::SolidAngle);
+        let var = Some(&reference_var);
+        let decision = decide_against(
+            &what,
+            1003,
+            spp(name, mis),
+            &reference,
+            var,
+            block,
+            |seed, n| render(&biased, s, n, seed),
+        );
         assert!(
             decision.is_err(),
             "{name}: the albedo of {material} x 1.03 went undetected"

@@ -17,7 +17,7 @@
 
 mod common;
 
-use common::protocol::decide;
+use common::protocol::decide_against;
 use common::*;
 use lumis::engine::Progressive;
 use lumis::integrator::{Settings, Strategy};
@@ -74,10 +74,10 @@ fn seed_cornell_matches_reference_with_sobol() {
     let mut failures = Vec::new();
     for (i, strategy) in strategies().enumerate() {
         let what = format!("seed_cornell sobol {strategy:?}");
-        let decision = decide(&what, SEED + i as u32, spp(strategy), |seed, n, alpha| {
-            let r = render(&scene, sobol(strategy), n, seed);
-            assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
-            test_against_at(&r, &reference_img, Some(&reference_var), 32, alpha)
+        let var = Some(&reference_var);
+        let (seed, n) = (SEED + i as u32, spp(strategy));
+        let decision = decide_against(&what, seed, n, &reference_img, var, 32, |seed, n| {
+            render(&scene, sobol(strategy), n, seed)
         });
         if let Err(msg) = decision {
             failures.push(msg);
@@ -98,10 +98,16 @@ fn sobol_local_bias_is_detected() {
         reference("seed_cornell.var.exr"),
     );
     let what = "seed_cornell sobol MIS, red albedo x 1.03";
-    let decision = decide(what, SEED + 3, spp(mis), |seed, n, alpha| {
-        let r = render(&biased, sobol(mis), n, seed);
-        test_against_at(&r, &reference_img, Some(&reference_var), 32, alpha)
-    });
+    let var = Some(&reference_var);
+    let decision = decide_against(
+        what,
+        SEED + 3,
+        spp(mis),
+        &reference_img,
+        var,
+        32,
+        |seed, n| render(&biased, sobol(mis), n, seed),
+    );
     assert!(
         decision.is_err(),
         "the red wall's albedo x 1.03 went undetected with the Sobol sampler"

@@ -15,6 +15,8 @@
 //! at least its one-stage power times stage 2's; power checks (a mutant must be detected) go
 //! through the same [`decide`], so a test can never be more sensitive to a mutant than to a bug.
 
+use lumis::engine::Progressive;
+use lumis::image_io::Image;
 use lumis::metrics::BlockTest;
 
 /// Stage 1's family-wise significance per decision.
@@ -26,14 +28,16 @@ pub const ALPHA_SECOND: f64 = 0.005;
 /// 7 minutes to the suite on 2 cores, 2026-12-05; every mutant kept a wide margin at 2×.)
 pub const SECOND_STAGE_SPP: u32 = 2;
 
-/// Stage 2's seed for the decision named `what`: FNV-1a of the name, folded into [2³⁰, 2³¹), a
-/// range no stage-1 seed of the suite uses.
+/// The 32-bit FNV-1a hash of `text`: seeds derived from names, fixed before any run.
+pub fn fnv1a(text: &str) -> u32 {
+    text.bytes()
+        .fold(0x811c_9dc5, |h, b| (h ^ b as u32).wrapping_mul(0x0100_0193))
+}
+
+/// Stage 2's seed for the decision named `what`: [`fnv1a`] of the name, folded into
+/// [2³⁰, 2³¹), a range no stage-1 seed of the suite uses.
 pub fn second_seed(what: &str) -> u32 {
-    let mut h: u32 = 0x811c_9dc5;
-    for b in what.bytes() {
-        h = (h ^ b as u32).wrapping_mul(0x0100_0193);
-    }
-    (1 << 30) | (h >> 2)
+    (1 << 30) | (fnv1a(what) >> 2)
 }
 
 /// One decision under the protocol: `run(seed, spp, alpha)` renders with that seed and sample
@@ -56,4 +60,22 @@ pub fn decide(
     );
     let second = run(seed2, SECOND_STAGE_SPP * spp, ALPHA_SECOND);
     super::check_unbiased(&what2, &second).map_err(|msg| format!("{first}{msg}"))
+}
+
+/// [`decide`] for the common case: `render(seed, spp)` (no non-finite samples allowed) against
+/// `reference` and its variance image (none for a closed-form image) in `block`×`block` blocks.
+pub fn decide_against(
+    what: &str,
+    seed: u32,
+    spp: u32,
+    reference: &Image,
+    reference_var: Option<&Image>,
+    block: u32,
+    render: impl Fn(u32, u32) -> Progressive,
+) -> Result<(), String> {
+    decide(what, seed, spp, |seed, n, alpha| {
+        let r = render(seed, n);
+        assert_eq!(r.film().nonfinite, 0, "{what}: non-finite samples");
+        super::test_against_at(&r, reference, reference_var, block, alpha)
+    })
 }

@@ -81,10 +81,7 @@ const SEED: u32 = 5000;
 
 /// The seed of the case named `name`: `SEED` plus its name's FNV-1a hash.
 fn case_seed(name: &str) -> u32 {
-    let hash = name.bytes().fold(0x811c_9dc5u32, |h, b| {
-        (h ^ b as u32).wrapping_mul(0x0100_0193)
-    });
-    SEED.wrapping_add(hash)
+    SEED.wrapping_add(crate::common::protocol::fnv1a(name))
 }
 
 /// Family-wise significance level.

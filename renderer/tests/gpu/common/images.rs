@@ -30,12 +30,6 @@ pub fn cpu_render(scene: &Arc<Scene>, settings: Settings, spp: u32, seed: u32) -
     r.film().clone()
 }
 
-/// The block z-test (`block`×`block` pixels, family-wise α = 0.01) of `film` against `other`,
-/// each with its own per-pixel variance of the mean.
-pub fn film_z_test(film: &Film, other: &Film, block: u32) -> BlockTest {
-    film.z_test(other, block, 0.01)
-}
-
 /// The CPU render's seed for a GPU render at `seed` in a GPU-against-CPU test (the tests' old
 /// pairs 4000/5000, 4100/5100, … keep their seeds).
 pub const CPU_SEED_OFFSET: u32 = 1000;
@@ -65,20 +59,9 @@ pub fn decide_gpu_vs_cpu(
     ))
 }
 
-/// The block z-test (`block`×`block` pixels, family-wise α = 0.01) of `film` against an image
-/// `other` with the per-pixel variance of its mean `other_var` (a reference and its variance
-/// image, or a CPU film's mean and variance).
-pub fn film_image_z_test(
-    film: &Film,
-    other: &[glam::Vec3],
-    other_var: &[[f64; 3]],
-    block: u32,
-) -> BlockTest {
-    film_image_z_test_at(film, other, other_var, block, 0.01)
-}
-
-/// [`film_image_z_test`] at family-wise `alpha` (the protocol's stages,
-/// `common::protocol::decide`).
+/// The block z-test (`block`×`block` pixels, family-wise `alpha`: the protocol's stages,
+/// `common::protocol::decide`) of `film` against an image `other` with the per-pixel variance of
+/// its mean `other_var` (a reference and its variance image, or a CPU film's mean and variance).
 pub fn film_image_z_test_at(
     film: &Film,
     other: &[glam::Vec3],
