@@ -132,6 +132,7 @@ fn dielectric_ior_presets_and_sliders_edit_the_glass() {
     let glass_15 = MaterialDesc::Dielectric {
         ior: 1.5,
         alpha: 0.0,
+        distribution: lumis::scene::desc::Distribution::Ggx,
     };
     desc.materials[i].material = glass_15;
     desc.materials[i].two_sided = false;
@@ -150,7 +151,7 @@ fn dielectric_ior_presets_and_sliders_edit_the_glass() {
             m,
             "the format rejects the edit"
         );
-        let MaterialDesc::Dielectric { ior, alpha } = m.material else {
+        let MaterialDesc::Dielectric { ior, alpha, .. } = m.material else {
             panic!("not glass")
         };
         assert_eq!(h.state().output().desc_version, h.state().desc_version);
@@ -158,7 +159,10 @@ fn dielectric_ior_presets_and_sliders_edit_the_glass() {
         let lumis::materials::Material::Dielectric(d) = built else {
             panic!("the built scene has no glass")
         };
-        assert_eq!((d.ior, d.alpha), (ior as f32, alpha as f32));
+        assert_eq!(
+            (d.ior, d.microfacet.alpha_u, d.microfacet.alpha_v),
+            (ior as f32, alpha as f32, alpha as f32)
+        );
         (ior, alpha)
     };
     let click = |label: &'static str| {

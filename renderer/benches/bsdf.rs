@@ -9,7 +9,7 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use glam::{Vec2, Vec3};
 use lumis::materials::coat_albedo::CoatAlbedo;
-use lumis::materials::{Conductor, ConductorFresnel, Diffuse, Material, Plastic};
+use lumis::materials::{Conductor, ConductorFresnel, Diffuse, Material, Microfacet, Plastic};
 use lumis::rng::Rng;
 use lumis::sampling::sample_uniform_hemisphere;
 use std::hint::black_box;
@@ -56,14 +56,14 @@ fn materials() -> Vec<(&'static str, Material)> {
         (
             "conductor_a0.05",
             Material::Conductor(Conductor {
-                alpha: 0.05,
+                microfacet: Microfacet::ggx(0.05),
                 fresnel: copper,
             }),
         ),
         (
             "conductor_a0.5",
             Material::Conductor(Conductor {
-                alpha: 0.5,
+                microfacet: Microfacet::ggx(0.5),
                 fresnel: copper,
             }),
         ),

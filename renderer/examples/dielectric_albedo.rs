@@ -11,7 +11,7 @@
 //! energy never exceeds 1. Seeded, 10⁶ samples per point (standard error < 1e-3).
 
 use glam::Vec3;
-use lumis::materials::{Dielectric, Material};
+use lumis::materials::{Dielectric, Material, Microfacet};
 use lumis::rng::Rng;
 use std::fmt::Write as _;
 
@@ -45,7 +45,10 @@ fn main() {
                 .iter()
                 .enumerate()
                 .map(|(i, &alpha)| {
-                    let m = Material::Dielectric(Dielectric { ior: IOR, alpha });
+                    let m = Material::Dielectric(Dielectric {
+                        ior: IOR,
+                        microfacet: Microfacet::ggx(alpha),
+                    });
                     energy(&m, wo, 1000 * inside as u32 + 10 * th as u32 + i as u32)
                 })
                 .collect();

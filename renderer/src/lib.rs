@@ -35,6 +35,7 @@
 pub mod alloc_count;
 pub mod camera;
 pub mod engine;
+pub mod erf;
 pub mod geometry;
 pub mod gpu;
 pub mod image_io;

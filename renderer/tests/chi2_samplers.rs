@@ -28,7 +28,7 @@
 //!
 //! Everything is seeded: the same samples on every run and thread count.
 
-use lumis::materials::{Conductor, ConductorFresnel, Material};
+use lumis::materials::{Conductor, ConductorFresnel, Material, Microfacet};
 use lumis::stats::suite::{self, Case};
 use lumis::stats::{
     BsdfSampler, Chi2Result, ChiSquareTest, DirectionSample, DirectionalSampler, Domain,
@@ -38,7 +38,7 @@ use rayon::prelude::*;
 /// Family-wise significance level.
 const ALPHA: f64 = 0.01;
 /// Number of χ² tests in the family (every case of the suite).
-const N_TESTS: usize = 429;
+const N_TESTS: usize = 429 + 49;
 
 /// Runs every case with `samples` samples and asserts that all pass; prints one line per case
 /// and the smallest p-value.
@@ -84,6 +84,13 @@ fn chi2_warps() {
 #[test]
 fn chi2_materials() {
     run_cases("materials", suite::material_cases(), 1_000_000, 2000);
+}
+
+/// Beckmann and anisotropic microfacets (issue 39; `suite::microfacet_cases`). Seed fixed
+/// before the first run.
+#[test]
+fn chi2_microfacets() {
+    run_cases("microfacets", suite::microfacet_cases(), 1_000_000, 9000);
 }
 
 #[test]
@@ -239,7 +246,25 @@ impl DirectionalSampler for WrongEta {
 
 fn ggx(alpha: f32) -> BsdfSampler {
     let fresnel = ConductorFresnel::Tint(glam::Vec3::ONE);
-    BsdfSampler::at_angle(Material::Conductor(Conductor { alpha, fresnel }), 30.0)
+    BsdfSampler::at_angle(
+        Material::Conductor(Conductor {
+            microfacet: Microfacet::ggx(alpha),
+            fresnel,
+        }),
+        30.0,
+    )
+}
+
+/// A tinted conductor of microfacets `mf` seen from θo = 30° at azimuth `phi_deg`.
+fn metal(mf: Microfacet, phi_deg: f32) -> BsdfSampler {
+    let (t, p) = (30f32.to_radians(), phi_deg.to_radians());
+    BsdfSampler {
+        material: Material::Conductor(Conductor {
+            microfacet: mf,
+            fresnel: ConductorFresnel::Tint(glam::Vec3::ONE),
+        }),
+        wo: glam::Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos()),
+    }
 }
 
 #[test]
@@ -277,6 +302,25 @@ fn chi2_rejects_broken_samplers() {
     check(
         "ggx sample 0.3 / pdf 0.33",
         &Mismatched(ggx(0.3), ggx(0.33)),
+        1_000_000,
+    );
+    // (b') The same for Beckmann, and an anisotropic lobe whose pdf has its tangents swapped
+    // (sampled with α = (0.1, 0.5), evaluated with (0.5, 0.1); viewed at φo = 30°).
+    use lumis::materials::Distribution::Beckmann;
+    check(
+        "beckmann sample 0.3 / pdf 0.33",
+        &Mismatched(
+            metal(Microfacet::new(Beckmann, 0.3, 0.3), 0.0),
+            metal(Microfacet::new(Beckmann, 0.33, 0.33), 0.0),
+        ),
+        1_000_000,
+    );
+    check(
+        "beckmann sample 0.1x0.5 / pdf 0.5x0.1",
+        &Mismatched(
+            metal(Microfacet::new(Beckmann, 0.1, 0.5), 30.0),
+            metal(Microfacet::new(Beckmann, 0.5, 0.1), 30.0),
+        ),
         1_000_000,
     );
     // (c) Glass, in generalised half-vector space: the refraction pdf 3% high (the reflection

@@ -525,11 +525,21 @@ fn bsdfs_map_onto_lumis_materials() {
     <float name="int_ior" value="1.33"/><string name="ext_ior" value="vacuum"/></bsdf></shape>
 <shape type="sphere"><bsdf type="roughplastic" id="plastic"><string name="distribution" value="ggx"/>
     <spectrum name="diffuse_reflectance" value="0.4"/><float name="alpha" value="0.05"/></bsdf></shape>
-<shape type="sphere"><bsdf type="twosided" id="both"><bsdf type="plastic"/></bsdf></shape>"#;
+<shape type="sphere"><bsdf type="twosided" id="both"><bsdf type="plastic"/></bsdf></shape>
+<shape type="sphere"><bsdf type="roughconductor" id="beck"><float name="alpha" value="0.3"/></bsdf></shape>
+<shape type="sphere"><bsdf type="roughdielectric" id="beckglass"><string name="distribution" value="beckmann"/></bsdf></shape>"#;
     let m = ok(&dir, body);
     let (au_eta, au_k) = conductor_preset("Au").unwrap();
     let shapes: Vec<Value> = [
-        "gold", "rough", "mirror", "glass", "frosted", "plastic", "both",
+        "gold",
+        "rough",
+        "mirror",
+        "glass",
+        "frosted",
+        "plastic",
+        "both",
+        "beck",
+        "beckglass",
     ]
     .iter()
     .map(|n| json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": n}))
@@ -549,6 +559,11 @@ fn bsdfs_map_onto_lumis_materials() {
                             "ior": f(1.49) / f(1.000277), "specular": [1, 1, 1], "two_sided": false},
                 "both": {"type": "plastic", "albedo": [0.5, 0.5, 0.5], "alpha": 0,
                          "ior": f(1.49) / f(1.000277), "specular": [1, 1, 1], "two_sided": true},
+                // No `distribution`: Mitsuba's default, Beckmann.
+                "beck": {"type": "conductor", "alpha": 0.3, "distribution": "beckmann",
+                         "reflectance": [1, 1, 1], "two_sided": false},
+                "beckglass": {"type": "dielectric", "ior": f(1.5046) / f(1.000277), "alpha": 0.1,
+                              "distribution": "beckmann"},
             },
             "shapes": shapes,
         }),

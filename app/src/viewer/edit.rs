@@ -251,10 +251,30 @@ impl LightEdit {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use lumis::scene::desc::Distribution;
     use lumis::scene::{load_scene, parse_scene_value};
 
+    trait WithIor {
+        fn with_ior(self, ior: f64) -> Self;
+    }
+
+    impl WithIor for MaterialDesc {
+        /// A dielectric with its `ior` replaced.
+        fn with_ior(mut self, n: f64) -> MaterialDesc {
+            if let MaterialDesc::Dielectric { ior, .. } = &mut self {
+                *ior = n;
+            }
+            self
+        }
+    }
+
+    /// Beckmann, not the default, so that the round trips below carry `distribution` too.
     fn glass(alpha: f64) -> MaterialDesc {
-        MaterialDesc::Dielectric { ior: 1.5, alpha }
+        MaterialDesc::Dielectric {
+            ior: 1.5,
+            alpha,
+            distribution: Distribution::Beckmann,
+        }
     }
 
     /// Writes `m` into a real scene and parses it back: the format's own check of the edit.
@@ -277,18 +297,12 @@ mod tests {
         assert!(ior_presets(&MaterialDesc::Diffuse { albedo: DVec3::ONE }).is_empty());
         for (name, n) in DIELECTRIC_PRESETS {
             set_ior(&mut m, n);
-            assert_eq!(m, MaterialDesc::Dielectric { ior: n, alpha: 0.0 }, "{name}");
+            assert_eq!(m, glass(0.0).with_ior(n), "{name}");
             assert_eq!(reparsed(&m), Ok(m.clone()), "{name}");
         }
         set_ior(&mut m, 2.0);
         set_alpha(&mut m, 0.25);
-        assert_eq!(
-            m,
-            MaterialDesc::Dielectric {
-                ior: 2.0,
-                alpha: 0.25
-            }
-        );
+        assert_eq!(m, glass(0.25).with_ior(2.0));
     }
 
     #[test]
@@ -319,10 +333,11 @@ mod tests {
                     let mut m = MaterialDesc::Dielectric {
                         ior: start,
                         alpha: 0.3,
+                        distribution: Distribution::Ggx,
                     };
                     set_ior(&mut m, n);
                     set_alpha(&mut m, a);
-                    let MaterialDesc::Dielectric { ior, alpha } = m else {
+                    let MaterialDesc::Dielectric { ior, alpha, .. } = m else {
                         unreachable!()
                     };
                     assert!(ior != 1.0 && ior as f32 != 1.0, "ior {n} → {ior}");

@@ -19,6 +19,7 @@
 //!
 //! WGSL twin: `camera/filter.wgsl`.
 
+use crate::erf::erfc;
 use glam::Vec2;
 
 /// A pixel filter. Parameters are validated by the scene parser: `stddev > 0`,
@@ -47,23 +48,6 @@ pub const MAX_STEPS: u32 = 40;
 /// [`PixelFilter::sample_1d`] stops once a step moves less than this times `1 + |x|`, or the
 /// bracket is narrower than this (pixels); `FILTER_TOLERANCE` in the WGSL prelude.
 pub const TOLERANCE: f32 = 1e-6;
-
-/// `erfc(x)` to a fractional error below 1.2e-7 (Numerical Recipes' Chebyshev fit `erfcc`), the
-/// same formula as `camera/filter.wgsl`'s, so that CPU and GPU invert the same CDF.
-pub fn erfc(x: f32) -> f32 {
-    let z = x.abs();
-    let t = 1.0 / (1.0 + 0.5 * z);
-    let p = -1.265_512_2
-        + t * (1.000_023_7
-            + t * (0.374_091_96
-                + t * (0.096_784_18
-                    + t * (-0.186_288_06
-                        + t * (0.278_868_07
-                            + t * (-1.135_204
-                                + t * (1.488_515_9 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
-    let r = t * (-z * z + p).exp();
-    if x >= 0.0 { r } else { 2.0 - r }
-}
 
 impl PixelFilter {
     /// Half-width of the support in pixels.

@@ -14,23 +14,6 @@ struct PixelFilter {
     radius: f32,
 }
 
-// erfc(x) to a fractional error below 1.2e-7 (Numerical Recipes' `erfcc`): the CPU's coefficients
-// (f32 literals, so each is rounded once, as Rust rounds them) in the CPU's evaluation order.
-fn erfc(x: f32) -> f32 {
-    let z = abs(x);
-    let t = 1.0 / (1.0 + 0.5 * z);
-    let p = -1.2655122f
-        + t * (1.0000237f
-            + t * (0.37409196f
-                + t * (0.09678418f
-                    + t * (-0.18628806f
-                        + t * (0.27886807f
-                            + t * (-1.135204f
-                                + t * (1.4885159f + t * (-0.82215223f + t * 0.17087277f))))))));
-    let r = t * exp(-z * z + p);
-    return select(2.0 - r, r, x >= 0.0);
-}
-
 // Half-width of the support in pixels (`radius`).
 fn filter_radius(f: PixelFilter) -> f32 {
     switch f.tag {

@@ -11,14 +11,14 @@
 //! WGSL twin: `gpu/prelude.wgsl`.
 
 use super::scene::{
-    BVH2_STACK_SIZE, CWBVH_STACK_SIZE, ChannelTag, FilterTag, FresnelTag, HeuristicTag,
-    LightSamplingTag, LightSelectionTag, LightTag, MaterialTag, SamplerTag, ShapeTag, StrategyTag,
-    TextureTag, WrapTag, textures,
+    BVH2_STACK_SIZE, CWBVH_STACK_SIZE, ChannelTag, DistributionTag, FilterTag, FresnelTag,
+    HeuristicTag, LightSamplingTag, LightSelectionTag, LightTag, MaterialTag, SamplerTag, ShapeTag,
+    StrategyTag, TextureTag, WrapTag, textures,
 };
 use crate::camera::filter;
 use crate::geometry::{mesh_attributes, primitive, ray, wide_bvh};
 use crate::lights::{polygon, sphere};
-use crate::materials::{coat_albedo, ggx, mix, plastic_textured};
+use crate::materials::{beckmann, coat_albedo, ggx, mix, plastic_textured};
 use crate::sampler::{dim, owen, zsobol};
 use crate::sampling::{
     self, elliptic, projected_solid_angle, spherical_ellipse, spherical_rectangle,
@@ -157,6 +157,8 @@ pub fn constants() -> Vec<Constant> {
         f32c("FILTER_TOLERANCE", filter::TOLERANCE),
         // Materials.
         f32c("SMOOTH_ALPHA", ggx::SMOOTH_ALPHA),
+        f32c("BECKMANN_SAMPLE_TOLERANCE", beckmann::SAMPLE_TOLERANCE),
+        u32c("BECKMANN_SAMPLE_MAX_STEPS", beckmann::SAMPLE_MAX_STEPS),
         u32c("E_TABLE_SIZE", const { count(coat_albedo::E_TABLE_SIZE) }),
         u32c(
             "COAT_GRID_SIZE",
@@ -272,6 +274,7 @@ pub fn constants() -> Vec<Constant> {
     ];
     c.extend(tags(MaterialTag::ALL));
     c.extend(tags(FresnelTag::ALL));
+    c.extend(tags(DistributionTag::ALL));
     c.extend(tags(LightTag::ALL));
     c.extend(tags(ShapeTag::ALL));
     c.extend(tags(StrategyTag::ALL));
@@ -492,6 +495,7 @@ mod tests {
         }
         check(MaterialTag::ALL);
         check(FresnelTag::ALL);
+        check(DistributionTag::ALL);
         check(LightTag::ALL);
         check(ShapeTag::ALL);
         check(StrategyTag::ALL);

@@ -17,7 +17,7 @@
 use super::GpuError;
 use super::prelude::{self, Constant};
 use crate::lights::Light;
-use crate::materials::{ConductorFresnel, Material};
+use crate::materials::{ConductorFresnel, Distribution, Material};
 use crate::scene::Scene;
 
 /// One WGSL module: its path under `src/` (beside its Rust twin) and text.
@@ -39,6 +39,7 @@ macro_rules! module {
 const MODULES: &[Module] = &[
     module!("gpu/prelude.wgsl"),
     module!("math.wgsl"),
+    module!("erf.wgsl"),
     module!("rng.wgsl"),
     module!("gpu/u64.wgsl"),
     module!("sampler/morton.wgsl"),
@@ -59,6 +60,8 @@ const MODULES: &[Module] = &[
     module!("sampling/projected_solid_angle.wgsl"),
     module!("materials/fresnel.wgsl"),
     module!("materials/ggx.wgsl"),
+    module!("materials/beckmann.wgsl"),
+    module!("materials/microfacet.wgsl"),
     module!("integrator/mis.wgsl"),
     module!("integrator/optimal.wgsl"),
     module!("materials/mod.wgsl"),
@@ -123,8 +126,11 @@ pub struct Features {
     /// default CWBVH (`geometry/bvh.wgsl`). Kept to measure the two against each other; never set by
     /// [`Features::of`], only by an explicit choice ([`crate::gpu::GpuScene::with_bvh2`]).
     pub bvh2: bool,
-    /// A microfacet lobe rough enough not to be a mirror (conductor or plastic coat).
+    /// A microfacet lobe rough enough not to be a mirror (conductor, dielectric or plastic coat;
+    /// any distribution: the GGX functions and the distribution dispatch).
     pub has_ggx: bool,
+    /// A conductor or dielectric with Beckmann microfacets (`materials/beckmann.wgsl`).
+    pub has_beckmann: bool,
     /// Conductors.
     pub has_conductor: bool,
     /// Conductors with a complex IOR (exact Fresnel).
@@ -165,6 +171,7 @@ impl Features {
             use_bvh: true,
             bvh2: false,
             has_ggx: true,
+            has_beckmann: true,
             has_conductor: true,
             has_complex_fresnel: true,
             has_plastic: true,
@@ -219,6 +226,8 @@ impl Features {
                 Material::Conductor(c) => {
                     f.has_conductor = true;
                     f.has_ggx |= !c.is_delta();
+                    // Even where smooth: a textured α may make it rough at a hit.
+                    f.has_beckmann |= c.microfacet.distribution == Distribution::Beckmann;
                     f.has_complex_fresnel |= matches!(c.fresnel, ConductorFresnel::Complex { .. });
                 }
                 Material::Plastic(p) => {
@@ -228,6 +237,7 @@ impl Features {
                 Material::Dielectric(d) => {
                     f.has_dielectric = true;
                     f.has_ggx |= !d.is_delta();
+                    f.has_beckmann |= d.microfacet.distribution == Distribution::Beckmann;
                 }
             }
         }
@@ -250,7 +260,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 22] {
+    fn defines(&self) -> [(&'static str, bool); 23] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -270,6 +280,7 @@ impl Features {
             ("USE_CWBVH", self.use_bvh && !self.bvh2),
             ("USE_BVH2", self.use_bvh && self.bvh2),
             ("HAS_GGX", self.has_ggx),
+            ("HAS_BECKMANN", self.has_ggx && self.has_beckmann),
             ("HAS_CONDUCTOR", self.has_conductor),
             ("HAS_COMPLEX_FRESNEL", self.has_complex_fresnel),
             ("HAS_PLASTIC", self.has_plastic),
@@ -317,6 +328,8 @@ impl Features {
                 self.has_conductor || self.has_plastic || self.has_dielectric
             }
             "materials/ggx.wgsl" => self.has_ggx,
+            "materials/beckmann.wgsl" => self.has_ggx && self.has_beckmann,
+            "materials/microfacet.wgsl" => self.has_conductor || self.has_dielectric,
             "materials/conductor.wgsl" => self.has_conductor,
             "materials/plastic.wgsl" => self.has_plastic,
             "materials/dielectric.wgsl" => self.has_dielectric,

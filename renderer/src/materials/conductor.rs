@@ -1,8 +1,11 @@
-//! GGX microfacet conductor (metal): f = F(wo·h)·D(h)·G1(wo)G1(wi)/(4 cosθo cosθi), sampled by
-//! visible normals; a perfect mirror below [`ggx::SMOOTH_ALPHA`].
+//! Microfacet conductor (metal), GGX or Beckmann, isotropic or not:
+//! f = F(wo·h)·D(h)·G1(wo)G1(wi)/(4 cosθo cosθi), sampled by visible normals; a perfect mirror
+//! below [`ggx::SMOOTH_ALPHA`] (Mitsuba's `roughconductor` and `conductor`).
 //! WGSL twin: `materials/conductor.wgsl`.
 
-use super::{BsdfSample, fresnel, ggx};
+#[cfg(test)]
+use super::ggx;
+use super::{BsdfSample, Microfacet, fresnel};
 use crate::math::reflect;
 use glam::{Vec2, Vec3};
 
@@ -31,11 +34,11 @@ impl ConductorFresnel {
     }
 }
 
-/// A GGX conductor.
+/// A microfacet conductor.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Conductor {
-    /// GGX α (not squared); below [`ggx::SMOOTH_ALPHA`] the surface is a perfect mirror.
-    pub alpha: f32,
+    /// Its microfacets; smooth ([`Microfacet::is_smooth`]): a perfect mirror.
+    pub microfacet: Microfacet,
     /// Fresnel reflectance.
     pub fresnel: ConductorFresnel,
 }
@@ -44,7 +47,7 @@ impl Conductor {
     /// True for a perfect mirror.
     #[inline]
     pub fn is_delta(&self) -> bool {
-        ggx::is_smooth(self.alpha)
+        self.microfacet.is_smooth()
     }
 
     /// Reflectance at normal incidence (for display).
@@ -59,7 +62,7 @@ impl Conductor {
             return None;
         }
         // Both in the upper hemisphere, so wo + wi is never zero.
-        Some(ggx::half_vector(wo, wi))
+        Some(super::ggx::half_vector(wo, wi))
     }
 
     /// f·cosθi = F·D·G1(wo)G1(wi)/(4 cosθo) (the cosθi cancels).
@@ -67,8 +70,8 @@ impl Conductor {
         let Some((h, cos_h)) = self.half_vector(wo, wi) else {
             return Vec3::ZERO;
         };
-        let a = self.alpha;
-        let s = ggx::d(a, h) * ggx::g2_separable(a, wo, wi) / (4.0 * wo.z);
+        let m = &self.microfacet;
+        let s = m.d(h) * m.g2_separable(wo, wi) / (4.0 * wo.z);
         self.fresnel.eval(cos_h) * s
     }
 
@@ -77,7 +80,7 @@ impl Conductor {
         let Some((h, _)) = self.half_vector(wo, wi) else {
             return 0.0;
         };
-        ggx::g1(self.alpha, wo) * ggx::d(self.alpha, h) / (4.0 * wo.z)
+        self.microfacet.g1(wo) * self.microfacet.d(h) / (4.0 * wo.z)
     }
 
     /// Mirror (delta) or visible-normal sample.
@@ -96,13 +99,14 @@ impl Conductor {
                 eta: 1.0,
             });
         }
-        let h = ggx::sample_visible_normal(self.alpha, wo, u);
+        let m = &self.microfacet;
+        let h = m.sample_visible_normal(wo, u);
         let wi = reflect(wo, h).normalize();
         // pdf and weight from the half vector of (wo, wi), exactly as `pdf`/`eval` see it, so the
         // invariants hold to rounding even where D is steep. f·cos/pdf simplifies to F·G1(wi).
         let (h, cos_h) = self.half_vector(wo, wi)?;
-        let pdf = ggx::g1(self.alpha, wo) * ggx::d(self.alpha, h) / (4.0 * wo.z);
-        let weight = self.fresnel.eval(cos_h) * ggx::g1(self.alpha, wi);
+        let pdf = m.g1(wo) * m.d(h) / (4.0 * wo.z);
+        let weight = self.fresnel.eval(cos_h) * m.g1(wi);
         Some(BsdfSample {
             wi,
             weight,
@@ -129,10 +133,13 @@ mod tests {
         ]
     }
 
-    fn check(alphas: &[f32]) {
-        for &alpha in alphas {
+    fn check(microfacets: &[Microfacet]) {
+        for &microfacet in microfacets {
             for (i, fresnel) in fresnels().into_iter().enumerate() {
-                let c = Conductor { alpha, fresnel };
+                let c = Conductor {
+                    microfacet,
+                    fresnel,
+                };
                 let reports = testing::check_material(&Material::Conductor(c), 100 + i as u32);
                 for r in &reports {
                     let cos = r.theta_deg.to_radians().cos();
@@ -145,7 +152,7 @@ mod tests {
                         assert!(r.albedo_quad.max_element() <= 1.0 + 2e-3, "{r:?}");
                     }
                     eprintln!(
-                        "conductor a={alpha} F#{i} θ={}: albedo {:.4}",
+                        "conductor {microfacet:?} F#{i} θ={}: albedo {:.4}",
                         r.theta_deg, r.albedo_mc
                     );
                 }
@@ -153,19 +160,43 @@ mod tests {
         }
     }
 
+    fn ggx(alphas: &[f32]) -> Vec<Microfacet> {
+        alphas.iter().map(|&a| Microfacet::ggx(a)).collect()
+    }
+
     #[test]
     fn conductor_smooth() {
-        check(&[0.0, 0.0005]);
+        check(&ggx(&[0.0, 0.0005]));
     }
 
     #[test]
     fn conductor_narrow() {
-        check(&[0.01, 0.1]);
+        check(&ggx(&[0.01, 0.1]));
     }
 
     #[test]
     fn conductor_wide() {
-        check(&[0.5, 1.0]);
+        check(&ggx(&[0.5, 1.0]));
+    }
+
+    #[test]
+    fn conductor_beckmann() {
+        use super::super::Distribution::Beckmann;
+        check(&[
+            Microfacet::new(Beckmann, 0.0, 0.0),
+            Microfacet::new(Beckmann, 0.05, 0.05),
+            Microfacet::new(Beckmann, 0.5, 0.5),
+        ]);
+    }
+
+    #[test]
+    fn conductor_anisotropic() {
+        use super::super::Distribution::{Beckmann, Ggx};
+        // 1:10 and 10:1; the checks view along x, so both orientations matter.
+        check(&[
+            Microfacet::new(Ggx, 0.05, 0.5),
+            Microfacet::new(Beckmann, 0.5, 0.05),
+        ]);
     }
 
     #[test]
@@ -174,7 +205,7 @@ mod tests {
         for fresnel in fresnels() {
             testing::check_material(
                 &Material::Conductor(Conductor {
-                    alpha: ggx::SMOOTH_ALPHA,
+                    microfacet: Microfacet::ggx(ggx::SMOOTH_ALPHA),
                     fresnel,
                 }),
                 5,
@@ -186,27 +217,27 @@ mod tests {
     fn smooth_threshold() {
         assert!(
             Conductor {
-                alpha: 0.0,
+                microfacet: Microfacet::ggx(0.0),
                 fresnel: fresnels()[1]
             }
             .is_delta()
         );
         assert!(
             Conductor {
-                alpha: 0.0005,
+                microfacet: Microfacet::ggx(0.0005),
                 fresnel: fresnels()[1]
             }
             .is_delta()
         );
         assert!(
             !Conductor {
-                alpha: ggx::SMOOTH_ALPHA,
+                microfacet: Microfacet::ggx(ggx::SMOOTH_ALPHA),
                 fresnel: fresnels()[1]
             }
             .is_delta()
         );
         let m = Material::Conductor(Conductor {
-            alpha: 0.0,
+            microfacet: Microfacet::ggx(0.0),
             fresnel: fresnels()[0],
         });
         assert!(m.is_delta() && !m.has_smooth_part());

@@ -1,4 +1,5 @@
-// GGX conductor (or a perfect mirror below SMOOTH_ALPHA), the twin of `materials/conductor.rs`.
+// Microfacet conductor (or a perfect mirror below SMOOTH_ALPHA), the twin of
+// `materials/conductor.rs`.
 
 fn conductor_fresnel(m: Material, cos_h: f32) -> vec3f {
     switch m.h.z {
@@ -17,7 +18,7 @@ fn conductor_fresnel(m: Material, cos_h: f32) -> vec3f {
 }
 
 fn conductor_is_delta(m: Material) -> bool {
-    return m.c.x < SMOOTH_ALPHA;
+    return microfacet_is_smooth(record_microfacet(m));
 }
 
 // The half vector and wo·h of a valid reflection pair; w < 0 for none.
@@ -38,8 +39,8 @@ fn conductor_eval(m: Material, wo: vec3f, wi: vec3f) -> vec3f {
     if hv.w < 0.0 {
         return vec3f(0.0);
     }
-    let a = m.c.x;
-    let s = ggx_d(a, hv.xyz) * ggx_g2_separable(a, wo, wi) / (4.0 * wo.z);
+    let mf = record_microfacet(m);
+    let s = microfacet_d(mf, hv.xyz) * microfacet_g2_separable(mf, wo, wi) / (4.0 * wo.z);
     return conductor_fresnel(m, hv.w) * s;
 // #else
     return vec3f(0.0);
@@ -52,7 +53,8 @@ fn conductor_pdf(m: Material, wo: vec3f, wi: vec3f) -> f32 {
     if hv.w < 0.0 {
         return 0.0;
     }
-    return ggx_g1(m.c.x, wo) * ggx_d(m.c.x, hv.xyz) / (4.0 * wo.z);
+    let mf = record_microfacet(m);
+    return microfacet_g1(mf, wo) * microfacet_d(mf, hv.xyz) / (4.0 * wo.z);
 // #else
     return 0.0;
 // #endif
@@ -67,15 +69,15 @@ fn conductor_sample(m: Material, wo: vec3f, u: vec2f) -> BsdfSample {
         return reflection_sample(wi, conductor_fresnel(m, wo.z), 1.0, true);
     }
 // #if HAS_GGX
-    let alpha = m.c.x;
-    let h0 = ggx_sample_visible_normal(alpha, wo, u);
+    let mf = record_microfacet(m);
+    let h0 = microfacet_sample_visible_normal(mf, wo, u);
     let wi = normalize_glam(reflect_about(wo, h0));
     let hv = conductor_half_vector(m, wo, wi);
     if hv.w < 0.0 {
         return no_bsdf_sample();
     }
-    let pdf = ggx_g1(alpha, wo) * ggx_d(alpha, hv.xyz) / (4.0 * wo.z);
-    let weight = conductor_fresnel(m, hv.w) * ggx_g1(alpha, wi);
+    let pdf = microfacet_g1(mf, wo) * microfacet_d(mf, hv.xyz) / (4.0 * wo.z);
+    let weight = conductor_fresnel(m, hv.w) * microfacet_g1(mf, wi);
     return reflection_sample(wi, weight, pdf, false);
 // #else
     return no_bsdf_sample();

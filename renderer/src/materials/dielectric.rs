@@ -1,6 +1,6 @@
 //! A dielectric interface (glass, water): smooth, with delta reflection and refraction weighted by
-//! the exact Fresnel term, or rough, Walter et al. 2007 with isotropic GGX, separable Smith
-//! masking and visible-normal sampling (pbrt-v4 `DielectricBxDF`, Mitsuba 3 `roughdielectric`).
+//! the exact Fresnel term, or rough, Walter et al. 2007 with GGX or Beckmann microfacets
+//! (isotropic or not), separable Smith masking and visible-normal sampling (pbrt-v4 `DielectricBxDF`, Mitsuba 3 `roughdielectric`).
 //!
 //! Sides: the outside (index 1) is where the normal +z points, the inside has index `ior`; `wo.z`
 //! and `wi.z` may have either sign, so the integrator never flips the frame of a dielectric.
@@ -11,7 +11,7 @@
 //! WGSL twin: `materials/dielectric.wgsl`.
 
 use super::fresnel::{fresnel_dielectric, fresnel_dielectric_pair};
-use super::{BsdfSample, ggx};
+use super::{BsdfSample, Microfacet};
 use crate::math::{reflect, refract};
 use glam::{Vec2, Vec3};
 
@@ -23,8 +23,8 @@ pub const MAX_IOR: f32 = 10.0;
 pub struct Dielectric {
     /// Index of refraction of the inside relative to the outside (> 0, ≠ 1).
     pub ior: f32,
-    /// GGX α (not squared); below [`ggx::SMOOTH_ALPHA`] the interface is smooth (a delta BSDF).
-    pub alpha: f32,
+    /// Its microfacets; smooth ([`Microfacet::is_smooth`]): a delta BSDF.
+    pub microfacet: Microfacet,
 }
 
 /// The microfacet configuration of a direction pair, shared by `eval`, `pdf` and `sample`.
@@ -48,7 +48,7 @@ impl Dielectric {
     /// True for a smooth interface: every sample is a delta sample and `eval` is 0.
     #[inline]
     pub fn is_delta(&self) -> bool {
-        ggx::is_smooth(self.alpha)
+        self.microfacet.is_smooth()
     }
 
     /// η' of a transmission that starts on the side of `wo`: ior if `wo` is outside, 1/ior inside.
@@ -126,12 +126,12 @@ impl Dielectric {
         let Some(p) = self.pair(wo, wi) else {
             return (0.0, 0.0);
         };
-        let a = self.alpha;
-        let d = ggx::d(a, p.wm);
-        let g = ggx::g2_separable(a, wo, wi);
+        let m = &self.microfacet;
+        let d = m.d(p.wm);
+        let g = m.g2_separable(wo, wi);
         let (cos_o, cos_im, cos_om) = (wo.z.abs(), p.cos_im, p.cos_om);
         // Visible-normal density of wm seen from wo: G1(wo)·|wo·wm|·D(wm)/|cosθo|.
-        let vndf = ggx::g1(a, wo) * cos_om.abs() * d / cos_o;
+        let vndf = m.g1(wo) * cos_om.abs() * d / cos_o;
         if p.reflect {
             let f = p.f * d * g / (4.0 * cos_o);
             let pdf = vndf / (4.0 * cos_om.abs()) * p.f;
@@ -173,9 +173,10 @@ impl Dielectric {
             });
         }
         // Microfacet normals face +z; seen from inside, the visible ones are those visible from
-        // −wo (isotropic D), and Fresnel and Snell then see wo·wm < 0, i.e. the index 1/ior.
+        // −wo (D is even in the tangent plane, anisotropic or not), and Fresnel and Snell then
+        // see wo·wm < 0, i.e. the index 1/ior.
         let flip = if wo.z < 0.0 { -1.0 } else { 1.0 };
-        let wm = ggx::sample_visible_normal(self.alpha, wo * flip, u);
+        let wm = self.microfacet.sample_visible_normal(wo * flip, u);
         let r = fresnel_dielectric(wo.dot(wm), self.ior);
         let reflection = u_lobe < r;
         let (wi, eta) = if reflection {
@@ -209,14 +210,24 @@ mod tests {
     const IORS: [f32; 3] = [1.1, 1.5, 2.4];
 
     fn check(alphas: &[f32]) {
-        for &alpha in alphas {
+        check_microfacets(
+            &alphas
+                .iter()
+                .map(|&a| Microfacet::ggx(a))
+                .collect::<Vec<_>>(),
+        );
+    }
+
+    fn check_microfacets(microfacets: &[Microfacet]) {
+        for &microfacet in microfacets {
+            let alpha = (microfacet.alpha_u, microfacet.alpha_v);
             for (i, ior) in IORS.into_iter().enumerate() {
-                let d = Dielectric { ior, alpha };
+                let d = Dielectric { ior, microfacet };
                 for r in testing::check_material(&Material::Dielectric(d), 300 + i as u32) {
                     let side = if r.inside { "inside" } else { "outside" };
                     eprintln!(
-                        "dielectric a={alpha} ior={ior} θ={} {side}: energy {:.4} (quadrature {:.4})",
-                        r.theta_deg, r.albedo_mc.x, r.albedo_quad.x
+                        "dielectric {:?} a={alpha:?} ior={ior} θ={} {side}: energy {:.4} (quadrature {:.4})",
+                        microfacet.distribution, r.theta_deg, r.albedo_mc.x, r.albedo_quad.x
                     );
                     if d.is_delta() {
                         // A smooth interface loses nothing: R + T = 1 for every sample.
@@ -247,13 +258,24 @@ mod tests {
         check(&[0.6, 1.0]);
     }
 
+    #[test]
+    fn dielectric_beckmann_and_anisotropic() {
+        use super::super::Distribution::{Beckmann, Ggx};
+        check_microfacets(&[
+            Microfacet::new(Beckmann, 0.05, 0.05),
+            Microfacet::new(Beckmann, 0.4, 0.4),
+            Microfacet::new(Beckmann, 0.05, 0.5),
+            Microfacet::new(Ggx, 0.5, 0.05),
+        ]);
+    }
+
     /// A smooth interface: the exact mirror and Snell directions, reflection with probability F,
     /// transmission weights 1/η'², and total internal reflection beyond the critical angle.
     #[test]
     fn smooth_dielectric_directions_and_weights() {
         let d = Dielectric {
             ior: 1.5,
-            alpha: 0.0,
+            microfacet: Microfacet::ggx(0.0),
         };
         let m = Material::Dielectric(d);
         assert!(m.is_delta() && m.transmits());

@@ -1,5 +1,5 @@
 // A dielectric interface (glass), the twin of `materials/dielectric.rs`: smooth (delta reflection
-// and refraction chosen by the exact Fresnel term) or rough (Walter et al. 2007 with isotropic GGX,
+// and refraction chosen by the exact Fresnel term) or rough (Walter et al. 2007 with GGX or Beckmann,
 // separable Smith masking and visible-normal sampling). The outside (index 1) is where +z points;
 // wo and wi may lie on either side. Radiance through a refraction is scaled by 1/η'², with
 // η' = η(wi side)/η(wo side), which the sample reports as `eta`.
@@ -9,7 +9,7 @@
 // (tests/gpu_parity.rs).
 
 fn dielectric_is_delta(m: Material) -> bool {
-    return m.a.y < SMOOTH_ALPHA;
+    return microfacet_is_smooth(record_microfacet(m));
 }
 
 // `a` and `b` nonzero with the same sign (the CPU's `a·b > 0` without its underflow to 0).
@@ -98,12 +98,12 @@ fn dielectric_eval_pdf(m: Material, wo: vec3f, wi: vec3f) -> vec2f {
     if !p.ok {
         return vec2f(0.0);
     }
-    let a = m.a.y;
-    let d = ggx_d(a, p.wm);
-    let g = ggx_g2_separable(a, wo, wi);
+    let mf = record_microfacet(m);
+    let d = microfacet_d(mf, p.wm);
+    let g = microfacet_g2_separable(mf, wo, wi);
     let cos_o = abs(wo.z);
     // Visible-normal density of wm seen from wo: G1(wo)·|wo·wm|·D(wm)/|cosθo|.
-    let vndf = ggx_g1(a, wo) * abs(p.cos_om) * d / cos_o;
+    let vndf = microfacet_g1(mf, wo) * abs(p.cos_om) * d / cos_o;
     if p.reflect {
         let f = p.f * d * g / (4.0 * cos_o);
         let pdf = vndf / (4.0 * abs(p.cos_om)) * p.f;
@@ -138,9 +138,10 @@ fn dielectric_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSampl
     }
 // #if HAS_GGX
     // Microfacet normals face +z; seen from inside, the visible ones are those visible from −wo
-    // (isotropic D), and Fresnel and Snell then see wo·wm < 0, i.e. the index 1/ior.
+    // (D is even in the tangent plane), and Fresnel and Snell then see wo·wm < 0, i.e. the
+    // index 1/ior.
     let flip = select(1.0, -1.0, wo.z < 0.0);
-    let wm = ggx_sample_visible_normal(m.a.y, wo * flip, u);
+    let wm = microfacet_sample_visible_normal(record_microfacet(m), wo * flip, u);
     let r = fresnel_dielectric(dot(wo, wm), ior);
     let reflection = u_lobe < r;
     var wi: vec3f;

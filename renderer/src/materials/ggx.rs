@@ -1,4 +1,6 @@
-//! Isotropic GGX (Trowbridge–Reitz) microfacet distribution with Smith masking.
+//! GGX (Trowbridge–Reitz) microfacet distribution with Smith masking, isotropic (`alpha`) and
+//! anisotropic (`alpha_u` along the frame's x, `alpha_v` along y; the `_anisotropic` functions,
+//! which are the isotropic ones bit for bit where the two are equal).
 //!
 //! `alpha` is the GGX α itself (used as is, never squared again by a caller). Directions are in the
 //! local shading frame (normal = +z) and unit length. Visible normals are sampled with Dupuy &
@@ -37,6 +39,21 @@ pub fn d(alpha: f32, h: Vec3) -> f32 {
     1.0 / (PI * a2 * t * t)
 }
 
+/// [`d`] for roughness `alpha_u` along x and `alpha_v` along y:
+/// 1/(π α_u α_v (h_x²/α_u² + h_y²/α_v² + h_z²)²).
+#[inline]
+pub fn d_anisotropic(alpha_u: f32, alpha_v: f32, h: Vec3) -> f32 {
+    if alpha_u == alpha_v {
+        return d(alpha_u, h);
+    }
+    if h.z <= 0.0 {
+        return 0.0;
+    }
+    let (x, y) = (h.x / alpha_u, h.y / alpha_v);
+    let t = x * x + y * y + h.z * h.z;
+    1.0 / (PI * alpha_u * alpha_v * t * t)
+}
+
 /// Smith Λ(w) = (√(1 + α² tan²θ) − 1)/2; symmetric in w.z (callers check hemispheres), +∞ at
 /// the horizon.
 #[inline]
@@ -55,6 +72,19 @@ pub fn lambda(alpha: f32, w: Vec3) -> f32 {
 pub fn g1(alpha: f32, w: Vec3) -> f32 {
     let z = w.z.abs();
     let r = (z * z + alpha * alpha * (w.x * w.x + w.y * w.y)).sqrt();
+    if r <= 0.0 { 0.0 } else { 2.0 * z / (z + r) }
+}
+
+/// [`g1`] for roughness `alpha_u` along x and `alpha_v` along y (α² tan²θ becomes
+/// (α_u² w_x² + α_v² w_y²)/w_z²).
+#[inline]
+pub fn g1_anisotropic(alpha_u: f32, alpha_v: f32, w: Vec3) -> f32 {
+    if alpha_u == alpha_v {
+        return g1(alpha_u, w);
+    }
+    let z = w.z.abs();
+    let (x, y) = (alpha_u * w.x, alpha_v * w.y);
+    let r = (z * z + x * x + y * y).sqrt();
     if r <= 0.0 { 0.0 } else { 2.0 * z / (z + r) }
 }
 
@@ -83,14 +113,21 @@ pub fn half_vector(wo: Vec3, wi: Vec3) -> (Vec3, f32) {
 /// f32 down to grazing `wo` (measured by `ggx/reachability.rs`).
 #[inline]
 pub fn sample_visible_normal(alpha: f32, wo: Vec3, u: Vec2) -> Vec3 {
-    let wo_std = Vec3::new(wo.x * alpha, wo.y * alpha, wo.z).normalize_or(Vec3::Z);
+    sample_visible_normal_anisotropic(alpha, alpha, wo, u)
+}
+
+/// [`sample_visible_normal`] for roughness `alpha_u` along x and `alpha_v` along y: the stretch
+/// to the hemisphere configuration scales x by α_u and y by α_v (Dupuy & Benyoub's section 4).
+#[inline]
+pub fn sample_visible_normal_anisotropic(alpha_u: f32, alpha_v: f32, wo: Vec3, u: Vec2) -> Vec3 {
+    let wo_std = Vec3::new(wo.x * alpha_u, wo.y * alpha_v, wo.z).normalize_or(Vec3::Z);
     let phi = 2.0 * PI * u.x;
     let z = (1.0 - u.y).mul_add(1.0 + wo_std.z, -wo_std.z);
     let sin_theta = crate::math::safe_sqrt(1.0 - z * z);
     let (s, c) = phi.sin_cos();
     let h_std = Vec3::new(sin_theta * c, sin_theta * s, z) + wo_std;
     // The fallback only triggers for the measure-zero c = −wo; it keeps the result finite.
-    Vec3::new(h_std.x * alpha, h_std.y * alpha, h_std.z.max(0.0)).normalize_or(Vec3::Z)
+    Vec3::new(h_std.x * alpha_u, h_std.y * alpha_v, h_std.z.max(0.0)).normalize_or(Vec3::Z)
 }
 
 /// Solid-angle pdf of [`sample_visible_normal`]: G1(wo)·max(0, wo·h)·D(h)/wo.z.

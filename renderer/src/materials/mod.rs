@@ -14,12 +14,14 @@
 //! WGSL twin: `materials/mod.wgsl`. A [`Mix`] of two materials is no BSDF of its own: the scene
 //! resolves it to one of them per hit ([`mix`]), before any of this code runs (CPU only).
 
+pub mod beckmann;
 pub mod coat_albedo;
 pub mod conductor;
 pub mod dielectric;
 pub mod diffuse;
 pub mod fresnel;
 pub mod ggx;
+pub mod microfacet;
 pub mod mix;
 pub mod plastic;
 pub mod plastic_textured;
@@ -30,6 +32,7 @@ pub mod textured;
 pub use conductor::{Conductor, ConductorFresnel};
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
+pub use microfacet::{Distribution, Microfacet};
 pub use mix::Mix;
 pub use plastic::Plastic;
 

@@ -7,15 +7,17 @@
 //   h = (kind, two_sided, aux, has_smooth_part); kind = MATERIAL_*; aux = Fresnel kind for
 //       conductors (FRESNEL_COMPLEX or FRESNEL_TINT) and the coat table's offset in `tables` for plastic.
 //   Diffuse:    a.xyz albedo.
-//   Conductor:  a.xyz η (or the tint), b.xyz k, c.x α.
+//   Conductor:  a.xyz η (or the tint), b.xyz k, c.xyz = (α_u, α_v, DISTRIBUTION_* bits), the
+//               microfacet slot (`record_microfacet`, `materials/microfacet.wgsl`).
 //   Plastic:    a.xyz albedo, b.xyz coat tint, c = (α, F0, 1/(1 − E_avg) or 0, _); with a textured
 //               α, aux is its coat grid's offset and `material_at` makes it the hit's lower node
 //               table, b.w the blend weight of the next (`materials/plastic.wgsl`); b.w = 0 otherwise.
 //   Mix:        (MATERIAL_MIX) resolved by `materials/mix.wgsl` before anything here sees the material.
-//   Dielectric: a = (ior, α, _, _); never two-sided (its two sides are its two media).
+//   Dielectric: a.x ior, c.xyz the microfacet slot as a conductor's; never two-sided (its two
+//               sides are its two media).
 //   Every kind: a.w, c.w = bits of the ids of its colour texture (a diffuse's or plastic's albedo,
 //       a conductor's reflectance: replaces a.xyz) and its roughness texture (α: replaces a
-//       conductor's c.x, a dielectric's a.y), NONE where constant (`textures/mod.wgsl`).
+//       conductor's or dielectric's c.xy), NONE where constant (`textures/mod.wgsl`).
 
 struct Material {
     h: vec4<u32>,
@@ -193,6 +195,7 @@ fn material_at(m_in: Material, uv: vec2f) -> Material {
             }
 // #endif
         }
+        // A textured α is isotropic: (α_u, α_v) = (α, α) (`Microfacet::with_alpha`).
         case MATERIAL_CONDUCTOR: {
             // A textured reflectance is a tint, whatever the constant's Fresnel.
             if colour != NONE {
@@ -200,12 +203,12 @@ fn material_at(m_in: Material, uv: vec2f) -> Material {
                 m.h.z = FRESNEL_TINT;
             }
             if alpha != NONE {
-                m.c.x = texture_eval_scalar(alpha, uv);
+                m.c = vec4f(vec2f(texture_eval_scalar(alpha, uv)), m.c.zw);
             }
         }
         case MATERIAL_DIELECTRIC: {
             if alpha != NONE {
-                m.a.y = texture_eval_scalar(alpha, uv);
+                m.c = vec4f(vec2f(texture_eval_scalar(alpha, uv)), m.c.zw);
             }
         }
         default: {

@@ -78,7 +78,7 @@ impl MaterialTextures {
                     c.fresnel = ConductorFresnel::Tint(t.eval(uv));
                 }
                 if let Some(t) = &self.alpha {
-                    c.alpha = t.eval_scalar(uv);
+                    c.microfacet = c.microfacet.with_alpha(t.eval_scalar(uv));
                 }
             }
             Material::Plastic(p) => {
@@ -96,7 +96,7 @@ impl MaterialTextures {
             }
             Material::Dielectric(d) => {
                 if let Some(t) = &self.alpha {
-                    d.alpha = t.eval_scalar(uv);
+                    d.microfacet = d.microfacet.with_alpha(t.eval_scalar(uv));
                 }
             }
         }
@@ -107,7 +107,7 @@ impl MaterialTextures {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::materials::{Conductor, Dielectric, Diffuse, Plastic};
+    use crate::materials::{Conductor, Dielectric, Diffuse, Microfacet, Plastic};
     use crate::textures::Checkerboard;
     use glam::Vec3;
 
@@ -150,19 +150,19 @@ mod tests {
             ..Default::default()
         };
         let conductor = Material::Conductor(Conductor {
-            alpha: 0.5,
+            microfacet: Microfacet::ggx(0.5),
             fresnel: ConductorFresnel::Tint(Vec3::ONE),
         });
         assert_eq!(
             metal.at(&conductor, u0),
             Material::Conductor(Conductor {
-                alpha: tex.eval_scalar(u0),
+                microfacet: Microfacet::ggx(tex.eval_scalar(u0)),
                 fresnel: ConductorFresnel::Tint(c0),
             })
         );
         let glass = Material::Dielectric(Dielectric {
             ior: 1.5,
-            alpha: 0.0,
+            microfacet: Microfacet::ggx(0.0),
         });
         let rough = MaterialTextures {
             alpha: Some(tex.clone()),
@@ -172,7 +172,7 @@ mod tests {
             rough.at(&glass, u1),
             Material::Dielectric(Dielectric {
                 ior: 1.5,
-                alpha: tex.eval_scalar(u1),
+                microfacet: Microfacet::ggx(tex.eval_scalar(u1)),
             })
         );
     }
@@ -247,7 +247,7 @@ mod tests {
         assert!(albedo_only.coat_grid.is_none());
         let glass = Material::Dielectric(Dielectric {
             ior: 1.5,
-            alpha: 0.1,
+            microfacet: Microfacet::ggx(0.1),
         });
         let rough = MaterialTextures::new(None, None, Some(tex), &glass).unwrap();
         assert!(rough.coat_grid.is_none());

@@ -18,7 +18,9 @@ use crate::lights::{
     PolygonLight, QuadLight, SphereLight, TriangleLight,
 };
 use crate::materials::textured::MaterialTextures;
-use crate::materials::{Conductor, ConductorFresnel, Dielectric, Diffuse, Material, Mix, Plastic};
+use crate::materials::{
+    Conductor, ConductorFresnel, Dielectric, Diffuse, Material, Microfacet, Mix, Plastic,
+};
 use crate::textures::Texture;
 use glam::{DVec3, Vec2, Vec3};
 
@@ -72,8 +74,12 @@ fn v(d: DVec3) -> Vec3 {
 fn material(desc: &MaterialDesc) -> Material {
     match desc {
         MaterialDesc::Diffuse { albedo } => Material::Diffuse(Diffuse { albedo: v(*albedo) }),
-        MaterialDesc::Conductor { alpha, fresnel } => Material::Conductor(Conductor {
-            alpha: *alpha as f32,
+        MaterialDesc::Conductor {
+            alpha,
+            distribution,
+            fresnel,
+        } => Material::Conductor(Conductor {
+            microfacet: Microfacet::new(*distribution, *alpha as f32, *alpha as f32),
             fresnel: match fresnel {
                 FresnelDesc::Complex { eta, k } => ConductorFresnel::Complex {
                     eta: v(*eta),
@@ -93,9 +99,13 @@ fn material(desc: &MaterialDesc) -> Material {
             *ior as f32,
             v(*specular),
         )),
-        MaterialDesc::Dielectric { ior, alpha } => Material::Dielectric(Dielectric {
+        MaterialDesc::Dielectric {
+            ior,
+            alpha,
+            distribution,
+        } => Material::Dielectric(Dielectric {
             ior: *ior as f32,
-            alpha: *alpha as f32,
+            microfacet: Microfacet::new(*distribution, *alpha as f32, *alpha as f32),
         }),
     }
 }

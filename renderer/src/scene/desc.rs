@@ -5,6 +5,7 @@
 //! it: finite numbers, positive radii, unit disk normals, valid polygons, in-range indices.
 
 use crate::image_io::Image;
+pub use crate::materials::Distribution;
 use crate::textures::{Channel, Texture, UvTransform, WrapMode};
 use glam::{DVec3, Vec2, Vec3};
 use serde_json::{Map, Value, json};
@@ -238,10 +239,12 @@ pub enum MaterialDesc {
         /// Reflectance per channel.
         albedo: DVec3,
     },
-    /// GGX microfacet conductor; `alpha == 0` is a perfect mirror.
+    /// Microfacet conductor; `alpha == 0` is a perfect mirror.
     Conductor {
-        /// GGX roughness α (not squared), in [0, 1].
+        /// Roughness α (not squared), in [0, 1].
         alpha: f64,
+        /// The microfacet distribution of a rough conductor.
+        distribution: Distribution,
         /// How the Fresnel term is given.
         fresnel: FresnelDesc,
     },
@@ -257,12 +260,14 @@ pub enum MaterialDesc {
         specular: DVec3,
     },
     /// A boundary between index 1 (the side the normal points to) and `ior`; smooth at α = 0,
-    /// else rough (Walter et al. 2007, GGX). Never two-sided.
+    /// else rough (Walter et al. 2007). Never two-sided.
     Dielectric {
         /// Index of refraction of the inside, in (0, 10], ≠ 1.
         ior: f64,
-        /// GGX roughness α, in [0, 1].
+        /// Roughness α, in [0, 1].
         alpha: f64,
+        /// The microfacet distribution of a rough interface.
+        distribution: Distribution,
     },
 }
 
@@ -480,6 +485,13 @@ impl SceneDesc {
     }
 }
 
+/// `distribution` unless it is the default (files written before it existed stay unchanged).
+fn distribution_key(obj: &mut Value, distribution: Distribution) {
+    if distribution != Distribution::default() {
+        obj["distribution"] = json!(distribution.name());
+    }
+}
+
 /// `m` in the file format; `all` are the scene's materials, which a mix names.
 fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
     if let Some(mix) = &m.mix {
@@ -492,14 +504,22 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
     }
     let mut obj = match &m.material {
         MaterialDesc::Diffuse { albedo } => json!({"type": "diffuse", "albedo": vec3(*albedo)}),
-        MaterialDesc::Conductor { alpha, fresnel } => match fresnel {
-            FresnelDesc::Complex { eta, k } => json!({
-                "type": "conductor", "alpha": alpha, "eta": vec3(*eta), "k": vec3(*k),
-            }),
-            FresnelDesc::Reflectance(r) => {
-                json!({"type": "conductor", "alpha": alpha, "reflectance": vec3(*r)})
-            }
-        },
+        MaterialDesc::Conductor {
+            alpha,
+            distribution,
+            fresnel,
+        } => {
+            let mut obj = match fresnel {
+                FresnelDesc::Complex { eta, k } => json!({
+                    "type": "conductor", "alpha": alpha, "eta": vec3(*eta), "k": vec3(*k),
+                }),
+                FresnelDesc::Reflectance(r) => {
+                    json!({"type": "conductor", "alpha": alpha, "reflectance": vec3(*r)})
+                }
+            };
+            distribution_key(&mut obj, *distribution);
+            obj
+        }
         MaterialDesc::Plastic {
             albedo,
             alpha,
@@ -509,8 +529,14 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
             "type": "plastic", "albedo": vec3(*albedo), "alpha": alpha,
             "ior": ior, "specular": vec3(*specular),
         }),
-        MaterialDesc::Dielectric { ior, alpha } => {
-            json!({"type": "dielectric", "ior": ior, "alpha": alpha})
+        MaterialDesc::Dielectric {
+            ior,
+            alpha,
+            distribution,
+        } => {
+            let mut obj = json!({"type": "dielectric", "ior": ior, "alpha": alpha});
+            distribution_key(&mut obj, *distribution);
+            obj
         }
     };
     let t = &m.textures;

@@ -1,5 +1,6 @@
 //! The `materials` map: diffuse, conductor, plastic, dielectric and mix, with their range rules.
 
+use super::desc::Distribution;
 use super::desc::{
     FresnelDesc, MaterialDesc, MaterialTextures, MixDesc, NamedMaterial, TextureDesc,
 };
@@ -54,11 +55,20 @@ fn parse_material(
         }
         "conductor" => {
             obj.only_keys(
-                &["type", "alpha", "eta", "k", "reflectance", "two_sided"],
+                &[
+                    "type",
+                    "alpha",
+                    "distribution",
+                    "eta",
+                    "k",
+                    "reflectance",
+                    "two_sided",
+                ],
                 true,
             )?;
             MaterialDesc::Conductor {
                 alpha: alpha(obj, loader, &mut t.alpha)?,
+                distribution: distribution(obj)?,
                 fresnel: fresnel(obj, loader, &mut t.reflectance)?,
             }
         }
@@ -90,7 +100,7 @@ fn parse_material(
                 let msg = "a dielectric is never two-sided: its two sides are its two media";
                 return Err(SceneError::new(obj.at("two_sided"), msg));
             }
-            obj.only_keys(&["type", "ior", "alpha"], true)?;
+            obj.only_keys(&["type", "ior", "alpha", "distribution"], true)?;
             let ior = obj.opt_number("ior")?.unwrap_or(1.5);
             let max = crate::materials::dielectric::MAX_IOR as f64;
             if !(ior > 0.0 && ior != 1.0 && ior <= max) {
@@ -101,7 +111,11 @@ fn parse_material(
                 Some(_) => alpha(obj, loader, &mut t.alpha)?,
                 None => 0.0,
             };
-            MaterialDesc::Dielectric { ior, alpha }
+            MaterialDesc::Dielectric {
+                ior,
+                alpha,
+                distribution: distribution(obj)?,
+            }
         }
         "mix" => {
             if obj.get("two_sided").is_some() {
@@ -323,6 +337,20 @@ fn alpha(
     Ok(a)
 }
 
+/// `distribution`: `ggx` (the default) or `beckmann`.
+fn distribution(obj: &Obj) -> Result<Distribution, SceneError> {
+    if obj.get("distribution").is_none() {
+        return Ok(Distribution::default());
+    }
+    let name = obj.string("distribution")?;
+    Distribution::from_name(name).ok_or_else(|| {
+        SceneError::new(
+            obj.at("distribution"),
+            format!("unknown distribution `{name}` (expected ggx or beckmann)"),
+        )
+    })
+}
+
 /// Either `eta` + `k` or `reflectance` (a colour or a texture: then its mean, and `slot` is
 /// set), never both or a half.
 fn fresnel(
@@ -460,7 +488,8 @@ mod tests {
             m.material,
             MaterialDesc::Dielectric {
                 ior: 1.5,
-                alpha: 0.0
+                alpha: 0.0,
+                distribution: crate::materials::Distribution::Ggx,
             }
         );
         assert!(!m.two_sided, "a dielectric's two sides are its two media");

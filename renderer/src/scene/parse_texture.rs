@@ -514,7 +514,10 @@ mod tests {
         let metal = by_name("metal");
         let alpha = texture(&metal.textures.alpha);
         assert_eq!(alpha.channel(), Channel::G);
-        let MaterialDesc::Conductor { alpha: a, fresnel } = &metal.material else {
+        let MaterialDesc::Conductor {
+            alpha: a, fresnel, ..
+        } = &metal.material
+        else {
             panic!()
         };
         assert_eq!(*a, alpha.mean_scalar() as f64);

@@ -54,13 +54,16 @@ impl BsdfSampler {
         }
     }
 
-    /// GGX roughness of the material's glossy lobe, if it has one.
+    /// Roughness of the material's glossy lobe, if it has one: the larger α of an anisotropic
+    /// one (the lobe's widest extent sets the zoom; a Beckmann lobe is narrower than GGX's of
+    /// the same α, so a cap sized for GGX holds it).
     fn alpha(&self) -> Option<f32> {
+        let widest = |m: &crate::materials::Microfacet| m.alpha_u.max(m.alpha_v);
         match &self.material {
             Material::Diffuse(_) => None,
-            Material::Conductor(c) => Some(c.alpha),
+            Material::Conductor(c) => Some(widest(&c.microfacet)),
             Material::Plastic(p) => Some(p.alpha()),
-            Material::Dielectric(d) => Some(d.alpha),
+            Material::Dielectric(d) => Some(widest(&d.microfacet)),
         }
     }
 }
@@ -84,8 +87,9 @@ impl DirectionalSampler for BsdfSampler {
     /// vectors, zoomed on the normal in both halves (see the module doc).
     fn domain(&self) -> Domain {
         if let Material::Dielectric(d) = &self.material {
-            let a = d.alpha as f64;
-            let cap = if d.alpha <= NARROW_ALPHA {
+            let alpha = self.alpha().unwrap_or(0.0);
+            let a = alpha as f64;
+            let cap = if alpha <= NARROW_ALPHA {
                 CAP_IN_ALPHAS * a
             } else {
                 WIDE_CAP

@@ -477,9 +477,12 @@ mod tests {
     /// through generalised half vectors, from either side.
     #[test]
     fn generalised_density_of_a_dielectric_matches_directions() {
-        use crate::materials::{Dielectric, Material};
+        use crate::materials::{Dielectric, Material, Microfacet};
         for ior in [1.1f32, 1.5, 2.4] {
-            let m = Material::Dielectric(Dielectric { ior, alpha: 0.5 });
+            let m = Material::Dielectric(Dielectric {
+                ior,
+                microfacet: Microfacet::ggx(0.5),
+            });
             for wo in [Vec3::new(0.6, 0.0, 0.8), Vec3::new(0.6, 0.0, -0.8)] {
                 let pdf = |w: Vec3| m.pdf(wo, w);
                 let sphere = Domain::sphere();

@@ -14,7 +14,9 @@ use super::sampler::DirectionalSampler;
 use super::selected_lights::{self, SelectedLightDirections};
 use super::warp_sampler::Warp;
 use crate::lights::LightSampling;
-use crate::materials::{Conductor, ConductorFresnel, Dielectric, Diffuse, Material, Plastic};
+use crate::materials::{
+    Conductor, ConductorFresnel, Dielectric, Diffuse, Material, Microfacet, Plastic,
+};
 use crate::math::Frame;
 use crate::scene::{Scene, parse_scene};
 use glam::Vec3;
@@ -66,7 +68,10 @@ pub fn conductor(alpha: f32, complex: bool) -> Material {
     } else {
         ConductorFresnel::Tint(Vec3::new(0.95, 0.64, 0.54))
     };
-    Material::Conductor(Conductor { alpha, fresnel })
+    Material::Conductor(Conductor {
+        microfacet: Microfacet::ggx(alpha),
+        fresnel,
+    })
 }
 
 /// An orange plastic with a white coat.
@@ -81,7 +86,10 @@ pub fn plastic(alpha: f32, ior: f32) -> Material {
 
 /// A rough (or smooth, α < 1e-3) dielectric.
 pub fn dielectric(alpha: f32, ior: f32) -> Material {
-    Material::Dielectric(Dielectric { ior, alpha })
+    Material::Dielectric(Dielectric {
+        ior,
+        microfacet: Microfacet::ggx(alpha),
+    })
 }
 
 /// A coloured Lambertian.
@@ -505,11 +513,77 @@ pub fn mixture_cases() -> Vec<Case> {
     out
 }
 
+/// Beckmann's visible-normal sampler and anisotropic lobes (issue 39): the Beckmann conductor at
+/// α ∈ {0.05, 0.3, 1} at every angle of [`THETAS_DEG`]; anisotropic conductors, GGX and Beckmann,
+/// 1:10 and 10:1, at θo ∈ {30°, 85°} and three azimuths (the lobe is not symmetric about the
+/// plane of incidence there); the Beckmann dielectric at α ∈ {0.05, 0.3}, η = 1.5, from outside
+/// and inside at θo ∈ {30°, 85°}, and an anisotropic one at θo = 30°, φo = 45°.
+pub fn microfacet_cases() -> Vec<Case> {
+    use crate::materials::Distribution::{Beckmann, Ggx};
+    let at = |m: &Material, theta: f32, phi: f32, inside: bool| {
+        let (t, p) = (theta.to_radians(), phi.to_radians());
+        let z = if inside { -t.cos() } else { t.cos() };
+        BsdfSampler {
+            material: m.clone(),
+            wo: Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), z),
+        }
+    };
+    let conductor = |mf: Microfacet| {
+        Material::Conductor(Conductor {
+            microfacet: mf,
+            fresnel: ConductorFresnel::Tint(Vec3::new(0.95, 0.64, 0.54)),
+        })
+    };
+    let mut out = Vec::new();
+    for a in [0.05, 0.3, 1.0] {
+        let m = conductor(Microfacet::new(Beckmann, a, a));
+        for th in THETAS_DEG {
+            out.push(case(
+                format!("beckmann/conductor/a{a}/th{th}"),
+                at(&m, th, 0.0, false),
+            ));
+        }
+    }
+    for d in [Ggx, Beckmann] {
+        for (u, v) in [(0.05, 0.5), (0.5, 0.05)] {
+            let m = conductor(Microfacet::new(d, u, v));
+            for th in [30.0, 85.0] {
+                for ph in [0.0, 45.0, 120.0] {
+                    let name = format!("{}/conductor/a{u}x{v}/th{th}/ph{ph}", d.name());
+                    out.push(case(name, at(&m, th, ph, false)));
+                }
+            }
+        }
+    }
+    let glass = |mf: Microfacet| {
+        Material::Dielectric(Dielectric {
+            ior: 1.5,
+            microfacet: mf,
+        })
+    };
+    for a in [0.05, 0.3] {
+        let m = glass(Microfacet::new(Beckmann, a, a));
+        for (side, inside) in [("out", false), ("in", true)] {
+            for th in [30.0, 85.0] {
+                let name = format!("beckmann/dielectric/a{a}/ior1.5/{side}/th{th}");
+                out.push(case(name, at(&m, th, 0.0, inside)));
+            }
+        }
+    }
+    let m = glass(Microfacet::new(Beckmann, 0.05, 0.5));
+    for (side, inside) in [("out", false), ("in", true)] {
+        let name = format!("beckmann/dielectric/a0.05x0.5/ior1.5/{side}/th30/ph45");
+        out.push(case(name, at(&m, 30.0, 45.0, inside)));
+    }
+    out
+}
+
 /// Every case of the suite.
 pub fn all_cases() -> Vec<Case> {
     let mut v = warp_cases();
     v.extend(material_cases());
     v.extend(dielectric_cases());
+    v.extend(microfacet_cases());
     v.extend(light_cases());
     v.extend(envmap_cases());
     v.extend(mixture_cases());

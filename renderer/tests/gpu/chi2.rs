@@ -323,7 +323,10 @@ fn dielectric_scene(cases: &[(String, BsdfSampler)]) -> Arc<Scene> {
         };
         materials.insert(
             dielectric_name(d),
-            serde_json::json!({"type": "dielectric", "ior": d.ior, "alpha": d.alpha}),
+            serde_json::json!({
+                "type": "dielectric", "ior": d.ior, "alpha": d.microfacet.alpha_u,
+                "distribution": d.microfacet.distribution.name(),
+            }),
         );
     }
     let desc = serde_json::json!({
@@ -335,7 +338,13 @@ fn dielectric_scene(cases: &[(String, BsdfSampler)]) -> Arc<Scene> {
 }
 
 fn dielectric_name(d: &Dielectric) -> String {
-    format!("dielectric_a{}_ior{}", d.alpha, d.ior)
+    let m = &d.microfacet;
+    format!(
+        "dielectric_{}_a{}_ior{}",
+        m.distribution.name(),
+        m.alpha_u,
+        d.ior
+    )
 }
 
 /// The index of the material called `name`.

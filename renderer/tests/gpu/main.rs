@@ -15,6 +15,7 @@ mod chi2;
 mod filter_images;
 mod hide_emitters;
 mod images;
+mod mitsuba_refs;
 mod mix;
 mod parity;
 mod parity_dielectric;

@@ -7,7 +7,7 @@ use glam::{Vec2, Vec3};
 use gpu_common::parity::*;
 use gpu_common::*;
 use lumis::gpu::GpuScene;
-use lumis::materials::{Dielectric, Material, fresnel, ggx};
+use lumis::materials::{Dielectric, Material, Microfacet, fresnel};
 use lumis::math::{reflect, refract};
 use lumis::rng::Rng;
 use serde_json::json;
@@ -49,7 +49,10 @@ fn dielectric_scene() -> Option<(Vec<(Dielectric, usize)>, GpuScene)> {
                 name,
                 json!({"type": "dielectric", "ior": ior, "alpha": alpha}),
             );
-            list.push(Dielectric { ior, alpha });
+            list.push(Dielectric {
+                ior,
+                microfacet: Microfacet::ggx(alpha),
+            });
         }
     }
     let desc = json!({
@@ -294,7 +297,7 @@ fn sample_conditioning(
     let wm0 = if d.is_delta() {
         Vec3::Z
     } else {
-        ggx::sample_visible_normal(d.alpha, wo * flip, u)
+        d.microfacet.sample_visible_normal(wo * flip, u)
     };
     let fresnel_at = |wm: Vec3, ior: f32| {
         let c = if d.is_delta() { wo.z } else { wo.dot(wm) };

@@ -472,7 +472,8 @@ fn textured_materials_resolve_as_on_the_cpu() {
                 assert_eq!(o[2][0], p.alpha(), "{what}: the coat is unchanged");
             }
             Material::Conductor(c) => {
-                assert_eq!(o[2][0], c.alpha, "{what}: alpha");
+                let m = &c.microfacet;
+                assert_eq!((o[2][0], o[2][1]), (m.alpha_u, m.alpha_v), "{what}: alpha");
                 match c.fresnel {
                     ConductorFresnel::Tint(t) => {
                         tints += matches!(
@@ -489,7 +490,12 @@ fn textured_materials_resolve_as_on_the_cpu() {
                 }
             }
             Material::Dielectric(d) => {
-                assert_eq!((o[1][0], o[1][1]), (d.ior, d.alpha), "{what}");
+                let m = &d.microfacet;
+                assert_eq!(
+                    (o[1][0], o[2][0], o[2][1]),
+                    (d.ior, m.alpha_u, m.alpha_v),
+                    "{what}"
+                );
             }
         }
     }

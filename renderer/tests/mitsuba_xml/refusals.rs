@@ -102,7 +102,7 @@ fn json_validation_errors_name_the_xml() {
 #[test]
 fn refusals_name_file_line_and_element() {
     let dir = Dir::new("refusals");
-    let cases: [(&str, &str, &str, &str); 16] = [
+    let cases: [(&str, &str, &str, &str); 17] = [
         (
             r#"<emitter type="point"/>"#,
             "point",
@@ -140,10 +140,16 @@ fn refusals_name_file_line_and_element() {
             "no BSDF mixtures",
         ),
         (
-            r#"<shape type="sphere"><bsdf type="roughconductor"/></shape>"#,
-            "roughconductor",
+            r#"<shape type="sphere"><bsdf type="roughplastic"/></shape>"#,
+            "roughplastic",
             "scene/shape/bsdf",
             "Beckmann",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="roughconductor"><string name="distribution" value="phong"/></bsdf></shape>"#,
+            "phong",
+            "scene/shape/bsdf/string@value",
+            "unknown distribution `phong`",
         ),
         (
             r#"<shape type="sphere"><bsdf type="diffuse"><rgb name="reflectanse" value="1"/></bsdf></shape>"#,

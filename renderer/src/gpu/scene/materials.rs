@@ -17,7 +17,7 @@ use crate::geometry::primitive::NONE;
 use crate::gpu::prelude::gpu_tags;
 use crate::materials::coat_albedo::E_TABLE_SIZE;
 use crate::materials::plastic_textured::{CoatGrid, GRID_SIZE};
-use crate::materials::{ConductorFresnel, Material};
+use crate::materials::{ConductorFresnel, Distribution, Material, Microfacet};
 use crate::scene::Scene;
 use bytemuck::{Pod, Zeroable};
 
@@ -72,6 +72,35 @@ gpu_tags! {
         /// [`ConductorFresnel::Tint`]: the reflectance in `a`.
         Tint => "FRESNEL_TINT",
     }
+}
+
+gpu_tags! {
+    /// A rough material's microfacet distribution (the bits of `c.z` in a conductor's or a
+    /// dielectric's record), in the variant order of [`Distribution`].
+    pub enum DistributionTag {
+        /// [`Distribution::Ggx`].
+        Ggx => "DISTRIBUTION_GGX",
+        /// [`Distribution::Beckmann`].
+        Beckmann => "DISTRIBUTION_BECKMANN",
+    }
+}
+
+impl DistributionTag {
+    /// The tag of `d`.
+    pub fn of(d: Distribution) -> DistributionTag {
+        match d {
+            Distribution::Ggx => DistributionTag::Ggx,
+            Distribution::Beckmann => DistributionTag::Beckmann,
+        }
+    }
+}
+
+/// A microfacet record slot (`c` of a conductor or dielectric, `record_microfacet` in
+/// `materials/microfacet.wgsl`): α_u, α_v, the distribution's tag as bits; `w` is the α
+/// texture's slot, set by the caller.
+fn microfacet_slot(m: &Microfacet) -> [f32; 4] {
+    let tag = DistributionTag::of(m.distribution).gpu_tag();
+    [m.alpha_u, m.alpha_v, bits(tag), 0.0]
 }
 
 /// Appends `grid`'s node tables, then their E_avg, to `tables` (layout in the module doc);
@@ -145,7 +174,7 @@ pub(super) fn encode(
                         h: [kind, two_sided as u32, fresnel.gpu_tag(), smooth],
                         a: v4(a, 0.0),
                         b: v4(b, 0.0),
-                        c: [c.alpha, 0.0, 0.0, 0.0],
+                        c: microfacet_slot(&c.microfacet),
                     }
                 }
                 Material::Plastic(p) => {
@@ -176,9 +205,9 @@ pub(super) fn encode(
                 // Never two-sided: its two sides are its two media.
                 Material::Dielectric(d) => GpuMaterial {
                     h: [kind, 0, 0, smooth],
-                    a: [d.ior, d.alpha, 0.0, 0.0],
+                    a: [d.ior, 0.0, 0.0, 0.0],
                     b: z,
-                    c: z,
+                    c: microfacet_slot(&d.microfacet),
                 },
             };
             r.a[3] = bits(colour);

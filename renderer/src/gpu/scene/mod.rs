@@ -24,7 +24,7 @@ pub mod textures;
 pub use attributes::AttrOffsets;
 pub use bvh::{BVH2_STACK_SIZE, CWBVH_STACK_SIZE};
 pub use lights::{GpuLight, LightTag};
-pub use materials::{FresnelTag, GpuMaterial, MaterialTag};
+pub use materials::{DistributionTag, FresnelTag, GpuMaterial, MaterialTag};
 pub use params::{
     FilterTag, GpuParams, HeuristicTag, LightSamplingTag, LightSelectionTag, PARAMS_STRIDE,
     SamplerTag, StrategyTag,

@@ -99,6 +99,7 @@ fn factors_map_to_a_conductor_a_plastic_and_a_mix() {
         gold.material,
         MaterialDesc::Conductor {
             alpha: 0.25,
+            distribution: crate::materials::Distribution::Ggx,
             fresnel: FresnelDesc::Reflectance(DVec3::new(1.0, 0.75, 0.25)),
         },
         "metallic 1: a conductor tinted by the base colour (its alpha ignored), α = roughness²"
@@ -134,6 +135,7 @@ fn factors_map_to_a_conductor_a_plastic_and_a_mix() {
         d.materials[m.materials[1]].material,
         MaterialDesc::Conductor {
             alpha: 1.0,
+            distribution: crate::materials::Distribution::Ggx,
             fresnel: FresnelDesc::Reflectance(DVec3::ONE)
         }
     );
@@ -180,6 +182,7 @@ fn a_primitive_without_a_material_gets_the_default_material() {
         m.material,
         MaterialDesc::Conductor {
             alpha: 1.0,
+            distribution: crate::materials::Distribution::Ggx,
             fresnel: FresnelDesc::Reflectance(DVec3::ONE)
         }
     );
@@ -355,7 +358,8 @@ fn transmission_is_a_dielectric_or_a_mix_with_one() {
         named(&d, "materials[0]").material,
         MaterialDesc::Dielectric {
             ior: 1.33,
-            alpha: 0.25
+            alpha: 0.25,
+            distribution: crate::materials::Distribution::Ggx,
         },
         "KHR_materials_ior as written (raw JSON, not rounded to f32)"
     );
@@ -373,7 +377,8 @@ fn transmission_is_a_dielectric_or_a_mix_with_one() {
         d.materials[inner.materials[1]].material,
         MaterialDesc::Dielectric {
             ior: 1.5,
-            alpha: 0.0
+            alpha: 0.0,
+            distribution: crate::materials::Distribution::Ggx,
         }
     );
     assert_eq!(d.warnings.len(), 1);

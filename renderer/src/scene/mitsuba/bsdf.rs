@@ -5,15 +5,17 @@
 //! material is `"two_sided": false` unless it comes through a `twosided`; dielectrics have two
 //! media and neither. Mitsuba's defaults are filled in (diffuse reflectance 0.5, conductor
 //! `material` "none" = a perfect mirror, `bk7`/`polypropylene` inside and `air` outside, rough
-//! α 0.1); a microfacet model must say `distribution="ggx"` (Mitsuba's default, Beckmann, is not
-//! lumis'), and an index pair becomes lumis' relative `ior` = int_ior / ext_ior (the Fresnel
-//! terms and the (η_i/η_t)² radiance scaling depend on the ratio only).
+//! α 0.1, and Beckmann where no `distribution` is named; lumis' plastic coat is GGX, so a
+//! roughplastic must name `ggx`), and an index pair becomes lumis' relative `ior` =
+//! int_ior / ext_ior (the Fresnel terms and the (η_i/η_t)² radiance scaling depend on the ratio
+//! only).
 
 use super::presets::conductor_preset;
 use super::texture::{color_param, is_texture, scalar_param};
 use super::values::{Slot, constant_color, constant_scalar, ior};
 use super::xml::Element;
 use super::{Ctx, target};
+use crate::materials::Distribution;
 use crate::scene::error::SceneError;
 use glam::DVec3;
 use serde_json::{Value as Json, json};
@@ -92,15 +94,16 @@ fn bsdf(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, Sc
             json!({"type": "diffuse", "albedo": albedo})
         }
         "conductor" | "roughconductor" => {
-            let alpha = match b.ty {
-                "conductor" => json!(0.0),
+            let (alpha, distribution) = match b.ty {
+                "conductor" => (json!(0.0), Distribution::Ggx),
                 _ => rough_alpha(ctx, b, &at("alpha"), true)?,
             };
             let mut m = json!({"type": "conductor", "alpha": alpha});
+            distribution_key(&mut m, distribution);
             conductor_fresnel(ctx, b, path, &mut m)?;
             b.finish(
                 "material, eta, k, specular_reflectance, and for roughconductor distribution \
-                 ggx, alpha (or equal alpha_u, alpha_v); sample_visible is ignored",
+                 (beckmann or ggx), alpha (or equal alpha_u, alpha_v); sample_visible is ignored",
             )?;
             m
         }
@@ -137,7 +140,17 @@ fn bsdf(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, Sc
             }
             let alpha = match b.ty {
                 "plastic" => json!(0.0),
-                _ => rough_alpha(ctx, b, &at("alpha"), false)?,
+                _ => match rough_alpha(ctx, b, &at("alpha"), false)? {
+                    (alpha, Distribution::Ggx) => alpha,
+                    (_, Distribution::Beckmann) => {
+                        let at = b.get("distribution").map_or(b.pos(), |p| p.pos());
+                        return Err(at.error(
+                            "roughplastic with Beckmann microfacets (Mitsuba's default where no \
+                             distribution is named) is not supported: lumis' plastic coat is \
+                             GGX",
+                        ));
+                    }
+                },
             };
             b.finish(
                 "diffuse_reflectance, specular_reflectance, int_ior, ext_ior, nonlinear false, \
@@ -168,15 +181,18 @@ fn bsdf(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, Sc
                     }
                 }
             }
-            let alpha = match b.ty {
-                "dielectric" => json!(0.0),
+            let (alpha, distribution) = match b.ty {
+                "dielectric" => (json!(0.0), Distribution::Ggx),
                 _ => rough_alpha(ctx, b, &at("alpha"), true)?,
             };
             b.finish(
                 "int_ior, ext_ior, specular_reflectance and specular_transmittance 1, and for \
-                 roughdielectric distribution ggx and alpha; sample_visible is ignored",
+                 roughdielectric distribution (beckmann or ggx) and alpha; sample_visible is \
+                 ignored",
             )?;
-            json!({"type": "dielectric", "ior": eta, "alpha": alpha})
+            let mut m = json!({"type": "dielectric", "ior": eta, "alpha": alpha});
+            distribution_key(&mut m, distribution);
+            m
         }
         other => {
             let why = match other {
@@ -215,29 +231,30 @@ fn index_ratio(
     Ok(int / ext)
 }
 
-/// A rough model's GGX α: `distribution` must be ggx, `alpha` (default 0.1) or an equal
-/// `alpha_u`/`alpha_v`; `textured` says whether lumis takes a texture there.
+/// `distribution` into a material object, unless it is the scene format's default (GGX).
+fn distribution_key(m: &mut Json, distribution: Distribution) {
+    if distribution != Distribution::default() {
+        m["distribution"] = json!(distribution.name());
+    }
+}
+
+/// A rough model's α and distribution: `distribution` beckmann (Mitsuba's default) or ggx,
+/// `alpha` (default 0.1) or an equal `alpha_u`/`alpha_v`; `textured` says whether lumis takes a
+/// texture there.
 fn rough_alpha(
     ctx: &mut Ctx,
     b: &super::plugin::Plugin,
     json_path: &str,
     textured: bool,
-) -> Result<Json, SceneError> {
-    match b.string("distribution")? {
-        Some((d, _)) if d.eq_ignore_ascii_case("ggx") => {}
-        Some((d, p)) => {
-            return Err(p.error(format!(
-                "distribution `{d}` is not supported: lumis' microfacet models are GGX"
-            )));
-        }
-        None => {
-            return Err(b.error(format!(
-                "{} without distribution=\"ggx\" is Beckmann (Mitsuba's default), which lumis \
-                 does not have; add <string name=\"distribution\" value=\"ggx\"/>",
-                b.ty
-            )));
-        }
-    }
+) -> Result<(Json, Distribution), SceneError> {
+    let distribution = match b.string("distribution")? {
+        None => Distribution::Beckmann,
+        Some((d, p)) => Distribution::from_name(&d.to_ascii_lowercase()).ok_or_else(|| {
+            p.error(format!(
+                "unknown distribution `{d}` (Mitsuba's are beckmann and ggx)"
+            ))
+        })?,
+    };
     b.ignore(&["sample_visible"]);
     let key = match (b.has("alpha"), b.has("alpha_u"), b.has("alpha_v")) {
         (_, false, false) => "alpha",
@@ -248,7 +265,8 @@ fn rough_alpha(
                 _ => {
                     return Err(b.error(
                         "alpha_u and alpha_v must be equal numbers: anisotropic or textured \
-                         alpha_u/alpha_v are not supported (use alpha)",
+                         alpha_u/alpha_v are not supported yet (lumis' shading frames do not \
+                         follow Mitsuba's surface tangents)",
                     ));
                 }
             }
@@ -263,7 +281,7 @@ fn rough_alpha(
             |p| p.error(format!("a textured alpha is not supported in {}", b.ty)),
         ));
     }
-    scalar_param(ctx, b, key, 0.1, json_path)
+    Ok((scalar_param(ctx, b, key, 0.1, json_path)?, distribution))
 }
 
 /// A conductor's Fresnel term into `m`: a named preset, `eta` + `k`, or with neither (or

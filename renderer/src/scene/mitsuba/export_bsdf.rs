@@ -7,7 +7,7 @@
 //! and a checkerboard read as a scalar (α) has its colours swapped (Mitsuba's `eval_1`).
 
 use super::export::{Xml, file_name, num, num32};
-use crate::scene::desc::{FresnelDesc, MaterialDesc, NamedMaterial, TextureDesc};
+use crate::scene::desc::{Distribution, FresnelDesc, MaterialDesc, NamedMaterial, TextureDesc};
 use crate::scene::error::SceneError;
 use crate::scene::walk::join;
 use crate::textures::{Channel, Texture, UvTransform};
@@ -85,7 +85,11 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
         MaterialDesc::Diffuse { albedo } => {
             color_slot(x, "reflectance", *albedo, tex(&t.albedo), folder, &path)?;
         }
-        MaterialDesc::Conductor { alpha, fresnel } => {
+        MaterialDesc::Conductor {
+            alpha,
+            distribution,
+            fresnel,
+        } => {
             match fresnel {
                 FresnelDesc::Complex { eta, k } => {
                     color_value(x, "eta", *eta);
@@ -103,7 +107,7 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
                     )?;
                 }
             }
-            rough(x, ty, *alpha, tex(&t.alpha), folder, &path)?;
+            rough(x, ty, *distribution, *alpha, tex(&t.alpha), folder, &path)?;
         }
         MaterialDesc::Plastic {
             albedo,
@@ -128,11 +132,15 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
             )?;
             color_value(x, "specular_reflectance", *specular);
             index(x, *ior);
-            rough(x, ty, *alpha, None, folder, &path)?;
+            rough(x, ty, Distribution::Ggx, *alpha, None, folder, &path)?;
         }
-        MaterialDesc::Dielectric { ior, alpha } => {
+        MaterialDesc::Dielectric {
+            ior,
+            alpha,
+            distribution,
+        } => {
             index(x, *ior);
-            rough(x, ty, *alpha, tex(&t.alpha), folder, &path)?;
+            rough(x, ty, *distribution, *alpha, tex(&t.alpha), folder, &path)?;
         }
     }
     x.close("bsdf");
@@ -172,6 +180,7 @@ fn index(x: &mut Xml, ior: f64) {
 fn rough(
     x: &mut Xml,
     ty: &str,
+    distribution: Distribution,
     alpha: f64,
     texture: Option<TextureDesc>,
     folder: &Path,
@@ -180,7 +189,10 @@ fn rough(
     if !ty.starts_with("rough") {
         return Ok(());
     }
-    x.leaf("string", &[("name", "distribution"), ("value", "ggx")]);
+    x.leaf(
+        "string",
+        &[("name", "distribution"), ("value", distribution.name())],
+    );
     match texture {
         Some(t) => texture_xml(x, "alpha", &t, true, folder, &format!("{path}.alpha")),
         None => {

@@ -19,6 +19,7 @@ pub const PARITY_SCENE: &str = r#"{
     "gold": {"type": "conductor", "alpha": 0.2, "eta": [0.143, 0.374, 1.442], "k": [3.983, 2.385, 1.603]},
     "tint": {"type": "conductor", "alpha": 0.6, "reflectance": [0.9, 0.6, 0.3]},
     "mirror": {"type": "conductor", "alpha": 0.0, "reflectance": [0.95, 0.95, 0.95]},
+    "beckmann": {"type": "conductor", "alpha": 0.3, "distribution": "beckmann", "reflectance": [0.8, 0.9, 0.7]},
     "plastic_rough": {"type": "plastic", "albedo": [0.2, 0.6, 0.3], "alpha": 0.3, "ior": 1.5},
     "plastic_sharp": {"type": "plastic", "albedo": [0.8, 0.2, 0.1], "alpha": 0.02, "ior": 1.8, "specular": [0.9, 0.8, 0.7]},
     "plastic_smooth": {"type": "plastic", "albedo": [0.3, 0.3, 0.9], "alpha": 0.0, "ior": 1.4}
@@ -36,7 +37,8 @@ pub const PARITY_SCENE: &str = r#"{
     {"type": "sphere", "center": [2.2, 0.3, -1.0], "radius": 0.3, "emission": [6, 10, 6]},
     {"type": "sphere", "center": [0.0, 2.5, -0.5], "radius": 0.2, "material": "mirror"},
     {"type": "sphere", "center": [-2.5, 0.4, -1.5], "radius": 0.4, "material": "plastic_sharp"},
-    {"type": "sphere", "center": [0.5, 0.3, -2.0], "radius": 0.3, "material": "plastic_smooth"}
+    {"type": "sphere", "center": [0.5, 0.3, -2.0], "radius": 0.3, "material": "plastic_smooth"},
+    {"type": "sphere", "center": [-0.6, 0.25, -2.4], "radius": 0.25, "material": "beckmann"}
   ]
 }"#;
 
