@@ -132,6 +132,7 @@ fn dielectric_ior_presets_and_sliders_edit_the_glass() {
     let glass_15 = MaterialDesc::Dielectric {
         ior: 1.5,
         alpha: 0.0,
+        alpha_v: None,
         distribution: lumis::scene::desc::Distribution::Ggx,
     };
     desc.materials[i].material = glass_15;

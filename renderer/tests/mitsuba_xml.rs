@@ -527,7 +527,8 @@ fn bsdfs_map_onto_lumis_materials() {
     <spectrum name="diffuse_reflectance" value="0.4"/><float name="alpha" value="0.05"/></bsdf></shape>
 <shape type="sphere"><bsdf type="twosided" id="both"><bsdf type="plastic"/></bsdf></shape>
 <shape type="sphere"><bsdf type="roughconductor" id="beck"><float name="alpha" value="0.3"/></bsdf></shape>
-<shape type="sphere"><bsdf type="roughdielectric" id="beckglass"><string name="distribution" value="beckmann"/></bsdf></shape>"#;
+<shape type="sphere"><bsdf type="roughdielectric" id="beckglass"><string name="distribution" value="beckmann"/></bsdf></shape>
+<shape type="rectangle"><bsdf type="roughconductor" id="brushed"><float name="alpha_u" value="0.05"/><float name="alpha_v" value="0.3"/></bsdf></shape>"#;
     let m = ok(&dir, body);
     let (au_eta, au_k) = conductor_preset("Au").unwrap();
     let shapes: Vec<Value> = [
@@ -543,6 +544,10 @@ fn bsdfs_map_onto_lumis_materials() {
     ]
     .iter()
     .map(|n| json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": n}))
+    .chain([
+        json!({"type": "quad", "corner": [-1, -1, 0], "edge_u": [2, 0, 0],
+                   "edge_v": [0, 2, 0], "material": "brushed"}),
+    ])
     .collect();
     // Mitsuba keeps indices of refraction in single precision.
     let f = |x: f64| x as f32 as f64;
@@ -564,6 +569,9 @@ fn bsdfs_map_onto_lumis_materials() {
                          "reflectance": [1, 1, 1], "two_sided": false},
                 "beckglass": {"type": "dielectric", "ior": f(1.5046) / f(1.000277), "alpha": 0.1,
                               "distribution": "beckmann"},
+                // alpha_u ≠ alpha_v: [α_u, α_v].
+                "brushed": {"type": "conductor", "alpha": [0.05, 0.3], "distribution": "beckmann",
+                            "reflectance": [1, 1, 1], "two_sided": false},
             },
             "shapes": shapes,
         }),

@@ -16,7 +16,7 @@ pub const DIELECTRIC_PRESETS: [(&str, f64); 3] =
 /// does nothing), and a value within a rounding of 1 would become 1 in the renderer's f32.
 pub const DIELECTRIC_IOR_GAP: f64 = 0.01;
 
-/// GGX roughness α of a material, when it has one.
+/// Roughness α of a material, when it has one (α_u of an anisotropic one).
 pub fn alpha(m: &MaterialDesc) -> Option<f64> {
     match m {
         MaterialDesc::Conductor { alpha, .. }
@@ -26,17 +26,27 @@ pub fn alpha(m: &MaterialDesc) -> Option<f64> {
     }
 }
 
-/// Sets the GGX roughness α, clamped to [0, 1] (ignored for diffuse materials, and for a
-/// non-finite value).
+/// Sets the roughness α, clamped to [0, 1] (ignored for diffuse materials, and for a
+/// non-finite value). An anisotropic material's α_u takes `value` and its α_v keeps the ratio
+/// α_v/α_u (clamped too; from α_u = 0 the material becomes isotropic): one slider scales the
+/// lobe without turning it.
 pub fn set_alpha(m: &mut MaterialDesc, value: f64) {
     if !value.is_finite() {
         return;
     }
-    if let MaterialDesc::Conductor { alpha, .. }
-    | MaterialDesc::Plastic { alpha, .. }
-    | MaterialDesc::Dielectric { alpha, .. } = m
-    {
-        *alpha = value.clamp(0.0, 1.0);
+    let value = value.clamp(0.0, 1.0);
+    match m {
+        MaterialDesc::Conductor { alpha, alpha_v, .. }
+        | MaterialDesc::Dielectric { alpha, alpha_v, .. } => {
+            *alpha_v = match *alpha_v {
+                Some(v) if *alpha > 0.0 => Some((v * value / *alpha).clamp(0.0, 1.0)),
+                _ => None,
+            }
+            .filter(|&v| v != value);
+            *alpha = value;
+        }
+        MaterialDesc::Plastic { alpha, .. } => *alpha = value,
+        MaterialDesc::Diffuse { .. } => {}
     }
 }
 
@@ -273,6 +283,7 @@ mod tests {
         MaterialDesc::Dielectric {
             ior: 1.5,
             alpha,
+            alpha_v: None,
             distribution: Distribution::Beckmann,
         }
     }
@@ -306,6 +317,35 @@ mod tests {
     }
 
     #[test]
+    fn roughness_edits_keep_an_anisotropic_lobes_aspect() {
+        let mut m = MaterialDesc::Conductor {
+            alpha: 0.1,
+            alpha_v: Some(0.4),
+            distribution: Distribution::Beckmann,
+            fresnel: lumis::scene::FresnelDesc::Reflectance(DVec3::ONE),
+        };
+        set_alpha(&mut m, 0.2);
+        let MaterialDesc::Conductor { alpha, alpha_v, .. } = m.clone() else {
+            unreachable!()
+        };
+        assert_eq!(alpha, 0.2);
+        assert!((alpha_v.unwrap() - 0.8).abs() < 1e-12, "{alpha_v:?}");
+        assert_eq!(reparsed(&m), Ok(m.clone()));
+        // α_v is clamped to 1; α_u = 0 (a mirror) forgets the aspect.
+        set_alpha(&mut m, 0.5);
+        assert!(matches!(
+            m,
+            MaterialDesc::Conductor {
+                alpha_v: Some(1.0),
+                ..
+            }
+        ));
+        set_alpha(&mut m, 0.0);
+        set_alpha(&mut m, 0.3);
+        assert!(matches!(m, MaterialDesc::Conductor { alpha_v: None, .. }));
+    }
+
+    #[test]
     fn no_edit_makes_an_invalid_dielectric() {
         let iors = [
             1.0,
@@ -333,6 +373,7 @@ mod tests {
                     let mut m = MaterialDesc::Dielectric {
                         ior: start,
                         alpha: 0.3,
+                        alpha_v: None,
                         distribution: Distribution::Ggx,
                     };
                     set_ior(&mut m, n);

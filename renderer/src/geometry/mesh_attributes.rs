@@ -83,6 +83,20 @@ impl MeshAttributes {
         Some(interpolate_normal([n0, n1, n2], b, ng))
     }
 
+    /// The vertex texture coordinates of triangle `attr`, where it has UVs.
+    #[inline]
+    pub fn triangle_uvs(&self, attr: u32) -> Option<[Vec2; 3]> {
+        if attr == NONE {
+            return None;
+        }
+        let tri = &self.triangles[attr as usize];
+        let mesh = &self.meshes[tri.mesh as usize];
+        if mesh.flags & HAS_UVS == 0 {
+            return None;
+        }
+        Some(tri.v.map(|i| self.uvs[(mesh.uv_base + i) as usize]))
+    }
+
     /// The texture coordinates at barycentrics `b = (b1, b2)` of triangle `attr`: interpolated
     /// where it has UVs, else `b` itself (also for `attr` = [`NONE`]).
     #[inline]

@@ -7,6 +7,7 @@
 //   normals (params.attr.z): (x, y, z, 0), unit and in world space;
 //   uvs (params.attr.w): two per vec4, vertex i in .xy of vec4 i/2 if i is even, .zw if odd.
 // Only in programs that need it: shading normals under HAS_SHADING_NORMALS, texture coordinates
+// under HAS_MESH_UVS (textures, or the tangents of anisotropic materials), their interpolation
 // under HAS_TEXTURES.
 
 fn attr_triangle(attr: u32) -> vec4<u32> {
@@ -24,7 +25,7 @@ fn attr_normal(i: u32) -> vec3f {
 
 // #endif
 
-// #if HAS_TEXTURES
+// #if HAS_MESH_UVS
 fn attr_uv(i: u32) -> vec2f {
     let q = vertex_data[params.attr.w + i / 2u];
     return select(q.xy, q.zw, (i & 1u) == 1u);

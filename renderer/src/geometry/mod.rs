@@ -8,6 +8,7 @@ pub mod polygon;
 pub mod primitive;
 pub mod ray;
 pub mod sphere;
+pub mod tangent;
 pub mod triangle;
 pub mod wide_bvh;
 

@@ -86,6 +86,7 @@ const MODULES: &[Module] = &[
     module!("geometry/sphere.wgsl"),
     module!("geometry/primitive.wgsl"),
     module!("geometry/mesh_attributes.wgsl"),
+    module!("geometry/tangent.wgsl"),
     module!("textures/mod.wgsl"),
     module!("materials/mix.wgsl"),
     module!("geometry/bvh.wgsl"),
@@ -131,6 +132,9 @@ pub struct Features {
     pub has_ggx: bool,
     /// A conductor or dielectric with Beckmann microfacets (`materials/beckmann.wgsl`).
     pub has_beckmann: bool,
+    /// A rough material with α_u ≠ α_v: shading frames along the surface's ∂p/∂u
+    /// (`geometry/tangent.wgsl`, mesh UVs).
+    pub has_anisotropic: bool,
     /// Conductors.
     pub has_conductor: bool,
     /// Conductors with a complex IOR (exact Fresnel).
@@ -172,6 +176,7 @@ impl Features {
             bvh2: false,
             has_ggx: true,
             has_beckmann: true,
+            has_anisotropic: true,
             has_conductor: true,
             has_complex_fresnel: true,
             has_plastic: true,
@@ -220,6 +225,7 @@ impl Features {
             }
         }
         f.has_background |= scene.background_light.is_some();
+        f.has_anisotropic = scene.materials.iter().any(Material::is_anisotropic);
         for m in &scene.materials {
             match m {
                 Material::Diffuse(_) => {}
@@ -260,7 +266,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 23] {
+    fn defines(&self) -> [(&'static str, bool); 25] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -281,6 +287,8 @@ impl Features {
             ("USE_BVH2", self.use_bvh && self.bvh2),
             ("HAS_GGX", self.has_ggx),
             ("HAS_BECKMANN", self.has_ggx && self.has_beckmann),
+            ("HAS_ANISOTROPIC", self.has_anisotropic),
+            ("HAS_MESH_UVS", self.has_textures || self.has_anisotropic),
             ("HAS_CONDUCTOR", self.has_conductor),
             ("HAS_COMPLEX_FRESNEL", self.has_complex_fresnel),
             ("HAS_PLASTIC", self.has_plastic),
@@ -338,7 +346,10 @@ impl Features {
             "geometry/sphere.wgsl" => self.has_sphere_shape,
             "gpu/bvh2.wgsl" => self.use_bvh && self.bvh2,
             // Texture coordinates of mesh triangles too.
-            "geometry/mesh_attributes.wgsl" => self.has_shading_normals || self.has_textures,
+            "geometry/mesh_attributes.wgsl" => {
+                self.has_shading_normals || self.has_textures || self.has_anisotropic
+            }
+            "geometry/tangent.wgsl" => self.has_anisotropic,
             "textures/mod.wgsl" => self.has_textures,
             "materials/mix.wgsl" => self.has_mixes,
             _ => true,

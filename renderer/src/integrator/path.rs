@@ -26,6 +26,7 @@ use super::{Heuristic, Settings, Strategy};
 use crate::geometry::SurfaceHit;
 use crate::geometry::primitive::NONE;
 use crate::geometry::ray::{Ray, spawn_ray, spawn_ray_to};
+use crate::geometry::tangent;
 use crate::math::{Frame, max_component};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
@@ -267,7 +268,14 @@ fn trace<const TRANSMISSION: bool>(
             n = -n;
             ns = -ns;
         }
-        let frame = Frame::from_normal(ns);
+        // An anisotropic lobe's α_u runs along the surface's ∂p/∂u; any frame about the normal
+        // serves the others.
+        let frame = if material.is_anisotropic() {
+            let dp_du = tangent::dp_du(prim, &scene.attributes, &hit);
+            tangent::tangent_frame(ns, dp_du)
+        } else {
+            Frame::from_normal(ns)
+        };
         let wo = frame.to_local(wo_world);
         // A reflecting surface is seen from its front only; a dielectric from either side.
         let wo_invalid = if transmits { wo.z == 0.0 } else { wo.z <= 0.0 };

@@ -325,9 +325,15 @@ fn radiance(camera_ray: Ray) -> vec3f {
 // #endif
         }
 // #if HAS_SHADING_NORMALS
-        let frame = frame_from_normal(ns);
+        var frame = frame_from_normal(ns);
 // #else
-        let frame = frame_from_normal(n);
+        var frame = frame_from_normal(n);
+// #endif
+// #if HAS_ANISOTROPIC
+        // An anisotropic lobe's α_u runs along the surface's ∂p/∂u (`geometry/tangent.wgsl`).
+        if material_anisotropic(m) {
+            frame = tangent_frame(frame.n, surface_dp_du(prim, hit));
+        }
 // #endif
         let wo = to_local(frame, wo_world);
 // #if HAS_DIELECTRIC

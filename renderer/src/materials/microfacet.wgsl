@@ -15,6 +15,15 @@ fn microfacet_is_smooth(mf: Microfacet) -> bool {
     return max(mf.alpha.x, mf.alpha.y) < SMOOTH_ALPHA;
 }
 
+// `Material::is_anisotropic`: a rough conductor or dielectric with α_u ≠ α_v.
+fn material_anisotropic(m: Material) -> bool {
+    if m.h.x != MATERIAL_CONDUCTOR && m.h.x != MATERIAL_DIELECTRIC {
+        return false;
+    }
+    let mf = record_microfacet(m);
+    return mf.alpha.x != mf.alpha.y && !microfacet_is_smooth(mf);
+}
+
 // #if HAS_GGX
 fn microfacet_d(mf: Microfacet, h: vec3f) -> f32 {
     switch mf.distribution {

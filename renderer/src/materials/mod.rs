@@ -181,6 +181,17 @@ impl Material {
         }
     }
 
+    /// True if a rough microfacet lobe has α_u ≠ α_v: its BSDF depends on the shading frame's
+    /// tangents (`geometry/tangent.rs`), the others' only on the normal.
+    #[inline]
+    pub fn is_anisotropic(&self) -> bool {
+        match self {
+            Material::Conductor(c) => !c.is_delta() && c.microfacet.is_anisotropic(),
+            Material::Dielectric(d) => !d.is_delta() && d.microfacet.is_anisotropic(),
+            Material::Diffuse(_) | Material::Plastic(_) => false,
+        }
+    }
+
     /// True if light passes through: `wo` and `wi` may lie on either side, the frame is never
     /// flipped, and two-sidedness does not apply.
     #[inline]

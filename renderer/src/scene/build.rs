@@ -19,7 +19,8 @@ use crate::lights::{
 };
 use crate::materials::textured::MaterialTextures;
 use crate::materials::{
-    Conductor, ConductorFresnel, Dielectric, Diffuse, Material, Microfacet, Mix, Plastic,
+    Conductor, ConductorFresnel, Dielectric, Diffuse, Distribution, Material, Microfacet, Mix,
+    Plastic,
 };
 use crate::textures::Texture;
 use glam::{DVec3, Vec2, Vec3};
@@ -76,10 +77,11 @@ fn material(desc: &MaterialDesc) -> Material {
         MaterialDesc::Diffuse { albedo } => Material::Diffuse(Diffuse { albedo: v(*albedo) }),
         MaterialDesc::Conductor {
             alpha,
+            alpha_v,
             distribution,
             fresnel,
         } => Material::Conductor(Conductor {
-            microfacet: Microfacet::new(*distribution, *alpha as f32, *alpha as f32),
+            microfacet: microfacet(*distribution, *alpha, *alpha_v),
             fresnel: match fresnel {
                 FresnelDesc::Complex { eta, k } => ConductorFresnel::Complex {
                     eta: v(*eta),
@@ -102,12 +104,19 @@ fn material(desc: &MaterialDesc) -> Material {
         MaterialDesc::Dielectric {
             ior,
             alpha,
+            alpha_v,
             distribution,
         } => Material::Dielectric(Dielectric {
             ior: *ior as f32,
-            microfacet: Microfacet::new(*distribution, *alpha as f32, *alpha as f32),
+            microfacet: microfacet(*distribution, *alpha, *alpha_v),
         }),
     }
+}
+
+/// The microfacets of α (α_u) and `alpha_v` (isotropic where `None`).
+fn microfacet(distribution: Distribution, alpha: f64, alpha_v: Option<f64>) -> Microfacet {
+    let u = alpha as f32;
+    Microfacet::new(distribution, u, alpha_v.map_or(u, |v| v as f32))
 }
 
 /// The mixes of `desc`'s materials, parallel to them (empty if there are none). The parser

@@ -241,8 +241,11 @@ pub enum MaterialDesc {
     },
     /// Microfacet conductor; `alpha == 0` is a perfect mirror.
     Conductor {
-        /// Roughness α (not squared), in [0, 1].
+        /// Roughness α (not squared), in [0, 1]; α_u (along ∂p/∂u) where `alpha_v` is given.
         alpha: f64,
+        /// α_v (along the second tangent), in [0, 1], for anisotropic roughness; `None`:
+        /// isotropic.
+        alpha_v: Option<f64>,
         /// The microfacet distribution of a rough conductor.
         distribution: Distribution,
         /// How the Fresnel term is given.
@@ -264,8 +267,10 @@ pub enum MaterialDesc {
     Dielectric {
         /// Index of refraction of the inside, in (0, 10], ≠ 1.
         ior: f64,
-        /// Roughness α, in [0, 1].
+        /// Roughness α, in [0, 1]; α_u where `alpha_v` is given.
         alpha: f64,
+        /// α_v for anisotropic roughness; `None`: isotropic.
+        alpha_v: Option<f64>,
         /// The microfacet distribution of a rough interface.
         distribution: Distribution,
     },
@@ -485,8 +490,12 @@ impl SceneDesc {
     }
 }
 
-/// `distribution` unless it is the default (files written before it existed stay unchanged).
-fn distribution_key(obj: &mut Value, distribution: Distribution) {
+/// `alpha` as [α_u, α_v] where anisotropic, and `distribution` unless it is the default (files
+/// written before either existed stay unchanged).
+fn microfacet_keys(obj: &mut Value, alpha: f64, alpha_v: Option<f64>, distribution: Distribution) {
+    if let Some(v) = alpha_v {
+        obj["alpha"] = json!([alpha, v]);
+    }
     if distribution != Distribution::default() {
         obj["distribution"] = json!(distribution.name());
     }
@@ -506,6 +515,7 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
         MaterialDesc::Diffuse { albedo } => json!({"type": "diffuse", "albedo": vec3(*albedo)}),
         MaterialDesc::Conductor {
             alpha,
+            alpha_v,
             distribution,
             fresnel,
         } => {
@@ -517,7 +527,7 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
                     json!({"type": "conductor", "alpha": alpha, "reflectance": vec3(*r)})
                 }
             };
-            distribution_key(&mut obj, *distribution);
+            microfacet_keys(&mut obj, *alpha, *alpha_v, *distribution);
             obj
         }
         MaterialDesc::Plastic {
@@ -532,10 +542,11 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
         MaterialDesc::Dielectric {
             ior,
             alpha,
+            alpha_v,
             distribution,
         } => {
             let mut obj = json!({"type": "dielectric", "ior": ior, "alpha": alpha});
-            distribution_key(&mut obj, *distribution);
+            microfacet_keys(&mut obj, *alpha, *alpha_v, *distribution);
             obj
         }
     };

@@ -8,6 +8,7 @@ use super::error::SceneError;
 use super::parse_texture::{TextureLoader, TextureUse, texture_at};
 use super::walk::{Obj, array, check_components};
 use glam::DVec3;
+use serde_json::Value;
 
 /// Every material of the map, sorted by name (the map's order); texture files come from
 /// `loader`. Mixes are resolved once every material is known (`resolve_mixes`).
@@ -66,8 +67,10 @@ fn parse_material(
                 ],
                 true,
             )?;
+            let (alpha, alpha_v) = microfacet_alpha(obj, loader, &mut t.alpha)?;
             MaterialDesc::Conductor {
-                alpha: alpha(obj, loader, &mut t.alpha)?,
+                alpha,
+                alpha_v,
                 distribution: distribution(obj)?,
                 fresnel: fresnel(obj, loader, &mut t.reflectance)?,
             }
@@ -107,13 +110,14 @@ fn parse_material(
                 let msg = format!("ior {ior} must be positive, not 1, and at most {max}");
                 return Err(SceneError::new(obj.at("ior"), msg));
             }
-            let alpha = match obj.get("alpha") {
-                Some(_) => alpha(obj, loader, &mut t.alpha)?,
-                None => 0.0,
+            let (alpha, alpha_v) = match obj.get("alpha") {
+                Some(_) => microfacet_alpha(obj, loader, &mut t.alpha)?,
+                None => (0.0, None),
             };
             MaterialDesc::Dielectric {
                 ior,
                 alpha,
+                alpha_v,
                 distribution: distribution(obj)?,
             }
         }
@@ -337,6 +341,32 @@ fn alpha(
     Ok(a)
 }
 
+/// A microfacet material's `alpha`: as [`alpha`], or [α_u, α_v] (each in [0, 1]) for
+/// anisotropic roughness, `None` as the second where the two are equal.
+fn microfacet_alpha(
+    obj: &Obj,
+    loader: &mut TextureLoader,
+    slot: &mut Option<TextureDesc>,
+) -> Result<(f64, Option<f64>), SceneError> {
+    let Some(pair) = obj.get("alpha").and_then(Value::as_array) else {
+        return Ok((alpha(obj, loader, slot)?, None));
+    };
+    let at = obj.at("alpha");
+    let uv: Vec<f64> = pair.iter().filter_map(Value::as_f64).collect();
+    let [u, v] = uv[..] else {
+        return Err(SceneError::new(
+            at,
+            "alpha must be a number, a texture or two numbers [alpha_u, alpha_v]",
+        ));
+    };
+    for a in [u, v] {
+        if !(0.0..=1.0).contains(&a) {
+            return Err(SceneError::new(at, format!("alpha {a} is outside [0, 1]")));
+        }
+    }
+    Ok((u, (u != v).then_some(v)))
+}
+
 /// `distribution`: `ggx` (the default) or `beckmann`.
 fn distribution(obj: &Obj) -> Result<Distribution, SceneError> {
     if obj.get("distribution").is_none() {
@@ -471,6 +501,72 @@ mod tests {
     }
 
     #[test]
+    fn microfacet_distribution_and_anisotropic_alpha() {
+        let metal = |v: Value| with("metal", v);
+        let d = parse_scene_value(&metal(json!({"type": "conductor", "alpha": [0.1, 0.4],
+            "distribution": "beckmann", "reflectance": [1, 1, 1]})))
+        .unwrap();
+        let m = &d
+            .materials
+            .iter()
+            .find(|m| m.name == "metal")
+            .unwrap()
+            .material;
+        assert!(
+            matches!(m, MaterialDesc::Conductor { alpha, alpha_v: Some(v), distribution, .. }
+                if *alpha == 0.1 && *v == 0.4 && *distribution == crate::materials::Distribution::Beckmann),
+            "{m:?}"
+        );
+        // Equal: isotropic, written back as one number.
+        let d = parse_scene_value(&metal(
+            json!({"type": "dielectric", "alpha": [0.3, 0.3], "ior": 1.5}),
+        ))
+        .unwrap();
+        let m = &d.materials.iter().find(|m| m.name == "metal").unwrap();
+        assert!(matches!(
+            m.material,
+            MaterialDesc::Dielectric { alpha_v: None, .. }
+        ));
+        for (bad, path, why) in [
+            (
+                json!([0.1, 1.5]),
+                "materials.metal.alpha",
+                "alpha 1.5 is outside [0, 1]",
+            ),
+            (
+                json!([0.1]),
+                "materials.metal.alpha",
+                "two numbers [alpha_u, alpha_v]",
+            ),
+            (
+                json!([0.1, 0.2, 0.3]),
+                "materials.metal.alpha",
+                "two numbers",
+            ),
+        ] {
+            let s = metal(json!({"type": "conductor", "alpha": bad, "reflectance": [1, 1, 1]}));
+            expect_err(&s, path, why);
+        }
+        let s = metal(
+            json!({"type": "conductor", "alpha": 0.1, "distribution": "phong",
+            "reflectance": [1, 1, 1]}),
+        );
+        expect_err(
+            &s,
+            "materials.metal.distribution",
+            "unknown distribution `phong`",
+        );
+        // A plastic has neither.
+        let s = metal(json!({"type": "plastic", "albedo": [0, 0, 0], "alpha": 0.1,
+            "distribution": "beckmann"}));
+        expect_err(
+            &s,
+            "materials.metal.distribution",
+            "unknown key `distribution`",
+        );
+    }
+
+    #[test]
     fn ior_must_exceed_one() {
         let s = with(
             "plastic",
@@ -489,6 +585,7 @@ mod tests {
             MaterialDesc::Dielectric {
                 ior: 1.5,
                 alpha: 0.0,
+                alpha_v: None,
                 distribution: crate::materials::Distribution::Ggx,
             }
         );

@@ -102,7 +102,7 @@ fn json_validation_errors_name_the_xml() {
 #[test]
 fn refusals_name_file_line_and_element() {
     let dir = Dir::new("refusals");
-    let cases: [(&str, &str, &str, &str); 17] = [
+    let cases: [(&str, &str, &str, &str); 19] = [
         (
             r#"<emitter type="point"/>"#,
             "point",
@@ -144,6 +144,18 @@ fn refusals_name_file_line_and_element() {
             "roughplastic",
             "scene/shape/bsdf",
             "Beckmann",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="roughconductor"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.3"/></bsdf></shape>"#,
+            "<shape",
+            "scene/shape",
+            "anisotropic BSDF on a sphere",
+        ),
+        (
+            r#"<shape type="obj"><string name="filename" value="x.obj"/><bsdf type="roughconductor"><float name="alpha_u" value="0.1"/><texture type="checkerboard" name="alpha_v"/></bsdf></shape>"#,
+            "roughconductor",
+            "scene/shape/bsdf",
+            "textured alpha_u and alpha_v",
         ),
         (
             r#"<shape type="sphere"><bsdf type="roughconductor"><string name="distribution" value="phong"/></bsdf></shape>"#,

@@ -99,6 +99,7 @@ fn factors_map_to_a_conductor_a_plastic_and_a_mix() {
         gold.material,
         MaterialDesc::Conductor {
             alpha: 0.25,
+            alpha_v: None,
             distribution: crate::materials::Distribution::Ggx,
             fresnel: FresnelDesc::Reflectance(DVec3::new(1.0, 0.75, 0.25)),
         },
@@ -135,6 +136,7 @@ fn factors_map_to_a_conductor_a_plastic_and_a_mix() {
         d.materials[m.materials[1]].material,
         MaterialDesc::Conductor {
             alpha: 1.0,
+            alpha_v: None,
             distribution: crate::materials::Distribution::Ggx,
             fresnel: FresnelDesc::Reflectance(DVec3::ONE)
         }
@@ -182,6 +184,7 @@ fn a_primitive_without_a_material_gets_the_default_material() {
         m.material,
         MaterialDesc::Conductor {
             alpha: 1.0,
+            alpha_v: None,
             distribution: crate::materials::Distribution::Ggx,
             fresnel: FresnelDesc::Reflectance(DVec3::ONE)
         }
@@ -359,6 +362,7 @@ fn transmission_is_a_dielectric_or_a_mix_with_one() {
         MaterialDesc::Dielectric {
             ior: 1.33,
             alpha: 0.25,
+            alpha_v: None,
             distribution: crate::materials::Distribution::Ggx,
         },
         "KHR_materials_ior as written (raw JSON, not rounded to f32)"
@@ -378,6 +382,7 @@ fn transmission_is_a_dielectric_or_a_mix_with_one() {
         MaterialDesc::Dielectric {
             ior: 1.5,
             alpha: 0.0,
+            alpha_v: None,
             distribution: crate::materials::Distribution::Ggx,
         }
     );

@@ -239,8 +239,9 @@ fn distribution_key(m: &mut Json, distribution: Distribution) {
 }
 
 /// A rough model's α and distribution: `distribution` beckmann (Mitsuba's default) or ggx,
-/// `alpha` (default 0.1) or an equal `alpha_u`/`alpha_v`; `textured` says whether lumis takes a
-/// texture there.
+/// `alpha` (default 0.1) or `alpha_u` and `alpha_v` (two constants, [α_u, α_v] where they differ);
+/// `textured` says whether lumis takes a texture or an anisotropic pair there (conductor and
+/// dielectric, not plastic).
 fn rough_alpha(
     ctx: &mut Ctx,
     b: &super::plugin::Plugin,
@@ -262,11 +263,24 @@ fn rough_alpha(
             let value = |k: &str| b.get(k).map(constant_scalar).transpose();
             match (value("alpha_u")?.flatten(), value("alpha_v")?.flatten()) {
                 (Some(u), Some(v)) if u == v => "alpha_u",
+                // Anisotropic: α_u along the surface's ∂p/∂u, as in Mitsuba.
+                (Some(u), Some(v)) if textured => {
+                    if let Some(p) = b.get("alpha_u") {
+                        ctx.origin(json_path, p.pos());
+                    }
+                    return Ok((json!([u, v]), distribution));
+                }
+                (Some(_), Some(_)) => {
+                    return Err(b.error(format!(
+                        "anisotropic alpha_u, alpha_v are not supported in {} (lumis' plastic \
+                         coat is isotropic)",
+                        b.ty
+                    )));
+                }
                 _ => {
                     return Err(b.error(
-                        "alpha_u and alpha_v must be equal numbers: anisotropic or textured \
-                         alpha_u/alpha_v are not supported yet (lumis' shading frames do not \
-                         follow Mitsuba's surface tangents)",
+                        "textured alpha_u and alpha_v are not supported (lumis' anisotropic \
+                         roughness is two numbers; a texture is one isotropic alpha)",
                     ));
                 }
             }

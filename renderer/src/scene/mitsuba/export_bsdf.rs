@@ -87,6 +87,7 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
         }
         MaterialDesc::Conductor {
             alpha,
+            alpha_v,
             distribution,
             fresnel,
         } => {
@@ -107,7 +108,8 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
                     )?;
                 }
             }
-            rough(x, ty, *distribution, *alpha, tex(&t.alpha), folder, &path)?;
+            let a = Alpha(*alpha, *alpha_v);
+            rough(x, ty, *distribution, a, tex(&t.alpha), folder, &path)?;
         }
         MaterialDesc::Plastic {
             albedo,
@@ -132,15 +134,25 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
             )?;
             color_value(x, "specular_reflectance", *specular);
             index(x, *ior);
-            rough(x, ty, Distribution::Ggx, *alpha, None, folder, &path)?;
+            rough(
+                x,
+                ty,
+                Distribution::Ggx,
+                Alpha(*alpha, None),
+                None,
+                folder,
+                &path,
+            )?;
         }
         MaterialDesc::Dielectric {
             ior,
             alpha,
+            alpha_v,
             distribution,
         } => {
             index(x, *ior);
-            rough(x, ty, *distribution, *alpha, tex(&t.alpha), folder, &path)?;
+            let a = Alpha(*alpha, *alpha_v);
+            rough(x, ty, *distribution, a, tex(&t.alpha), folder, &path)?;
         }
     }
     x.close("bsdf");
@@ -177,11 +189,14 @@ fn index(x: &mut Xml, ior: f64) {
 }
 
 /// A rough model's GGX α (constant or texture); nothing for a smooth one.
+/// A constant roughness: α, or α_u with an α_v.
+struct Alpha(f64, Option<f64>);
+
 fn rough(
     x: &mut Xml,
     ty: &str,
     distribution: Distribution,
-    alpha: f64,
+    alpha: Alpha,
     texture: Option<TextureDesc>,
     folder: &Path,
     path: &str,
@@ -196,7 +211,13 @@ fn rough(
     match texture {
         Some(t) => texture_xml(x, "alpha", &t, true, folder, &format!("{path}.alpha")),
         None => {
-            x.leaf("float", &[("name", "alpha"), ("value", &num(alpha))]);
+            match alpha {
+                Alpha(a, None) => x.leaf("float", &[("name", "alpha"), ("value", &num(a))]),
+                Alpha(u, Some(v)) => {
+                    x.leaf("float", &[("name", "alpha_u"), ("value", &num(u))]);
+                    x.leaf("float", &[("name", "alpha_v"), ("value", &num(v))]);
+                }
+            }
             Ok(())
         }
     }

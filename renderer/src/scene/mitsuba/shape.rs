@@ -97,11 +97,24 @@ pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, Sc
     };
     // Importance of silhouettes for differentiable rendering only.
     s.ignore(&["silhouette_sampling_weight"]);
+    // [α_u, α_v]: the BSDF follows the surface's ∂p/∂u (`geometry/tangent.rs`).
+    let anisotropic = mat.as_ref().is_some_and(|m| {
+        ctx.materials
+            .get(m)
+            .and_then(|o| o.get("alpha"))
+            .is_some_and(Json::is_array)
+    });
     let no_uv = |what: &str| -> Result<(), SceneError> {
         if textured {
             return Err(s.error(format!(
                 "a textured {what} is not supported: lumis gives it no texture coordinates \
                  like Mitsuba's"
+            )));
+        }
+        if anisotropic {
+            return Err(s.error(format!(
+                "an anisotropic BSDF on a {what} is not supported: lumis gives it no surface \
+                 tangents like Mitsuba's"
             )));
         }
         Ok(())

@@ -1,0 +1,54 @@
+// The surface tangent ∂p/∂u at a hit and the BSDF frame it orients for an anisotropic BSDF,
+// the twin of `geometry/tangent.rs` (Mitsuba 3.9.1's: a mesh triangle's UV map, else its first
+// edge; a sphere's azimuth about +z; a disk's radius). Only under HAS_ANISOTROPIC.
+
+// `tangent::dp_du` of `hit` on primitive `p` (not normalised).
+fn surface_dp_du(p: Prim, hit: SurfaceHit) -> vec3f {
+    switch prim_kind(p) {
+// #if HAS_SPHERE_SHAPE
+        case SHAPE_SPHERE: {
+            let d = hit.p - p.a.xyz;
+            return vec3f(-d.y, d.x, 0.0);
+        }
+// #endif
+// #if HAS_DISK_SHAPE
+        case SHAPE_DISK: {
+            return hit.p - p.a.xyz;
+        }
+// #endif
+        // SHAPE_TRIANGLE (an unknown kind was flagged when it was intersected).
+        default: {
+            let dp0 = p.b.xyz - p.a.xyz;
+            let dp1 = p.c.xyz - p.a.xyz;
+            let attr = prim_attr(p);
+            if attr == NONE {
+                return dp0;
+            }
+            let tri = attr_triangle(attr);
+            let mesh = attr_mesh(tri.w);
+            if (mesh.z & ATTR_HAS_UVS) == 0u {
+                return dp0;
+            }
+            let t0 = attr_uv(mesh.y + tri.x);
+            let duv0 = attr_uv(mesh.y + tri.y) - t0;
+            let duv1 = attr_uv(mesh.y + tri.z) - t0;
+            let det = duv0.x * duv1.y - duv0.y * duv1.x;
+            if det == 0.0 {
+                return frame_from_normal(hit.n).s;
+            }
+            return (duv1.y * dp0 - duv0.y * dp1) / det;
+        }
+    }
+}
+
+// `tangent::tangent_frame`: the frame of unit normal n whose first axis is dp_du made
+// orthogonal to n; the frame of n alone where nothing is left.
+fn tangent_frame(n: vec3f, dp_du: vec3f) -> Frame {
+    let s = dp_du - n * dot(n, dp_du);
+    let len = length(s);
+    if !(len > 0.0 && is_finite_f(len)) {
+        return frame_from_normal(n);
+    }
+    let su = s / len;
+    return Frame(su, cross(n, su), n);
+}

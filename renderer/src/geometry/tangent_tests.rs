@@ -1,0 +1,150 @@
+//! Tests of `tangent.rs`: ∂p/∂u moves along +u and keeps v (checked from the definition, not the
+//! formula), the frame's orthonormality and first axis, and the fallbacks.
+
+use super::*;
+use crate::geometry::disk::Disk;
+use crate::geometry::mesh_attributes::{AttrMesh, AttrTriangle, HAS_UVS};
+use crate::geometry::primitive::NONE;
+use crate::geometry::sphere::Sphere;
+use crate::rng::Rng;
+use glam::{Vec2, Vec3};
+
+fn hit(p: Vec3, n: Vec3) -> SurfaceHit {
+    SurfaceHit {
+        t: 1.0,
+        p,
+        p_error: Vec3::ZERO,
+        n,
+        prim: 0,
+        b: Vec2::ZERO,
+    }
+}
+
+fn prim(shape: Shape, attr: u32) -> Primitive {
+    Primitive {
+        shape,
+        material: 0,
+        light: NONE,
+        attr,
+    }
+}
+
+#[test]
+fn a_triangles_dp_du_moves_along_u_only() {
+    let mut r = Rng::new(3, 0, 0);
+    let mut rv = || Vec3::new(r.next_f32(), r.next_f32(), r.next_f32()) * 2.0 - 1.0;
+    for _ in 0..200 {
+        let v = [rv(), rv(), rv()];
+        let uvs = [rv().truncate(), rv().truncate(), rv().truncate()];
+        let attrs = MeshAttributes {
+            normals: Vec::new(),
+            uvs: uvs.to_vec(),
+            meshes: vec![AttrMesh {
+                normal_base: 0,
+                uv_base: 0,
+                flags: HAS_UVS,
+            }],
+            triangles: vec![AttrTriangle {
+                v: [0, 1, 2],
+                mesh: 0,
+            }],
+        };
+        let Some(shape) = Shape::triangle(v) else {
+            continue;
+        };
+        let n = match shape {
+            Shape::Triangle { n, .. } => n,
+            _ => unreachable!(),
+        };
+        let d = dp_du(&prim(shape, 0), &attrs, &hit(v[0], n));
+        // The barycentric step (db1, db2) that moves the UVs by (1, 0) moves p by ∂p/∂u.
+        let (duv0, duv1) = (uvs[1] - uvs[0], uvs[2] - uvs[0]);
+        let m = glam::Mat2::from_cols(duv0, duv1);
+        if m.determinant().abs() < 1e-3 {
+            continue;
+        }
+        let db = m.inverse() * Vec2::X;
+        let want = db.x * (v[1] - v[0]) + db.y * (v[2] - v[0]);
+        assert!(
+            (d - want).length() <= 1e-3 * want.length().max(1.0),
+            "{d} vs {want}"
+        );
+        // Without UVs: the first edge.
+        let none = dp_du(&prim(shape, NONE), &attrs, &hit(v[0], n));
+        assert_eq!(none, v[1] - v[0]);
+    }
+}
+
+#[test]
+fn a_degenerate_uv_map_falls_back_to_the_normals_frame() {
+    let v = [Vec3::ZERO, Vec3::X, Vec3::Y];
+    let attrs = MeshAttributes {
+        normals: Vec::new(),
+        uvs: vec![Vec2::ZERO, Vec2::ONE, Vec2::splat(2.0)],
+        meshes: vec![AttrMesh {
+            normal_base: 0,
+            uv_base: 0,
+            flags: HAS_UVS,
+        }],
+        triangles: vec![AttrTriangle {
+            v: [0, 1, 2],
+            mesh: 0,
+        }],
+    };
+    let shape = Shape::triangle(v).unwrap();
+    let d = dp_du(&prim(shape, 0), &attrs, &hit(Vec3::ZERO, Vec3::Z));
+    assert_eq!(d, Frame::from_normal(Vec3::Z).s);
+}
+
+#[test]
+fn spheres_turn_about_z_and_disks_point_outward() {
+    let s = Sphere {
+        center: Vec3::new(1.0, 2.0, 3.0),
+        radius: 2.0,
+    };
+    let p = s.center + Vec3::new(1.2, -1.6, 0.0);
+    let d = dp_du(
+        &prim(Shape::Sphere(s), NONE),
+        &MeshAttributes::default(),
+        &hit(p, Vec3::Z),
+    );
+    assert!(d.dot(p - s.center).abs() < 1e-6 && d.z == 0.0 && d.length() > 1.0);
+    // Counter-clockwise seen from +z, as Mitsuba's φ grows.
+    assert!((p - s.center).cross(d).z > 0.0);
+    let disk = Disk {
+        center: Vec3::ZERO,
+        n: Vec3::Y,
+        radius: 1.0,
+    };
+    let q = Vec3::new(0.3, 0.0, -0.4);
+    let d = dp_du(
+        &prim(Shape::Disk(disk), NONE),
+        &MeshAttributes::default(),
+        &hit(q, Vec3::Y),
+    );
+    assert_eq!(d, q);
+}
+
+#[test]
+fn the_tangent_frame_is_orthonormal_along_the_projected_tangent() {
+    let mut r = Rng::new(4, 0, 0);
+    for _ in 0..1000 {
+        let n = crate::sampling::sphere::sample_uniform_sphere(r.next_2d());
+        let t = Vec3::new(r.next_f32(), r.next_f32(), r.next_f32()) * 2.0 - 1.0;
+        let f = tangent_frame(n, t);
+        for (a, b) in [(f.s, f.t), (f.t, f.n), (f.s, f.n)] {
+            assert!(a.dot(b).abs() < 1e-5);
+        }
+        for a in [f.s, f.t] {
+            assert!((a.length() - 1.0).abs() < 1e-5);
+        }
+        assert!(f.n == n && f.s.dot(t) >= 0.0 && f.s.cross(t - n * n.dot(t)).length() < 1e-4);
+    }
+    // Nothing left after projection: the frame of the normal.
+    let n = Vec3::new(0.0, 0.6, 0.8);
+    for t in [Vec3::ZERO, n * 3.0] {
+        let f = tangent_frame(n, t);
+        let g = Frame::from_normal(n);
+        assert_eq!((f.s, f.t, f.n), (g.s, g.t, g.n));
+    }
+}
