@@ -103,6 +103,32 @@ fn material_sliders_edit_the_selected_material() {
         panic!("ggx01 is a conductor")
     };
     assert_eq!(alpha, 0.5);
+    // The anisotropy beside it (α_v = α_u × 1.6) and the distribution menu (issue 39).
+    assert_restarts(&mut h, "anisotropy", |h| {
+        set_slider(h, "Anisotropy α_v/α_u", 1.6)
+    });
+    assert_restarts(&mut h, "distribution", |h| {
+        pick_combo(h, "Microfacets", "beckmann")
+    });
+    let desc = h.state().desc.clone().unwrap();
+    let MaterialDesc::Conductor {
+        alpha,
+        alpha_v,
+        distribution,
+        ..
+    } = desc.materials[i].material
+    else {
+        panic!("ggx01 is a conductor")
+    };
+    assert_eq!(alpha, 0.5);
+    assert!((alpha_v.unwrap() - 0.8).abs() < 1e-9, "{alpha_v:?}");
+    assert_eq!(distribution, lumis::scene::desc::Distribution::Beckmann);
+    wait_for_current_scene(&mut h, "anisotropic ggx01");
+    let built = &h.state().output().scene.as_ref().unwrap().materials[i];
+    let lumis::materials::Material::Conductor(c) = built else {
+        panic!("the built scene has no conductor")
+    };
+    assert!(c.microfacet.is_anisotropic(), "{c:?}");
     // Only the selected material changed, and the render thread built the edited scene.
     let original = lumis::scene::load_scene(&asset("seed_cornell.json")).unwrap();
     for (j, (a, b)) in desc.materials.iter().zip(&original.materials).enumerate() {

@@ -5,6 +5,7 @@
 
 use super::light_shape::{Keep, LightShape, PlanarLight};
 use glam::DVec3;
+use lumis::scene::desc::Distribution;
 use lumis::scene::{FresnelDesc, GeometryDesc, MaterialDesc, SceneDesc};
 use std::ops::RangeInclusive;
 
@@ -47,6 +48,56 @@ pub fn set_alpha(m: &mut MaterialDesc, value: f64) {
         }
         MaterialDesc::Plastic { alpha, .. } => *alpha = value,
         MaterialDesc::Diffuse { .. } => {}
+    }
+}
+
+/// The range of the anisotropy slider, α_v/α_u: 1:10 to 10:1 (drawn logarithmically).
+pub const ASPECT_RANGE: RangeInclusive<f64> = 0.1..=10.0;
+
+/// The aspect α_v/α_u of a microfacet conductor's or dielectric's roughness (1: isotropic);
+/// `None` for the others, and at α_u = 0, where it is not defined.
+pub fn aspect(m: &MaterialDesc) -> Option<f64> {
+    match m {
+        MaterialDesc::Conductor { alpha, alpha_v, .. }
+        | MaterialDesc::Dielectric { alpha, alpha_v, .. }
+            if *alpha > 0.0 =>
+        {
+            Some(alpha_v.map_or(1.0, |v| v / alpha))
+        }
+        _ => None,
+    }
+}
+
+/// Sets α_v = α_u · `ratio` (clamped to [`ASPECT_RANGE`] and α_v to [0, 1]; ignored where
+/// [`aspect`] is `None` and for a non-finite ratio). A ratio of 1 is isotropic again.
+pub fn set_aspect(m: &mut MaterialDesc, ratio: f64) {
+    if !ratio.is_finite() || aspect(m).is_none() {
+        return;
+    }
+    let ratio = ratio.clamp(*ASPECT_RANGE.start(), *ASPECT_RANGE.end());
+    if let MaterialDesc::Conductor { alpha, alpha_v, .. }
+    | MaterialDesc::Dielectric { alpha, alpha_v, .. } = m
+    {
+        let v = (*alpha * ratio).clamp(0.0, 1.0);
+        *alpha_v = (v != *alpha).then_some(v);
+    }
+}
+
+/// The microfacet distribution of a conductor or dielectric.
+pub fn distribution(m: &MaterialDesc) -> Option<Distribution> {
+    match m {
+        MaterialDesc::Conductor { distribution, .. }
+        | MaterialDesc::Dielectric { distribution, .. } => Some(*distribution),
+        _ => None,
+    }
+}
+
+/// Sets the microfacet distribution of a conductor or dielectric (ignored for the others).
+pub fn set_distribution(m: &mut MaterialDesc, d: Distribution) {
+    if let MaterialDesc::Conductor { distribution, .. }
+    | MaterialDesc::Dielectric { distribution, .. } = m
+    {
+        *distribution = d;
     }
 }
 
@@ -261,7 +312,6 @@ impl LightEdit {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use lumis::scene::desc::Distribution;
     use lumis::scene::{load_scene, parse_scene_value};
 
     trait WithIor {
@@ -343,6 +393,40 @@ mod tests {
         set_alpha(&mut m, 0.0);
         set_alpha(&mut m, 0.3);
         assert!(matches!(m, MaterialDesc::Conductor { alpha_v: None, .. }));
+    }
+
+    #[test]
+    fn aspect_and_distribution_edits() {
+        let mut m = glass(0.2);
+        assert_eq!(aspect(&m), Some(1.0));
+        assert_eq!(distribution(&m), Some(Distribution::Beckmann));
+        set_aspect(&mut m, 3.0);
+        assert!(
+            matches!(m, MaterialDesc::Dielectric { alpha_v: Some(v), .. } if (v - 0.6).abs() < 1e-12)
+        );
+        assert!((aspect(&m).unwrap() - 3.0).abs() < 1e-12);
+        assert_eq!(reparsed(&m), Ok(m.clone()));
+        // α_v is clamped to 1, the ratio to the slider's range; 1 is isotropic again.
+        set_aspect(&mut m, 50.0);
+        assert!(matches!(
+            m,
+            MaterialDesc::Dielectric {
+                alpha_v: Some(1.0),
+                ..
+            }
+        ));
+        set_aspect(&mut m, 1.0);
+        assert!(matches!(m, MaterialDesc::Dielectric { alpha_v: None, .. }));
+        set_distribution(&mut m, Distribution::Ggx);
+        assert_eq!(distribution(&m), Some(Distribution::Ggx));
+        assert_eq!(reparsed(&m), Ok(m.clone()));
+        // A mirror has no aspect; a diffuse or plastic material neither knob.
+        assert_eq!(aspect(&glass(0.0)), None);
+        let mut d = MaterialDesc::Diffuse { albedo: DVec3::ONE };
+        set_aspect(&mut d, 2.0);
+        set_distribution(&mut d, Distribution::Ggx);
+        assert_eq!(d, MaterialDesc::Diffuse { albedo: DVec3::ONE });
+        assert_eq!((aspect(&d), distribution(&d)), (None, None));
     }
 
     #[test]

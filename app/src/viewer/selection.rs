@@ -7,6 +7,7 @@ use super::edit::{self, LightEdit};
 use super::light_shape::{DISK_STOP, Keep, LightShape, MAX_SIDES};
 use super::pick::pick;
 use glam::DVec3;
+use lumis::scene::desc::Distribution;
 
 impl ViewerApp {
     /// Selects what the camera sees through film position (`x`, `y`): its material, and the
@@ -96,6 +97,28 @@ impl ViewerApp {
             edit::set_alpha(m, a);
             textures.alpha = None;
             changed = true;
+        }
+        // Anisotropy beside the roughness: α_v/α_u (α_u is the slider above), and the
+        // distribution.
+        if let Some(mut r) = edit::aspect(m)
+            && ui
+                .add(
+                    egui::Slider::new(&mut r, edit::ASPECT_RANGE)
+                        .logarithmic(true)
+                        .text("Anisotropy α_v/α_u"),
+                )
+                .changed()
+        {
+            edit::set_aspect(m, r);
+            textures.alpha = None;
+            changed = true;
+        }
+        if let Some(mut d) = edit::distribution(m) {
+            let all = [Distribution::Ggx, Distribution::Beckmann];
+            if combo(ui, "Microfacets", &mut d, &all, |d| d.name().into()) {
+                edit::set_distribution(m, d);
+                changed = true;
+            }
         }
         if let Some(c) = edit::colour(m) {
             let mut rgb = c.as_vec3().to_array();

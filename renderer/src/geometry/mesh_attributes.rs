@@ -101,16 +101,10 @@ impl MeshAttributes {
     /// where it has UVs, else `b` itself (also for `attr` = [`NONE`]).
     #[inline]
     pub fn uv(&self, attr: u32, b: Vec2) -> Vec2 {
-        if attr == NONE {
-            return b;
+        match self.triangle_uvs(attr) {
+            Some([t0, t1, t2]) => (1.0 - b.x - b.y) * t0 + b.x * t1 + b.y * t2,
+            None => b,
         }
-        let tri = &self.triangles[attr as usize];
-        let mesh = &self.meshes[tri.mesh as usize];
-        if mesh.flags & HAS_UVS == 0 {
-            return b;
-        }
-        let [t0, t1, t2] = tri.v.map(|i| self.uvs[(mesh.uv_base + i) as usize]);
-        (1.0 - b.x - b.y) * t0 + b.x * t1 + b.y * t2
     }
 }
 

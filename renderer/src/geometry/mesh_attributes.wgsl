@@ -30,6 +30,27 @@ fn attr_uv(i: u32) -> vec2f {
     let q = vertex_data[params.attr.w + i / 2u];
     return select(q.xy, q.zw, (i & 1u) == 1u);
 }
+
+// `MeshAttributes::triangle_uvs`: triangle `attr`'s vertex UVs, `found` false where it has none
+// (also for NONE).
+struct TriangleUvs {
+    found: bool,
+    t0: vec2f,
+    t1: vec2f,
+    t2: vec2f,
+}
+
+fn triangle_uvs(attr: u32) -> TriangleUvs {
+    if attr == NONE {
+        return TriangleUvs(false, vec2f(0.0), vec2f(0.0), vec2f(0.0));
+    }
+    let tri = attr_triangle(attr);
+    let mesh = attr_mesh(tri.w);
+    if (mesh.z & ATTR_HAS_UVS) == 0u {
+        return TriangleUvs(false, vec2f(0.0), vec2f(0.0), vec2f(0.0));
+    }
+    return TriangleUvs(true, attr_uv(mesh.y + tri.x), attr_uv(mesh.y + tri.y), attr_uv(mesh.y + tri.z));
+}
 // #endif
 
 // #if HAS_SHADING_NORMALS
@@ -62,18 +83,11 @@ fn shading_normal(attr: u32, b: vec2f, ng: vec3f) -> ShadingNormal {
 // #if HAS_TEXTURES
 // `MeshAttributes::uv`: interpolated where the triangle has UVs, else b itself (also for NONE).
 fn mesh_uv(attr: u32, b: vec2f) -> vec2f {
-    if attr == NONE {
+    let t = triangle_uvs(attr);
+    if !t.found {
         return b;
     }
-    let tri = attr_triangle(attr);
-    let mesh = attr_mesh(tri.w);
-    if (mesh.z & ATTR_HAS_UVS) == 0u {
-        return b;
-    }
-    let t0 = attr_uv(mesh.y + tri.x);
-    let t1 = attr_uv(mesh.y + tri.y);
-    let t2 = attr_uv(mesh.y + tri.z);
-    return (1.0 - b.x - b.y) * t0 + b.x * t1 + b.y * t2;
+    return (1.0 - b.x - b.y) * t.t0 + b.x * t.t1 + b.y * t.t2;
 }
 // #endif
 

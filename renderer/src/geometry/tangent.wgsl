@@ -20,18 +20,12 @@ fn surface_dp_du(p: Prim, hit: SurfaceHit) -> vec3f {
         default: {
             let dp0 = p.b.xyz - p.a.xyz;
             let dp1 = p.c.xyz - p.a.xyz;
-            let attr = prim_attr(p);
-            if attr == NONE {
+            let t = triangle_uvs(prim_attr(p));
+            if !t.found {
                 return dp0;
             }
-            let tri = attr_triangle(attr);
-            let mesh = attr_mesh(tri.w);
-            if (mesh.z & ATTR_HAS_UVS) == 0u {
-                return dp0;
-            }
-            let t0 = attr_uv(mesh.y + tri.x);
-            let duv0 = attr_uv(mesh.y + tri.y) - t0;
-            let duv1 = attr_uv(mesh.y + tri.z) - t0;
+            let duv0 = t.t1 - t.t0;
+            let duv1 = t.t2 - t.t0;
             let det = duv0.x * duv1.y - duv0.y * duv1.x;
             if det == 0.0 {
                 return frame_from_normal(hit.n).s;

@@ -29,6 +29,23 @@ fn prim(shape: Shape, attr: u32) -> Primitive {
     }
 }
 
+/// The attributes of one triangle (`attr` 0) with texture coordinates `uvs`.
+fn one_triangle(uvs: [Vec2; 3]) -> MeshAttributes {
+    MeshAttributes {
+        normals: Vec::new(),
+        uvs: uvs.to_vec(),
+        meshes: vec![AttrMesh {
+            normal_base: 0,
+            uv_base: 0,
+            flags: HAS_UVS,
+        }],
+        triangles: vec![AttrTriangle {
+            v: [0, 1, 2],
+            mesh: 0,
+        }],
+    }
+}
+
 #[test]
 fn a_triangles_dp_du_moves_along_u_only() {
     let mut r = Rng::new(3, 0, 0);
@@ -36,19 +53,7 @@ fn a_triangles_dp_du_moves_along_u_only() {
     for _ in 0..200 {
         let v = [rv(), rv(), rv()];
         let uvs = [rv().truncate(), rv().truncate(), rv().truncate()];
-        let attrs = MeshAttributes {
-            normals: Vec::new(),
-            uvs: uvs.to_vec(),
-            meshes: vec![AttrMesh {
-                normal_base: 0,
-                uv_base: 0,
-                flags: HAS_UVS,
-            }],
-            triangles: vec![AttrTriangle {
-                v: [0, 1, 2],
-                mesh: 0,
-            }],
-        };
+        let attrs = one_triangle(uvs);
         let Some(shape) = Shape::triangle(v) else {
             continue;
         };
@@ -78,19 +83,7 @@ fn a_triangles_dp_du_moves_along_u_only() {
 #[test]
 fn a_degenerate_uv_map_falls_back_to_the_normals_frame() {
     let v = [Vec3::ZERO, Vec3::X, Vec3::Y];
-    let attrs = MeshAttributes {
-        normals: Vec::new(),
-        uvs: vec![Vec2::ZERO, Vec2::ONE, Vec2::splat(2.0)],
-        meshes: vec![AttrMesh {
-            normal_base: 0,
-            uv_base: 0,
-            flags: HAS_UVS,
-        }],
-        triangles: vec![AttrTriangle {
-            v: [0, 1, 2],
-            mesh: 0,
-        }],
-    };
+    let attrs = one_triangle([Vec2::ZERO, Vec2::ONE, Vec2::splat(2.0)]);
     let shape = Shape::triangle(v).unwrap();
     let d = dp_du(&prim(shape, 0), &attrs, &hit(Vec3::ZERO, Vec3::Z));
     assert_eq!(d, Frame::from_normal(Vec3::Z).s);

@@ -3,7 +3,7 @@
 //! stated 0.35%, and finiteness at grazing angles and extreme α.
 
 use super::*;
-use crate::materials::ggx::tests::hemisphere_quadrature;
+use crate::materials::ggx::tests::{assert_moments_match, hemisphere_quadrature};
 use crate::rng::Rng;
 
 fn dir(theta_deg: f32, phi_deg: f32) -> Vec3 {
@@ -96,14 +96,6 @@ fn mitsuba_rational_g1_is_close() {
 
 #[test]
 fn vndf_samples_follow_the_pdf() {
-    // Sample means of a few test functions against their pdf-weighted quadrature.
-    let tests: [fn(Vec3) -> f64; 4] = [
-        |h| h.x as f64,
-        |h| h.y as f64,
-        |h| (h.z * h.z) as f64,
-        |h| (h.x * h.z + 0.5 * h.y * h.y) as f64,
-    ];
-    let n = 200_000;
     for (k, (au, av)) in ALPHAS.into_iter().enumerate() {
         for (l, (th, ph)) in [(0.0f32, 0.0f32), (50.0, 30.0), (85.0, 120.0)]
             .into_iter()
@@ -111,23 +103,13 @@ fn vndf_samples_follow_the_pdf() {
         {
             let wo = dir(th, ph);
             let mut rng = Rng::new(13, k as u32, l as u32);
-            let hs: Vec<Vec3> = (0..n)
-                .map(|_| sample_visible_normal(au, av, wo, rng.next_2d()))
-                .collect();
-            for g in tests {
-                let vals: Vec<f64> = hs.iter().map(|&h| g(h)).collect();
-                let mean = vals.iter().sum::<f64>() / n as f64;
-                let var = vals.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n as f64;
-                let quad = hemisphere_quadrature(800, 256, |h| {
-                    g(h) * visible_normal_pdf(au, av, wo, h) as f64
-                });
-                // 5σ of the MC mean plus the quadrature's own error.
-                let tol = 5.0 * (var / n as f64).sqrt() + 2e-3;
-                assert!(
-                    (mean - quad).abs() < tol,
-                    "alpha ({au}, {av}) at {th}/{ph}: {mean} vs {quad}"
-                );
-            }
+            assert_moments_match(
+                || sample_visible_normal(au, av, wo, rng.next_2d()),
+                |h| visible_normal_pdf(au, av, wo, h),
+                200_000,
+                256,
+                &format!("alpha ({au}, {av}) at {th}/{ph}"),
+            );
         }
     }
 }

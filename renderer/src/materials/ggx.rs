@@ -197,37 +197,46 @@ pub(crate) mod tests {
         }
     }
 
-    #[test]
-    fn vndf_samples_follow_the_pdf() {
-        // Compare sample means of a few test functions with their pdf-weighted quadrature.
+    /// Sample means of a few test functions of `n` normals drawn by `sample` against their
+    /// quadrature under `pdf` (`n_phi` azimuth nodes): within 5σ of the Monte Carlo mean plus the
+    /// quadrature's own error (2e-3). `what` names the case in the message.
+    pub(crate) fn assert_moments_match(
+        mut sample: impl FnMut() -> Vec3,
+        pdf: impl Fn(Vec3) -> f32,
+        n: usize,
+        n_phi: usize,
+        what: &str,
+    ) {
         let tests: [fn(Vec3) -> f64; 4] = [
             |h| h.x as f64,
             |h| h.y as f64,
             |h| (h.z * h.z) as f64,
             |h| (h.x * h.z + 0.5 * h.y * h.y) as f64,
         ];
-        let n = 200_000;
+        let hs: Vec<Vec3> = (0..n).map(|_| sample()).collect();
+        for g in tests {
+            let vals: Vec<f64> = hs.iter().map(|&h| g(h)).collect();
+            let mean = vals.iter().sum::<f64>() / n as f64;
+            let var = vals.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n as f64;
+            let quad = hemisphere_quadrature(800, n_phi, |h| g(h) * pdf(h) as f64);
+            let tol = 5.0 * (var / n as f64).sqrt() + 2e-3;
+            assert!((mean - quad).abs() < tol, "{what}: {mean} vs {quad}");
+        }
+    }
+
+    #[test]
+    fn vndf_samples_follow_the_pdf() {
         for (k, alpha) in [0.05f32, 0.3, 1.0].into_iter().enumerate() {
             for (l, th) in [0.0f32, 50.0, 85.0].into_iter().enumerate() {
                 let wo = dir(th);
                 let mut rng = Rng::new(11, k as u32, l as u32);
-                let hs: Vec<Vec3> = (0..n)
-                    .map(|_| sample_visible_normal(alpha, wo, rng.next_2d()))
-                    .collect();
-                for g in tests {
-                    let vals: Vec<f64> = hs.iter().map(|&h| g(h)).collect();
-                    let mean = vals.iter().sum::<f64>() / n as f64;
-                    let var = vals.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n as f64;
-                    let quad = hemisphere_quadrature(800, 128, |h| {
-                        g(h) * visible_normal_pdf(alpha, wo, h) as f64
-                    });
-                    // 5σ of the MC mean plus the quadrature's own error.
-                    let tol = 5.0 * (var / n as f64).sqrt() + 2e-3;
-                    assert!(
-                        (mean - quad).abs() < tol,
-                        "a {alpha} th {th}: {mean} vs {quad}"
-                    );
-                }
+                assert_moments_match(
+                    || sample_visible_normal(alpha, wo, rng.next_2d()),
+                    |h| visible_normal_pdf(alpha, wo, h),
+                    200_000,
+                    128,
+                    &format!("a {alpha} th {th}"),
+                );
             }
         }
     }
