@@ -802,10 +802,19 @@ fn unknown_tags_are_detectable() {
                 && matches!(c.fresnel, ConductorFresnel::Complex { .. }))
         })
         .unwrap();
+    // A rough Beckmann conductor, whose distribution tag is corrupted.
+    let beckmann = scene
+        .materials
+        .iter()
+        .position(|m| {
+            matches!(m, Material::Conductor(c) if !c.is_delta()
+                && c.microfacet.distribution == lumis::materials::Distribution::Beckmann)
+        })
+        .unwrap();
     // Items: 0 intact records, 1 corrupted ones.
     let inputs = [
-        [0.0, conductor as f32, 0.0, 0.0],
-        [1.0, conductor as f32, 0.0, 0.0],
+        [0.0, conductor as f32, beckmann as f32, 0.0],
+        [1.0, conductor as f32, beckmann as f32, 0.0],
     ];
     let out = run(
         &gpu,
@@ -813,9 +822,10 @@ fn unknown_tags_are_detectable() {
          let wo = vec3f(0.0, 0.6, 0.8); let wi = vec3f(0.6, 0.0, 0.8);
          let p = vec3f(0.3, 1.0, 0.2);
          var m = materials[0]; var g = materials[u32(inp(0u).y)]; var l = lights[0];
-         var prim = prims[0]; var q = params;
+         var prim = prims[0]; var q = params; var k = materials[u32(inp(0u).z)];
          if bad {
              m.h.x = 99u; g.h.z = 99u; l.h.x = 99u; prim.a.w = bitcast<f32>(99u); q.strategy = 99u;
+             k.c.z = bitcast<f32>(99u);
          }
          let ray = Ray(p, normalize(prim.a.xyz - p), inf());
          unknown_tag_seen = false; let e = material_eval(m, wo, wi).x; let e_seen = unknown_tag_seen;
@@ -826,12 +836,13 @@ fn unknown_tags_are_detectable() {
          unknown_tag_seen = false; let lp = light_pdf(l, p, vec3f(0.0), ls.wi, ls.p, ls.n, LIGHT_SAMPLING_AREA); let lp_seen = unknown_tag_seen;
          unknown_tag_seen = false; let t = shape_intersect_t(prim, ray, triangle_ray_new(ray)); let t_seen = unknown_tag_seen;
          unknown_tag_seen = false; check_param_tags(q); let q_seen = unknown_tag_seen;
+         unknown_tag_seen = false; _ = material_pdf(k, wo, wi); let k_seen = unknown_tag_seen;
          let seen = vec4f(select(0.0, 1.0, e_seen), select(0.0, 1.0, d_seen), select(0.0, 1.0, s_seen), select(0.0, 1.0, f_seen));
          let seen2 = vec4f(select(0.0, 1.0, ls_seen), select(0.0, 1.0, lp_seen), select(0.0, 1.0, t_seen), select(0.0, 1.0, q_seen));
          outp(0u, vec4f(e, d, f, lp));
          outp(1u, seen);
          outp(2u, seen2);
-         outp(3u, vec4f(select(0.0, 1.0, s.ok), select(0.0, 1.0, ls.ok), t, 0.0));",
+         outp(3u, vec4f(select(0.0, 1.0, s.ok), select(0.0, 1.0, ls.ok), t, select(0.0, 1.0, k_seen)));",
         &inputs,
         1,
         4,
@@ -847,4 +858,6 @@ fn unknown_tags_are_detectable() {
     assert_eq!(bad[1], [1.0; 4], "{bad:?}");
     assert_eq!(bad[2], [1.0; 4], "{bad:?}");
     assert_eq!(bad[3][..2], [0.0, 0.0], "{bad:?}");
+    // A microfacet distribution's tag (`materials/microfacet.wgsl`) is flagged too.
+    assert_eq!((good[3][3], bad[3][3]), (0.0, 1.0), "{good:?} {bad:?}");
 }
