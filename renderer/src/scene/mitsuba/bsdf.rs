@@ -103,7 +103,7 @@ fn bsdf(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, Sc
             conductor_fresnel(ctx, b, path, &mut m)?;
             b.finish(
                 "material, eta, k, specular_reflectance, and for roughconductor distribution \
-                 (beckmann or ggx), alpha (or equal alpha_u, alpha_v); sample_visible is ignored",
+                 (beckmann or ggx), alpha or alpha_u and alpha_v; sample_visible is ignored",
             )?;
             m
         }
