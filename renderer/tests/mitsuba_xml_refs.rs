@@ -84,6 +84,16 @@ fn compare(
     })
 }
 
+/// Power: the MIS (power) render at 256 spp, `seed`, of `m`, a mutated import of `NAME.xml`,
+/// must fail against `NAME`'s reference; `what` names the mutation.
+fn assert_detected(name: &str, m: &Imported, seed: u32, what: &str) {
+    let rr = m.rr_depth.unwrap_or(5);
+    assert!(
+        compare(name, &m.desc, rr, MIS, 256, seed).is_err(),
+        "{name}.xml {what} went undetected"
+    );
+}
+
 /// Every strategy of [`STRATEGIES`] with `spp[i]` samples, seed `seed + i`, against the
 /// reference; panics with every failure.
 fn every_strategy(name: &str, spp: [u32; 5], seed: u32) {
@@ -112,11 +122,7 @@ fn xml_meshes_matches_its_mitsuba_reference() {
 #[test]
 fn xml_meshes_wrong_preset_is_detected() {
     let m = import("xml_meshes", &[("metal", "Cu")]);
-    let rr = m.rr_depth.unwrap_or(5);
-    assert!(
-        compare("xml_meshes", &m.desc, rr, MIS, 256, 1840).is_err(),
-        "xml_meshes.xml with metal=Cu went undetected"
-    );
+    assert_detected("xml_meshes", &m, 1840, "with metal=Cu");
 }
 
 /// `xml_shapes.xml` (rectangle, cube, sphere, disk with flip_normals, a null BSDF, rough
@@ -134,11 +140,7 @@ fn xml_shapes_matches_its_mitsuba_reference() {
 #[test]
 fn xml_shapes_unflipped_light_is_detected() {
     let m = import("xml_shapes", &[("flip", "false")]);
-    let rr = m.rr_depth.unwrap_or(5);
-    assert!(
-        compare("xml_shapes", &m.desc, rr, MIS, 256, 1860).is_err(),
-        "xml_shapes.xml with flip=false went undetected"
-    );
+    assert_detected("xml_shapes", &m, 1860, "with flip=false");
 }
 
 /// `xml_beckmann.xml` (roughconductor and roughdielectric naming no distribution, i.e. Mitsuba's
@@ -171,11 +173,7 @@ fn xml_beckmann_as_ggx_is_detected() {
         }
     }
     assert_eq!(changed, 3, "the gold, the glass and the copper");
-    let rr = m.rr_depth.unwrap_or(5);
-    assert!(
-        compare("xml_beckmann", &m.desc, rr, MIS, 256, 1880).is_err(),
-        "xml_beckmann.xml rendered with GGX went undetected"
-    );
+    assert_detected("xml_beckmann", &m, 1880, "rendered with GGX");
 }
 
 /// `xml_anisotropic.xml` (roughconductor with alpha_u ≠ alpha_v on an OBJ torus and a PLY sphere
@@ -196,9 +194,5 @@ fn xml_anisotropic_matches_its_mitsuba_reference() {
 #[test]
 fn xml_anisotropic_turned_lobe_is_detected() {
     let m = import("xml_anisotropic", &[("au", "0.4"), ("av", "0.05")]);
-    let rr = m.rr_depth.unwrap_or(5);
-    assert!(
-        compare("xml_anisotropic", &m.desc, rr, MIS, 256, 1900).is_err(),
-        "xml_anisotropic.xml with the torus's lobe turned went undetected"
-    );
+    assert_detected("xml_anisotropic", &m, 1900, "with the torus's lobe turned");
 }

@@ -125,12 +125,7 @@ fn plastic_scene_strategies_agree() {
         reference("plastic_lights.exr"),
         reference("plastic_lights.var.exr"),
     );
-    let stored_var: Vec<[f64; 3]> = stored
-        .1
-        .data
-        .iter()
-        .map(|c| [c.x as f64, c.y as f64, c.z as f64])
-        .collect();
+    let stored_var = variance_image(&stored.1);
     // Direct lighting only is cheap: its MIS reference is rendered here.
     let direct = render(
         &scene,

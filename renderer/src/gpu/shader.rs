@@ -225,8 +225,8 @@ impl Features {
             }
         }
         f.has_background |= scene.background_light.is_some();
-        f.has_anisotropic = scene.materials.iter().any(Material::is_anisotropic);
         for m in &scene.materials {
+            f.has_anisotropic |= m.is_anisotropic();
             match m {
                 Material::Diffuse(_) => {}
                 Material::Conductor(c) => {

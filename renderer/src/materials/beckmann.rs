@@ -113,7 +113,7 @@ fn sample_slopes(cos: f32, sin: f32, u: Vec2) -> Vec2 {
 }
 
 /// Samples a microfacet normal from the distribution of normals visible from `wo` (wo.z > 0),
-/// with pdf [`visible_normal_pdf`].
+/// with pdf G1(wo)·max(0, wo·h)·D(h)/wo.z ([`super::Microfacet::visible_normal_pdf`]).
 pub fn sample_visible_normal(alpha_u: f32, alpha_v: f32, wo: Vec3, u: Vec2) -> Vec3 {
     // Stretch to unit roughness; the visible slopes there are the unit-roughness ones.
     let w = Vec3::new(alpha_u * wo.x, alpha_v * wo.y, wo.z).normalize_or(Vec3::Z);
@@ -128,15 +128,6 @@ pub fn sample_visible_normal(alpha_u: f32, alpha_v: f32, wo: Vec3, u: Vec2) -> V
     let sx = alpha_u * (cos_phi * s.x - sin_phi * s.y);
     let sy = alpha_v * (sin_phi * s.x + cos_phi * s.y);
     Vec3::new(-sx, -sy, 1.0).normalize()
-}
-
-/// Solid-angle pdf of [`sample_visible_normal`]: G1(wo)·max(0, wo·h)·D(h)/wo.z.
-#[inline]
-pub fn visible_normal_pdf(alpha_u: f32, alpha_v: f32, wo: Vec3, h: Vec3) -> f32 {
-    if wo.z <= 0.0 {
-        return 0.0;
-    }
-    g1(alpha_u, alpha_v, wo) * wo.dot(h).max(0.0) * d(alpha_u, alpha_v, h) / wo.z
 }
 
 #[cfg(test)]

@@ -6,6 +6,16 @@ use super::*;
 use crate::materials::ggx::tests::{assert_moments_match, hemisphere_quadrature};
 use crate::rng::Rng;
 
+/// The visible-normal pdf of Beckmann (α_u, α_v), through the one definition of it.
+fn visible_normal_pdf(alpha_u: f32, alpha_v: f32, wo: Vec3, h: Vec3) -> f32 {
+    crate::materials::Microfacet {
+        distribution: crate::materials::Distribution::Beckmann,
+        alpha_u,
+        alpha_v,
+    }
+    .visible_normal_pdf(wo, h)
+}
+
 fn dir(theta_deg: f32, phi_deg: f32) -> Vec3 {
     let (t, p) = (theta_deg.to_radians(), phi_deg.to_radians());
     Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())

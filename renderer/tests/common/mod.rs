@@ -74,6 +74,14 @@ pub fn reference(file: &str) -> Image {
     Image::read(&data_dir().join("refs").join(file)).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// A variance image (a reference's `NAME.var.exr`) as the z-test's per-pixel f64 variances.
+pub fn variance_image(img: &Image) -> Vec<[f64; 3]> {
+    img.data
+        .iter()
+        .map(|c| [c.x as f64, c.y as f64, c.z as f64])
+        .collect()
+}
+
 /// Renders `spp` samples per pixel.
 pub fn render(scene: &Arc<Scene>, settings: Settings, spp: u32, seed: u32) -> Progressive {
     let mut r = Progressive::new(scene.clone(), settings, seed);
@@ -115,11 +123,7 @@ pub fn test_against_at(
     let mean = film.mean();
     let var = film.variance_of_mean();
     let ref_var: Vec<[f64; 3]> = match reference_var {
-        Some(v) => v
-            .data
-            .iter()
-            .map(|c| [c.x as f64, c.y as f64, c.z as f64])
-            .collect(),
+        Some(v) => variance_image(v),
         None => vec![[0.0; 3]; reference.data.len()],
     };
     assert_eq!(

@@ -25,11 +25,12 @@
 use crate::common;
 use crate::gpu_common;
 use common::protocol::decide;
-use common::{LOCAL_BIAS_MATERIALS, STRATEGIES, data_dir, reference, scene_with_scaled_albedo};
+use common::{
+    LOCAL_BIAS_MATERIALS, STRATEGIES, data_dir, reference, scene_with_scaled_albedo, variance_image,
+};
 use gpu_common::images::{
     SAME_SEED_MAX_RELMSE, film_image_z_test_at, gpu_render, same_seed_check, same_seed_check_spp,
 };
-use lumis::image_io::Image;
 use lumis::integrator::{Settings, Strategy};
 use lumis::lights::{LightSampling, LightSelection};
 use lumis::scene::Scene;
@@ -46,13 +47,6 @@ fn settings(strategy: Strategy, light_sampling: LightSampling) -> Settings {
         light_sampling,
         ..Settings::default()
     }
-}
-
-fn variance_image(img: &Image) -> Vec<[f64; 3]> {
-    img.data
-        .iter()
-        .map(|c| [c.x as f64, c.y as f64, c.z as f64])
-        .collect()
 }
 
 /// GPU samples per pixel of the MIS renders, per scene.

@@ -16,7 +16,7 @@
 use crate::common;
 use crate::gpu_common;
 use common::protocol::decide;
-use common::{STRATEGIES, data_dir, reference};
+use common::{STRATEGIES, data_dir, reference, variance_image};
 use gpu_common::images::{film_image_z_test_at, gpu_render, same_seed_check};
 use lumis::integrator::Settings;
 use lumis::scene::Scene;
@@ -50,11 +50,7 @@ fn check(name: &str) -> Vec<String> {
         })
         .collect();
     let reference_img = reference(&format!("{name}.exr"));
-    let reference_var: Vec<[f64; 3]> = reference(&format!("{name}.var.exr"))
-        .data
-        .iter()
-        .map(|c| [c.x as f64, c.y as f64, c.z as f64])
-        .collect();
+    let reference_var = variance_image(&reference(&format!("{name}.var.exr")));
     let mis = settings(STRATEGIES[3]);
     let what = format!("gpu {name}.xml {:?} vs Mitsuba", mis.strategy);
     let decision = decide(&what, MIS_SEED, SPP, |seed, n, alpha| {

@@ -11,7 +11,7 @@
 use crate::common;
 use crate::gpu_common;
 use common::protocol::decide;
-use common::{STRATEGIES, data_dir, reference};
+use common::{STRATEGIES, data_dir, reference, variance_image};
 use gpu_common::images::{film_image_z_test_at, gpu_render, same_seed_check};
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::lights::LightSampling;
@@ -81,11 +81,7 @@ fn sobol_same_seed_gives_the_cpu_image() {
 fn gpu_sobol_seed_cornell_is_unbiased() {
     let scene = scene("seed_cornell");
     let reference_img = reference("seed_cornell.exr");
-    let reference_var: Vec<[f64; 3]> = reference("seed_cornell.var.exr")
-        .data
-        .iter()
-        .map(|c| [c.x as f64, c.y as f64, c.z as f64])
-        .collect();
+    let reference_var = variance_image(&reference("seed_cornell.var.exr"));
     let mis = Strategy::Mis {
         heuristic: Heuristic::Power,
     };
