@@ -44,6 +44,7 @@ pub mod lights;
 pub mod materials;
 pub mod math;
 pub mod metrics;
+pub mod quadrature;
 // The mutation points are in the renderer (constant 1 without the `mutants` feature); choosing
 // and applying a mutant is test harness, public only to the tests.
 #[cfg(any(test, feature = "testing", feature = "mutants"))]

@@ -38,7 +38,7 @@ use rayon::prelude::*;
 /// Family-wise significance level.
 const ALPHA: f64 = 0.01;
 /// Number of χ² tests in the family (every case of the suite).
-const N_TESTS: usize = 429 + 49;
+const N_TESTS: usize = 429 + 49 + 25;
 
 /// Runs every case with `samples` samples and asserts that all pass; prints one line per case
 /// and the smallest p-value.
@@ -91,6 +91,19 @@ fn chi2_materials() {
 #[test]
 fn chi2_microfacets() {
     run_cases("microfacets", suite::microfacet_cases(), 1_000_000, 9000);
+}
+
+/// Plastics in Mitsuba's coupling (issue 39 item 2; `suite::mitsuba_plastic_cases`): the coat
+/// picked with Mitsuba's probability, its lobe by visible normals (GGX and Beckmann), the base
+/// by the cosine. Seed fixed before the first run.
+#[test]
+fn chi2_mitsuba_plastics() {
+    run_cases(
+        "Mitsuba plastics",
+        suite::mitsuba_plastic_cases(),
+        1_000_000,
+        9200,
+    );
 }
 
 #[test]

@@ -6,7 +6,7 @@
 use super::light_shape::{Keep, LightShape, PlanarLight};
 use glam::DVec3;
 use lumis::scene::desc::Distribution;
-use lumis::scene::{FresnelDesc, GeometryDesc, MaterialDesc, SceneDesc};
+use lumis::scene::{FresnelDesc, GeometryDesc, MaterialDesc, PlasticModel, SceneDesc};
 use std::ops::RangeInclusive;
 
 /// One-click IORs offered for a dielectric.
@@ -83,21 +83,45 @@ pub fn set_aspect(m: &mut MaterialDesc, ratio: f64) {
     }
 }
 
-/// The microfacet distribution of a conductor or dielectric.
+/// The microfacet distribution of a conductor, dielectric or Mitsuba-coupled plastic.
 pub fn distribution(m: &MaterialDesc) -> Option<Distribution> {
     match m {
         MaterialDesc::Conductor { distribution, .. }
-        | MaterialDesc::Dielectric { distribution, .. } => Some(*distribution),
+        | MaterialDesc::Dielectric { distribution, .. }
+        | MaterialDesc::Plastic {
+            model: PlasticModel::Mitsuba { distribution, .. },
+            ..
+        } => Some(*distribution),
         _ => None,
     }
 }
 
-/// Sets the microfacet distribution of a conductor or dielectric (ignored for the others).
+/// Sets the microfacet distribution of a conductor, dielectric or Mitsuba-coupled plastic
+/// (ignored for the others).
 pub fn set_distribution(m: &mut MaterialDesc, d: Distribution) {
     if let MaterialDesc::Conductor { distribution, .. }
-    | MaterialDesc::Dielectric { distribution, .. } = m
+    | MaterialDesc::Dielectric { distribution, .. }
+    | MaterialDesc::Plastic {
+        model: PlasticModel::Mitsuba { distribution, .. },
+        ..
+    } = m
     {
         *distribution = d;
+    }
+}
+
+/// A plastic's coupling of base and coat.
+pub fn plastic_model(m: &MaterialDesc) -> Option<PlasticModel> {
+    match m {
+        MaterialDesc::Plastic { model, .. } => Some(*model),
+        _ => None,
+    }
+}
+
+/// Sets a plastic's coupling (ignored for the other materials).
+pub fn set_plastic_model(m: &mut MaterialDesc, value: PlasticModel) {
+    if let MaterialDesc::Plastic { model, .. } = m {
+        *model = value;
     }
 }
 
@@ -430,6 +454,37 @@ mod tests {
     }
 
     #[test]
+    fn a_plastics_coupling_and_its_distribution_are_editable() {
+        let mut p = MaterialDesc::Plastic {
+            albedo: DVec3::splat(0.5),
+            alpha: 0.2,
+            ior: 1.5,
+            specular: DVec3::ONE,
+            model: PlasticModel::Lumis,
+        };
+        // lumis' coat is GGX only: no menu.
+        assert_eq!(distribution(&p), None);
+        set_distribution(&mut p, Distribution::Beckmann);
+        assert_eq!(plastic_model(&p), Some(PlasticModel::Lumis));
+        let mitsuba = PlasticModel::Mitsuba {
+            distribution: Distribution::Ggx,
+            nonlinear: true,
+        };
+        set_plastic_model(&mut p, mitsuba);
+        assert_eq!(distribution(&p), Some(Distribution::Ggx));
+        set_distribution(&mut p, Distribution::Beckmann);
+        assert_eq!(
+            plastic_model(&p),
+            Some(PlasticModel::Mitsuba {
+                distribution: Distribution::Beckmann,
+                nonlinear: true
+            })
+        );
+        assert_eq!(reparsed(&p), Ok(p.clone()));
+        assert_eq!(plastic_model(&glass(0.1)), None);
+    }
+
+    #[test]
     fn no_edit_makes_an_invalid_dielectric() {
         let iors = [
             1.0,
@@ -496,6 +551,7 @@ mod tests {
             alpha: 0.1,
             ior: 1.5,
             specular: DVec3::ONE,
+            model: Default::default(),
         };
         assert_eq!(ior_slider_range(&p, 1.5), 1.01..=3.0);
     }

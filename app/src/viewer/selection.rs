@@ -7,6 +7,7 @@ use super::edit::{self, LightEdit};
 use super::light_shape::{DISK_STOP, Keep, LightShape, MAX_SIDES};
 use super::pick::pick;
 use glam::DVec3;
+use lumis::scene::PlasticModel;
 use lumis::scene::desc::Distribution;
 
 impl ViewerApp {
@@ -112,6 +113,38 @@ impl ViewerApp {
             edit::set_aspect(m, r);
             textures.alpha = None;
             changed = true;
+        }
+        // A plastic's coupling: lumis' (energy conserving) or Mitsuba's, with its nonlinear
+        // internal bounces. Mitsuba's tabulates one α, so a textured α becomes its mean.
+        if let Some(mut model) = edit::plastic_model(m) {
+            let mitsuba = PlasticModel::Mitsuba {
+                distribution: Distribution::Ggx,
+                nonlinear: false,
+            };
+            let is_mitsuba = |p: &PlasticModel| matches!(p, PlasticModel::Mitsuba { .. });
+            let mut choice = is_mitsuba(&model);
+            if combo(ui, "Coupling", &mut choice, &[false, true], |c| {
+                if c {
+                    "Mitsuba 3"
+                } else {
+                    "lumis (energy conserving)"
+                }
+                .into()
+            }) {
+                edit::set_plastic_model(m, if choice { mitsuba } else { PlasticModel::Lumis });
+                if choice {
+                    textures.alpha = None;
+                }
+                changed = true;
+            }
+            if let PlasticModel::Mitsuba { nonlinear, .. } = &mut model
+                && ui
+                    .checkbox(nonlinear, "Nonlinear (tinted internal bounces)")
+                    .changed()
+            {
+                edit::set_plastic_model(m, model);
+                changed = true;
+            }
         }
         if let Some(mut d) = edit::distribution(m) {
             let all = [Distribution::Ggx, Distribution::Beckmann];

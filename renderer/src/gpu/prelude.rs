@@ -18,7 +18,7 @@ use super::scene::{
 use crate::camera::filter;
 use crate::geometry::{mesh_attributes, primitive, ray, wide_bvh};
 use crate::lights::{polygon, sphere};
-use crate::materials::{beckmann, coat_albedo, ggx, mix, plastic_textured};
+use crate::materials::{beckmann, coat_albedo, ggx, mix, plastic_mitsuba, plastic_textured};
 use crate::sampler::{dim, owen, zsobol};
 use crate::sampling::{
     self, elliptic, projected_solid_angle, spherical_ellipse, spherical_rectangle,
@@ -165,6 +165,10 @@ pub fn constants() -> Vec<Constant> {
             const { count(plastic_textured::GRID_SIZE) },
         ),
         f32c("COAT_GRID_LN_FIRST", plastic_textured::ln_first()),
+        u32c(
+            "TRANSMITTANCE_SIZE",
+            const { count(plastic_mitsuba::TRANSMITTANCE_SIZE) },
+        ),
         // Mixes: SplitMix64's increment as (lo, hi) u32 halves.
         u32c("MIX_GOLDEN_LO", mix::GOLDEN as u32),
         u32c("MIX_GOLDEN_HI", (mix::GOLDEN >> 32) as u32),
@@ -415,6 +419,7 @@ mod tests {
             ("SMOOTH_ALPHA", Value::F32(ggx::SMOOTH_ALPHA)),
             ("E_TABLE_SIZE", Value::U32(coat_albedo::E_TABLE_SIZE as u32)),
             ("COAT_GRID_SIZE", Value::U32(48)),
+            ("TRANSMITTANCE_SIZE", Value::U32(64)),
             ("COAT_GRID_LN_FIRST", Value::F32(ggx::SMOOTH_ALPHA.ln())),
             ("MIX_GOLDEN_LO", Value::U32(0x7f4a_7c15)),
             ("MIX_GOLDEN_HI", Value::U32(0x9e37_79b9)),

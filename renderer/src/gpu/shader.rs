@@ -68,6 +68,7 @@ const MODULES: &[Module] = &[
     module!("materials/diffuse.wgsl"),
     module!("materials/conductor.wgsl"),
     module!("materials/plastic.wgsl"),
+    module!("materials/plastic_mitsuba.wgsl"),
     module!("materials/dielectric.wgsl"),
     module!("lights/mod.wgsl"),
     module!("lights/light_sampler.wgsl"),
@@ -130,7 +131,8 @@ pub struct Features {
     /// A microfacet lobe rough enough not to be a mirror (conductor, dielectric or plastic coat;
     /// any distribution: the GGX functions and the distribution dispatch).
     pub has_ggx: bool,
-    /// A conductor or dielectric with Beckmann microfacets (`materials/beckmann.wgsl`).
+    /// A conductor, dielectric or Mitsuba-coupled plastic with Beckmann microfacets
+    /// (`materials/beckmann.wgsl`).
     pub has_beckmann: bool,
     /// A rough material with α_u ≠ α_v: shading frames along the surface's ∂p/∂u
     /// (`geometry/tangent.wgsl`, mesh UVs).
@@ -139,8 +141,10 @@ pub struct Features {
     pub has_conductor: bool,
     /// Conductors with a complex IOR (exact Fresnel).
     pub has_complex_fresnel: bool,
-    /// Plastics.
+    /// Plastics with lumis' coupling.
     pub has_plastic: bool,
+    /// Plastics with Mitsuba's coupling (`materials/plastic_mitsuba.wgsl`).
+    pub has_mitsuba_plastic: bool,
     /// Dielectrics (glass): transmission in the path tracer.
     pub has_dielectric: bool,
     /// Disk shapes.
@@ -180,6 +184,7 @@ impl Features {
             has_conductor: true,
             has_complex_fresnel: true,
             has_plastic: true,
+            has_mitsuba_plastic: true,
             has_dielectric: true,
             has_disk_shape: true,
             has_sphere_shape: true,
@@ -237,8 +242,11 @@ impl Features {
                     f.has_complex_fresnel |= matches!(c.fresnel, ConductorFresnel::Complex { .. });
                 }
                 Material::Plastic(p) => {
-                    f.has_plastic = true;
+                    let mitsuba = p.mitsuba_coat().is_some();
+                    f.has_plastic |= !mitsuba;
+                    f.has_mitsuba_plastic |= mitsuba;
                     f.has_ggx |= !is_smooth(p.alpha());
+                    f.has_beckmann |= p.distribution() == Distribution::Beckmann;
                 }
                 Material::Dielectric(d) => {
                     f.has_dielectric = true;
@@ -266,7 +274,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 25] {
+    fn defines(&self) -> [(&'static str, bool); 27] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -292,7 +300,13 @@ impl Features {
             ("HAS_CONDUCTOR", self.has_conductor),
             ("HAS_COMPLEX_FRESNEL", self.has_complex_fresnel),
             ("HAS_PLASTIC", self.has_plastic),
+            ("HAS_MITSUBA_PLASTIC", self.has_mitsuba_plastic),
             ("HAS_DIELECTRIC", self.has_dielectric),
+            // The exact dielectric Fresnel: glass and Mitsuba's plastic coat.
+            (
+                "HAS_DIELECTRIC_FRESNEL",
+                self.has_dielectric || self.has_mitsuba_plastic,
+            ),
             ("HAS_DISK_SHAPE", self.has_disk_shape),
             ("HAS_SPHERE_SHAPE", self.has_sphere_shape),
             ("HAS_SHADING_NORMALS", self.has_shading_normals),
@@ -333,13 +347,19 @@ impl Features {
             "lights/background.wgsl" => lights && self.has_background,
             "lights/envmap.wgsl" => self.has_envmap,
             "materials/fresnel.wgsl" => {
-                self.has_conductor || self.has_plastic || self.has_dielectric
+                self.has_conductor
+                    || self.has_plastic
+                    || self.has_mitsuba_plastic
+                    || self.has_dielectric
             }
             "materials/ggx.wgsl" => self.has_ggx,
             "materials/beckmann.wgsl" => self.has_ggx && self.has_beckmann,
-            "materials/microfacet.wgsl" => self.has_conductor || self.has_dielectric,
+            "materials/microfacet.wgsl" => {
+                self.has_conductor || self.has_dielectric || self.has_mitsuba_plastic
+            }
             "materials/conductor.wgsl" => self.has_conductor,
             "materials/plastic.wgsl" => self.has_plastic,
+            "materials/plastic_mitsuba.wgsl" => self.has_mitsuba_plastic,
             "materials/dielectric.wgsl" => self.has_dielectric,
             // A disk light's ellipse samples find their point as a disk hit does.
             "geometry/disk.wgsl" => self.has_disk_shape || (lights && self.has_disk_light),

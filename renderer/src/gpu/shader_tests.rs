@@ -198,8 +198,10 @@ mod tests {
                 has_quad_light: true,
                 ..Features::default()
             },
+            // Mitsuba's plastic reads the dielectric Fresnel (checked below).
             Features {
                 has_dielectric: false,
+                has_mitsuba_plastic: false,
                 ..Features::all()
             },
         ];
@@ -211,6 +213,20 @@ mod tests {
                     "{f:?}: {name:?} in a program without glass"
                 );
             }
+        }
+        // Mitsuba's plastic coat: the dielectric Fresnel, nothing of transmission.
+        let coat = program_body(&Features {
+            has_mitsuba_plastic: true,
+            has_ggx: true,
+            has_lights: true,
+            ..Features::default()
+        });
+        assert!(coat.contains("fn fresnel_dielectric("));
+        for name in &TRANSMISSION_CODE[1..] {
+            assert!(
+                !coat.contains(name),
+                "{name:?} in a Mitsuba plastic's program"
+            );
         }
         // Smooth glass alone needs Fresnel and refraction but no GGX.
         let smooth = program_body(&Features {

@@ -53,7 +53,7 @@ fn fresnel_conductor(cos_theta_i: f32, eta: vec3f, k: vec3f) -> vec3f {
     );
 }
 
-// #if HAS_DIELECTRIC
+// #if HAS_DIELECTRIC_FRESNEL
 // `cos_theta_i` against the normal of the side of index 1, `eta` = η_inside/η_outside; a negative
 // cosine is seen from inside, with 1/η. Total internal reflection gives 1.
 fn fresnel_dielectric(cos_theta_i: f32, eta_in: f32) -> f32 {
@@ -73,6 +73,9 @@ fn fresnel_dielectric(cos_theta_i: f32, eta_in: f32) -> f32 {
     let r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
     return clamp(0.5 * (r_parl * r_parl + r_perp * r_perp), 0.0, 1.0);
 }
+// #endif
+
+// #if HAS_DIELECTRIC
 
 // `fresnel_dielectric` of a refraction from both of its cosines (outside, inside; both ≥ 0):
 // symmetric in the pair, where recomputing one from the other would cancel near the critical angle.

@@ -24,6 +24,7 @@ pub mod ggx;
 pub mod microfacet;
 pub mod mix;
 pub mod plastic;
+pub mod plastic_mitsuba;
 pub mod plastic_textured;
 #[cfg(test)]
 mod testing;

@@ -12,6 +12,8 @@
 //   Plastic:    a.xyz albedo, b.xyz coat tint, c = (α, F0, 1/(1 − E_avg) or 0, _); with a textured
 //               α, aux is its coat grid's offset and `material_at` makes it the hit's lower node
 //               table, b.w the blend weight of the next (`materials/plastic.wgsl`); b.w = 0 otherwise.
+//   Plastic with Mitsuba's coupling (MATERIAL_PLASTIC_MITSUBA): a.xyz albedo, b.xyz tint, b.w η,
+//               c the microfacet slot; aux its tables' offset (`materials/plastic_mitsuba.wgsl`).
 //   Mix:        (MATERIAL_MIX) resolved by `materials/mix.wgsl` before anything here sees the material.
 //   Dielectric: a.x ior, c.xyz the microfacet slot as a conductor's; never two-sided (its two
 //               sides are its two media).
@@ -76,6 +78,11 @@ fn material_eval(m: Material, wo: vec3f, wi: vec3f) -> vec3f {
             return plastic_eval_pdf(m, wo, wi).xyz;
         }
 // #endif
+// #if HAS_MITSUBA_PLASTIC
+        case MATERIAL_PLASTIC_MITSUBA: {
+            return plastic_mitsuba_eval_pdf(m, wo, wi).xyz;
+        }
+// #endif
 // #if HAS_DIELECTRIC
         case MATERIAL_DIELECTRIC: {
             return vec3f(dielectric_eval_pdf(m, wo, wi).x);
@@ -109,6 +116,11 @@ fn material_pdf_unmutated(m: Material, wo: vec3f, wi: vec3f) -> f32 {
             return plastic_eval_pdf(m, wo, wi).w;
         }
 // #endif
+// #if HAS_MITSUBA_PLASTIC
+        case MATERIAL_PLASTIC_MITSUBA: {
+            return plastic_mitsuba_eval_pdf(m, wo, wi).w;
+        }
+// #endif
 // #if HAS_DIELECTRIC
         case MATERIAL_DIELECTRIC: {
             return dielectric_eval_pdf(m, wo, wi).y;
@@ -135,6 +147,11 @@ fn material_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample 
 // #if HAS_PLASTIC
         case MATERIAL_PLASTIC: {
             s = plastic_sample(m, wo, u_lobe, u);
+        }
+// #endif
+// #if HAS_MITSUBA_PLASTIC
+        case MATERIAL_PLASTIC_MITSUBA: {
+            s = plastic_mitsuba_sample(m, wo, u_lobe, u);
         }
 // #endif
 // #if HAS_DIELECTRIC
@@ -183,7 +200,7 @@ fn material_at(m_in: Material, uv: vec2f) -> Material {
     let colour = bitcast<u32>(m.a.w);
     let alpha = bitcast<u32>(m.c.w);
     switch m.h.x {
-        case MATERIAL_DIFFUSE, MATERIAL_PLASTIC: {
+        case MATERIAL_DIFFUSE, MATERIAL_PLASTIC, MATERIAL_PLASTIC_MITSUBA: {
             // `Plastic::set_albedo` sets the albedo only: the coat's table and norm stay.
             if colour != NONE {
                 m.a = vec4f(texture_eval(colour, uv), m.a.w);
@@ -233,6 +250,11 @@ fn material_smooth_part(m: Material) -> bool {
 // #if HAS_PLASTIC
         case MATERIAL_PLASTIC: {
             return plastic_has_smooth_part(m);
+        }
+// #endif
+// #if HAS_MITSUBA_PLASTIC
+        case MATERIAL_PLASTIC_MITSUBA: {
+            return plastic_mitsuba_has_smooth_part(m);
         }
 // #endif
 // #if HAS_DIELECTRIC

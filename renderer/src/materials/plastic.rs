@@ -14,9 +14,17 @@
 //!
 //! This is the original program's "Microfacet" material done right: its F0 was not squared and
 //! both of its lobes used the full colour, so it reflected more energy than it received.
-//! WGSL twin: `materials/plastic.wgsl`.
+//!
+//! A plastic may instead couple its lobes as Mitsuba 3's `plastic`/`roughplastic` do (exact
+//! Fresnel, GGX or Beckmann, internal bounces; [`super::plastic_mitsuba`]): one material with two
+//! couplings rather than two materials, because both are the same two lobes with the same
+//! parameters (albedo, α, IOR, tint, the same textures but a textured α) that the viewer edits
+//! alike, and a scene or the viewer can switch one plastic between them.
+//! WGSL twin: `materials/plastic.wgsl` (of lumis' coupling; Mitsuba's has its own twin).
 
 use super::coat_albedo::CoatAlbedo;
+use super::microfacet::Distribution;
+use super::plastic_mitsuba::MitsubaCoat;
 use super::plastic_textured::CoatGrid;
 use super::{BsdfSample, fresnel, ggx};
 use crate::math::{luminance, reflect};
@@ -34,6 +42,16 @@ fn diffuse_norm(coat: &CoatAlbedo) -> f32 {
     }
 }
 
+/// How the base is coupled to the coat.
+#[derive(Clone, Debug, PartialEq)]
+enum Coupling {
+    /// lumis': the coat's E(μ) and E_avg, and 1/(1 − E_avg), or 0 when the coat reflects
+    /// everything (no light reaches the base).
+    Lumis { coat: CoatAlbedo, diffuse_norm: f32 },
+    /// Mitsuba 3's.
+    Mitsuba(MitsubaCoat),
+}
+
 /// A Lambertian base under a (rough) dielectric coat.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Plastic {
@@ -42,10 +60,7 @@ pub struct Plastic {
     ior: f32,
     specular: Vec3,
     f0: f32,
-    /// The coat's E(μ) and E_avg.
-    coat: CoatAlbedo,
-    /// 1/(1 − E_avg), or 0 when the coat reflects everything (no light reaches the base).
-    diffuse_norm: f32,
+    coupling: Coupling,
 }
 
 impl Plastic {
@@ -60,20 +75,72 @@ impl Plastic {
             ior,
             specular,
             f0,
-            diffuse_norm: diffuse_norm(&coat),
-            coat,
+            coupling: Coupling::Lumis {
+                diffuse_norm: diffuse_norm(&coat),
+                coat,
+            },
         }
+    }
+
+    /// The same plastic coupled as Mitsuba 3's `plastic` (α below [`ggx::SMOOTH_ALPHA`]) or
+    /// `roughplastic` with microfacets `distribution`, `nonlinear` or not (see
+    /// [`super::plastic_mitsuba`]). Builds its tables for a rough coat.
+    pub fn new_mitsuba(
+        albedo: Vec3,
+        alpha: f32,
+        ior: f32,
+        specular: Vec3,
+        distribution: Distribution,
+        nonlinear: bool,
+    ) -> Plastic {
+        // Mitsuba's sampling weight reads the channel means of the tint and (the mean of) the
+        // albedo.
+        let mean = |c: Vec3| c.element_sum() / 3.0;
+        let coat = MitsubaCoat::new(
+            distribution,
+            alpha,
+            ior,
+            nonlinear,
+            mean(albedo),
+            mean(specular),
+        );
+        Plastic {
+            albedo,
+            alpha,
+            ior,
+            specular,
+            f0: fresnel::schlick_f0_from_ior(ior),
+            coupling: Coupling::Mitsuba(coat),
+        }
+    }
+
+    /// Mitsuba's coupling, if this plastic has it.
+    pub fn mitsuba_coat(&self) -> Option<&MitsubaCoat> {
+        match &self.coupling {
+            Coupling::Mitsuba(m) => Some(m),
+            Coupling::Lumis { .. } => None,
+        }
+    }
+
+    /// The coat's microfacet distribution (lumis' coupling: GGX).
+    pub fn distribution(&self) -> Distribution {
+        self.mitsuba_coat()
+            .map_or(Distribution::Ggx, |m| m.microfacet().distribution)
     }
 
     /// Sets the coat roughness to `alpha` (a texture's value at a hit, clamped to [0, 1]) with
     /// the coat table interpolated from `grid`, built for this plastic's IOR
     /// ([`CoatGrid::coat`]): no table is built here. Eval, sample and pdf all read the one
     /// interpolated table, so they stay consistent with each other.
+    /// lumis' coupling only (a Mitsuba plastic has no textured α: the scene refuses it).
     pub fn set_alpha_from_grid(&mut self, alpha: f32, grid: &CoatGrid) {
         debug_assert_eq!(grid.f0(), self.f0, "the grid of another IOR");
         self.alpha = alpha.clamp(0.0, 1.0);
-        self.coat = grid.coat(self.alpha);
-        self.diffuse_norm = diffuse_norm(&self.coat);
+        let coat = grid.coat(self.alpha);
+        self.coupling = Coupling::Lumis {
+            diffuse_norm: diffuse_norm(&coat),
+            coat,
+        };
     }
 
     /// Normal reflectance F0 of the coat (Schlick), from its IOR.
@@ -101,30 +168,41 @@ impl Plastic {
     pub fn specular(&self) -> Vec3 {
         self.specular
     }
-    /// The coat's E(μ) table and E_avg (for upload to the GPU).
-    pub fn coat(&self) -> &CoatAlbedo {
-        &self.coat
+    /// lumis' coupling's E(μ) table and E_avg (for upload to the GPU); `None` for Mitsuba's.
+    pub fn coat(&self) -> Option<&CoatAlbedo> {
+        match &self.coupling {
+            Coupling::Lumis { coat, .. } => Some(coat),
+            Coupling::Mitsuba(_) => None,
+        }
     }
 
     fn is_smooth(&self) -> bool {
         ggx::is_smooth(self.alpha)
     }
 
-    /// The coat's directional albedo E(μ) with tint 1.
+    /// The share of light at μ that the coat keeps from the base: its directional albedo E(μ)
+    /// with tint 1 (lumis' coupling), 1 − t(μ) (Mitsuba's).
     #[inline]
     pub fn coat_albedo(&self, mu: f32) -> f32 {
-        self.coat.eval(mu)
+        match &self.coupling {
+            Coupling::Lumis { coat, .. } => coat.eval(mu),
+            Coupling::Mitsuba(m) => 1.0 - m.transmittance(mu),
+        }
     }
 
     /// True if `eval` can be non-zero: a rough coat, or a base that receives light.
     pub fn has_smooth_part(&self) -> bool {
-        !self.is_smooth() || (self.albedo.max_element() > 0.0 && self.diffuse_norm > 0.0)
+        let receives = match &self.coupling {
+            Coupling::Lumis { diffuse_norm, .. } => *diffuse_norm > 0.0,
+            Coupling::Mitsuba(_) => true,
+        };
+        !self.is_smooth() || (self.albedo.max_element() > 0.0 && receives)
     }
 
     /// Probability of sampling the coat given E(μo): proportional to each lobe's albedo.
-    fn coat_probability(&self, e_o: f32) -> f32 {
+    fn coat_probability(&self, e_o: f32, diffuse_norm: f32) -> f32 {
         let s = (luminance(self.specular) * e_o).max(0.0);
-        let d = if self.diffuse_norm > 0.0 {
+        let d = if diffuse_norm > 0.0 {
             (luminance(self.albedo) * (1.0 - e_o)).max(0.0)
         } else {
             0.0
@@ -140,13 +218,17 @@ impl Plastic {
 
     /// f·cosθi and pdf of the non-delta lobes, computed together so that they always agree.
     fn eval_pdf(&self, wo: Vec3, wi: Vec3) -> (Vec3, f32) {
+        let (coat, diffuse_norm) = match &self.coupling {
+            Coupling::Lumis { coat, diffuse_norm } => (coat, *diffuse_norm),
+            Coupling::Mitsuba(m) => return m.eval_pdf(self.albedo, self.specular, wo, wi),
+        };
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return (Vec3::ZERO, 0.0);
         }
-        let e_o = self.coat_albedo(wo.z);
-        let e_i = self.coat_albedo(wi.z);
-        let p_coat = self.coat_probability(e_o);
-        let k = FRAC_1_PI * (1.0 - e_o) * (1.0 - e_i) * self.diffuse_norm * wi.z;
+        let e_o = coat.eval(wo.z);
+        let e_i = coat.eval(wi.z);
+        let p_coat = self.coat_probability(e_o, diffuse_norm);
+        let k = FRAC_1_PI * (1.0 - e_o) * (1.0 - e_i) * diffuse_norm * wi.z;
         let mut f = self.albedo * k;
         let mut pdf = (1.0 - p_coat) * FRAC_1_PI * wi.z;
         if !self.is_smooth() {
@@ -173,10 +255,14 @@ impl Plastic {
     /// Picks the coat with probability ∝ its albedo (`u_lobe`), then samples it by visible normals
     /// (or its mirror direction) or the base by the cosine.
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        let (coat, diffuse_norm) = match &self.coupling {
+            Coupling::Lumis { coat, diffuse_norm } => (coat, *diffuse_norm),
+            Coupling::Mitsuba(m) => return m.sample(self.albedo, self.specular, wo, u_lobe, u),
+        };
         if wo.z <= 0.0 {
             return None;
         }
-        let p_coat = self.coat_probability(self.coat_albedo(wo.z));
+        let p_coat = self.coat_probability(coat.eval(wo.z), diffuse_norm);
         let wi = if u_lobe < p_coat {
             if self.is_smooth() {
                 let wi = Vec3::new(-wo.x, -wo.y, wo.z);

@@ -54,7 +54,10 @@ impl MaterialTextures {
         let ok = match base {
             Material::Diffuse(_) => self.reflectance.is_none() && self.alpha.is_none(),
             Material::Conductor(_) => self.albedo.is_none(),
-            Material::Plastic(_) => self.reflectance.is_none(),
+            // Mitsuba's coupling tabulates one α.
+            Material::Plastic(p) => {
+                self.reflectance.is_none() && (self.alpha.is_none() || p.coat().is_some())
+            }
             Material::Dielectric(_) => self.albedo.is_none() && self.reflectance.is_none(),
         };
         if ok {
@@ -220,7 +223,11 @@ mod tests {
             };
             let a = tex.eval_scalar(uv);
             assert_eq!(p.alpha(), a);
-            assert_eq!(p.coat(), &grid.coat(a), "the coat comes from the grid");
+            assert_eq!(
+                p.coat(),
+                Some(&grid.coat(a)),
+                "the coat comes from the grid"
+            );
             // The untextured parameters are the base's.
             assert_eq!(
                 (p.albedo(), p.ior(), p.specular()),

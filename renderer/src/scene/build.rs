@@ -1,7 +1,9 @@
 //! Turns a validated [`SceneDesc`] into the render-ready [`Scene`]: f32 primitives in a BVH,
 //! materials, and one light per emitting shape (per triangle for `triangles` meshes).
 
-use super::desc::{BackgroundDesc, FresnelDesc, GeometryDesc, MaterialDesc, SceneDesc};
+use super::desc::{
+    BackgroundDesc, FresnelDesc, GeometryDesc, MaterialDesc, PlasticModel, SceneDesc,
+};
 use super::error::SceneError;
 use super::parse_shapes::unit;
 use crate::camera::Camera;
@@ -95,11 +97,30 @@ fn material(desc: &MaterialDesc) -> Material {
             alpha,
             ior,
             specular,
+            model: PlasticModel::Lumis,
         } => Material::Plastic(Plastic::new(
             v(*albedo),
             *alpha as f32,
             *ior as f32,
             v(*specular),
+        )),
+        MaterialDesc::Plastic {
+            albedo,
+            alpha,
+            ior,
+            specular,
+            model:
+                PlasticModel::Mitsuba {
+                    distribution,
+                    nonlinear,
+                },
+        } => Material::Plastic(Plastic::new_mitsuba(
+            v(*albedo),
+            *alpha as f32,
+            *ior as f32,
+            v(*specular),
+            *distribution,
+            *nonlinear,
         )),
         MaterialDesc::Dielectric {
             ior,

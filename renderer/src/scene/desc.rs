@@ -251,16 +251,19 @@ pub enum MaterialDesc {
         /// How the Fresnel term is given.
         fresnel: FresnelDesc,
     },
-    /// Lambertian base under a GGX dielectric coating with Schlick Fresnel.
+    /// Lambertian base under a dielectric coating: lumis' (GGX, Schlick Fresnel, energy
+    /// conserving) or Mitsuba's coupling (`model`).
     Plastic {
         /// Base reflectance, in [0, 1].
         albedo: DVec3,
-        /// GGX roughness α of the coating, in [0, 1].
+        /// Roughness α of the coating, in [0, 1].
         alpha: f64,
         /// Index of refraction of the coating, > 1.
         ior: f64,
         /// Tint of the specular reflection, in [0, 1].
         specular: DVec3,
+        /// How the base is coupled to the coat.
+        model: PlasticModel,
     },
     /// A boundary between index 1 (the side the normal points to) and `ior`; smooth at α = 0,
     /// else rough (Walter et al. 2007). Never two-sided.
@@ -273,6 +276,21 @@ pub enum MaterialDesc {
         alpha_v: Option<f64>,
         /// The microfacet distribution of a rough interface.
         distribution: Distribution,
+    },
+}
+
+/// How a plastic couples its base to its coat (`materials/plastic.rs`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum PlasticModel {
+    /// lumis': GGX coat, Schlick Fresnel, energy conserving.
+    #[default]
+    Lumis,
+    /// Mitsuba 3's `plastic`/`roughplastic` (`materials/plastic_mitsuba.rs`).
+    Mitsuba {
+        /// The coat's microfacets.
+        distribution: Distribution,
+        /// Whether the base's internal bounces tint by its albedo.
+        nonlinear: bool,
     },
 }
 
@@ -535,10 +553,23 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
             alpha,
             ior,
             specular,
-        } => json!({
-            "type": "plastic", "albedo": vec3(*albedo), "alpha": alpha,
-            "ior": ior, "specular": vec3(*specular),
-        }),
+            model,
+        } => {
+            let mut obj = json!({
+                "type": "plastic", "albedo": vec3(*albedo), "alpha": alpha,
+                "ior": ior, "specular": vec3(*specular),
+            });
+            if let PlasticModel::Mitsuba {
+                distribution,
+                nonlinear,
+            } = model
+            {
+                obj["model"] = json!("mitsuba");
+                obj["distribution"] = json!(distribution.name());
+                obj["nonlinear"] = json!(nonlinear);
+            }
+            obj
+        }
         MaterialDesc::Dielectric {
             ior,
             alpha,

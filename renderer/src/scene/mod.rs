@@ -31,7 +31,7 @@ mod tests;
 pub use build::Scene;
 pub use desc::{
     BackgroundDesc, CameraDesc, EnvmapDesc, FilterDesc, FresnelDesc, GeometryDesc, MaterialDesc,
-    MaterialTextures, NamedMaterial, SceneDesc, ShapeDesc, TextureDesc,
+    MaterialTextures, NamedMaterial, PlasticModel, SceneDesc, ShapeDesc, TextureDesc,
 };
 pub use error::SceneError;
 pub use parse::{

@@ -2,7 +2,7 @@
 
 use super::desc::Distribution;
 use super::desc::{
-    FresnelDesc, MaterialDesc, MaterialTextures, MixDesc, NamedMaterial, TextureDesc,
+    FresnelDesc, MaterialDesc, MaterialTextures, MixDesc, NamedMaterial, PlasticModel, TextureDesc,
 };
 use super::error::SceneError;
 use super::parse_texture::{TextureLoader, TextureUse, texture_at};
@@ -77,7 +77,17 @@ fn parse_material(
         }
         "plastic" => {
             obj.only_keys(
-                &["type", "albedo", "alpha", "ior", "specular", "two_sided"],
+                &[
+                    "type",
+                    "albedo",
+                    "alpha",
+                    "ior",
+                    "specular",
+                    "two_sided",
+                    "model",
+                    "distribution",
+                    "nonlinear",
+                ],
                 true,
             )?;
             let ior = obj.opt_number("ior")?.unwrap_or(1.5);
@@ -91,11 +101,18 @@ fn parse_material(
             };
             let albedo = albedo(obj, loader, &mut t.albedo)?;
             let alpha = alpha(obj, loader, &mut t.alpha)?;
+            let model = plastic_model(obj)?;
+            if model != PlasticModel::Lumis && t.alpha.is_some() {
+                let msg = "a textured alpha needs lumis' coupling (Mitsuba's roughplastic has \
+                           none: its tables are built for one alpha)";
+                return Err(SceneError::new(obj.at("alpha"), msg));
+            }
             MaterialDesc::Plastic {
                 albedo,
                 alpha,
                 ior,
                 specular,
+                model,
             }
         }
         "dielectric" => {
@@ -381,6 +398,34 @@ fn distribution(obj: &Obj) -> Result<Distribution, SceneError> {
     })
 }
 
+/// A plastic's `model`: `"lumis"` (the default) or `"mitsuba"`, which alone takes
+/// `distribution` (default GGX) and `nonlinear` (default false).
+fn plastic_model(obj: &Obj) -> Result<PlasticModel, SceneError> {
+    let name = match obj.get("model") {
+        None => "lumis",
+        Some(_) => obj.string("model")?,
+    };
+    match name {
+        "lumis" => {
+            for key in ["distribution", "nonlinear"] {
+                if obj.get(key).is_some() {
+                    let msg = format!("`{key}` needs \"model\": \"mitsuba\" (lumis' coat is GGX)");
+                    return Err(SceneError::new(obj.at(key), msg));
+                }
+            }
+            Ok(PlasticModel::Lumis)
+        }
+        "mitsuba" => Ok(PlasticModel::Mitsuba {
+            distribution: distribution(obj)?,
+            nonlinear: obj.opt_bool("nonlinear")?.unwrap_or(false),
+        }),
+        other => Err(SceneError::new(
+            obj.at("model"),
+            format!("unknown plastic model `{other}` (expected lumis or mitsuba)"),
+        )),
+    }
+}
+
 /// Either `eta` + `k` or `reflectance` (a colour or a texture: then its mean, and `slot` is
 /// set), never both or a half.
 fn fresnel(
@@ -445,7 +490,8 @@ mod tests {
                 albedo: DVec3::splat(0.5),
                 alpha: 0.2,
                 ior: 1.5,
-                specular: DVec3::ONE
+                specular: DVec3::ONE,
+                model: Default::default(),
             }
         );
         assert!(matches!(

@@ -578,12 +578,43 @@ pub fn microfacet_cases() -> Vec<Case> {
     out
 }
 
+/// Plastics in Mitsuba's coupling (`materials/plastic_mitsuba.rs`), rough GGX and Beckmann
+/// coats at every angle of [`THETAS_DEG`] (the smooth coat's non-delta lobe is the cosine
+/// warp's, tested as such), named `mitsuba_plastic/{distribution}/a{α}/th{θ}`.
+pub fn mitsuba_plastic_cases() -> Vec<Case> {
+    use crate::materials::Distribution::{Beckmann, Ggx};
+    let mut out = Vec::new();
+    for (d, a, nonlinear) in [
+        (Ggx, 0.05, false),
+        (Ggx, 0.3, true),
+        (Beckmann, 0.05, false),
+        (Beckmann, 0.3, false),
+        (Beckmann, 1.0, true),
+    ] {
+        let albedo = Vec3::new(0.8, 0.4, 0.1);
+        let m = Material::Plastic(Plastic::new_mitsuba(
+            albedo,
+            a,
+            1.5,
+            Vec3::ONE,
+            d,
+            nonlinear,
+        ));
+        for th in THETAS_DEG {
+            let name = format!("mitsuba_plastic/{}/a{a}/th{th}", d.name());
+            out.push(case(name, BsdfSampler::at_angle(m.clone(), th)));
+        }
+    }
+    out
+}
+
 /// Every case of the suite.
 pub fn all_cases() -> Vec<Case> {
     let mut v = warp_cases();
     v.extend(material_cases());
     v.extend(dielectric_cases());
     v.extend(microfacet_cases());
+    v.extend(mitsuba_plastic_cases());
     v.extend(light_cases());
     v.extend(envmap_cases());
     v.extend(mixture_cases());

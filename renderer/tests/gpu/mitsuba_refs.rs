@@ -79,3 +79,11 @@ fn gpu_xml_anisotropic_matches_the_cpu_and_mitsuba() {
     let failures = check("xml_anisotropic");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// `xml_plastic.xml` (Mitsuba's plastic and roughplastic: smooth and rough, Beckmann and GGX,
+/// nonlinear, a textured base and a tint: `materials/plastic_mitsuba.wgsl`).
+#[test]
+fn gpu_xml_plastic_matches_the_cpu_and_mitsuba() {
+    let failures = check("xml_plastic");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -409,7 +409,7 @@ fn coat_grid_blend_matches_the_cpu() {
         let (k, alpha, mu) = (i[0].to_bits() as usize, i[1], i[2]);
         let mut p = plastics[k].clone();
         p.set_alpha_from_grid(alpha, &grids[k]);
-        let coat = p.coat();
+        let coat = p.coat().expect("lumis' coupling");
         let (e, avg) = (coat.eval(mu), coat.average());
         let what = format!("ior {} α {alpha:e} μ {mu}", iors[k]);
         assert_eq!(o[2], p.alpha(), "{what}: α");

@@ -9,6 +9,11 @@
 //! `material_at` turns `h.z` into the offset of the hit's lower node table and sets `b.w` to the
 //! blend weight of the next one (`coat_albedo_eval`; 0 is exactly no blend, which every other
 //! plastic has).
+//!
+//! A plastic with Mitsuba's coupling ([`MaterialTag::PlasticMitsuba`]) has in `tables`, at its
+//! record's `h.z`, the rough transmittance table ([`TRANSMITTANCE_SIZE`] entries, zeros for a
+//! smooth coat), then R, w and nonlinear (0 or 1); its record holds the albedo in `a`, the tint
+//! and η in `b`, the microfacet slot in `c`.
 //! WGSL twin: `materials/mod.wgsl` (the record layout and the `switch` on [`MaterialTag`]) and
 //! `materials/mix.wgsl` (a mix's record).
 
@@ -16,6 +21,8 @@ use super::{bits, v4};
 use crate::geometry::primitive::NONE;
 use crate::gpu::prelude::gpu_tags;
 use crate::materials::coat_albedo::E_TABLE_SIZE;
+#[cfg(doc)]
+use crate::materials::plastic_mitsuba::TRANSMITTANCE_SIZE;
 use crate::materials::plastic_textured::{CoatGrid, GRID_SIZE};
 use crate::materials::{ConductorFresnel, Distribution, Material, Microfacet};
 use crate::scene::Scene;
@@ -49,6 +56,9 @@ gpu_tags! {
         /// resolves before any BSDF function sees the material ([`MaterialTag::of`] never
         /// gives it; the BSDF `switch`es flag it as unknown).
         Mix => "MATERIAL_MIX",
+        /// [`Material::Plastic`] coupled as Mitsuba's ([`crate::materials::plastic_mitsuba`]):
+        /// one Rust variant, two programs (`materials/plastic_mitsuba.wgsl`).
+        PlasticMitsuba => "MATERIAL_PLASTIC_MITSUBA",
     }
 }
 
@@ -58,6 +68,7 @@ impl MaterialTag {
         match m {
             Material::Diffuse(_) => MaterialTag::Diffuse,
             Material::Conductor(_) => MaterialTag::Conductor,
+            Material::Plastic(p) if p.mitsuba_coat().is_some() => MaterialTag::PlasticMitsuba,
             Material::Plastic(_) => MaterialTag::Plastic,
             Material::Dielectric(_) => MaterialTag::Dielectric,
         }
@@ -177,19 +188,36 @@ pub(super) fn encode(
                         c: microfacet_slot(&c.microfacet),
                     }
                 }
+                Material::Plastic(p) if p.mitsuba_coat().is_some() => {
+                    let coat = p.mitsuba_coat().expect("Mitsuba's coupling");
+                    let offset = tables.len() as u32;
+                    tables.extend_from_slice(coat.table());
+                    tables.extend([
+                        coat.internal_reflectance(),
+                        coat.specular_weight(),
+                        coat.nonlinear() as u32 as f32,
+                    ]);
+                    GpuMaterial {
+                        h: [kind, two_sided as u32, offset, smooth],
+                        a: v4(p.albedo(), 0.0),
+                        b: v4(p.specular(), coat.eta()),
+                        c: microfacet_slot(&coat.microfacet()),
+                    }
+                }
                 Material::Plastic(p) => {
+                    let coat = p.coat().expect("lumis' coupling");
                     // With a textured α every hit takes its coat from the grid (`material_at`).
                     let offset = match grid {
                         Some(g) => push_grid(g, tables),
                         None => {
                             let offset = tables.len() as u32;
-                            tables.extend_from_slice(p.coat().table());
+                            tables.extend_from_slice(coat.table());
                             offset
                         }
                     };
                     let f0 = crate::materials::fresnel::schlick_f0_from_ior(p.ior());
                     // As `Plastic::new`: no light reaches the base of a coat that reflects all.
-                    let e_avg = p.coat().average();
+                    let e_avg = coat.average();
                     let diffuse_norm = if 1.0 - e_avg > 1e-6 {
                         1.0 / (1.0 - e_avg)
                     } else {

@@ -114,6 +114,7 @@ fn factors_map_to_a_conductor_a_plastic_and_a_mix() {
             alpha: 0.0625,
             ior: 1.25,
             specular: DVec3::ONE,
+            model: Default::default(),
         }
     );
     assert!(!plastic.two_sided, "doubleSided defaults to false");
@@ -128,7 +129,8 @@ fn factors_map_to_a_conductor_a_plastic_and_a_mix() {
             albedo: DVec3::ONE,
             alpha: 1.0,
             ior: 1.5,
-            specular: DVec3::ONE
+            specular: DVec3::ONE,
+            model: Default::default(),
         },
         "the defaults: base colour 1, roughness 1, ior 1.5"
     );

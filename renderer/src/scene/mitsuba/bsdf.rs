@@ -5,8 +5,8 @@
 //! material is `"two_sided": false` unless it comes through a `twosided`; dielectrics have two
 //! media and neither. Mitsuba's defaults are filled in (diffuse reflectance 0.5, conductor
 //! `material` "none" = a perfect mirror, `bk7`/`polypropylene` inside and `air` outside, rough
-//! α 0.1, and Beckmann where no `distribution` is named; lumis' plastic coat is GGX, so a
-//! roughplastic must name `ggx`), and an index pair becomes lumis' relative `ior` =
+//! α 0.1, and Beckmann where no `distribution` is named; plastics become lumis' plastic with
+//! Mitsuba's coupling, `"model": "mitsuba"`), and an index pair becomes lumis' relative `ior` =
 //! int_ior / ext_ior (the Fresnel terms and the (η_i/η_t)² radiance scaling depend on the ratio
 //! only).
 
@@ -132,40 +132,21 @@ fn bsdf(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, Sc
                 },
             };
             let eta = index_ratio(ctx, b, "polypropylene", &at("ior"))?;
-            if b.bool("nonlinear", false)? {
-                return Err(b.get("nonlinear").map_or_else(
-                    || b.error("nonlinear"),
-                    |p| p.error("nonlinear = true is not supported"),
-                ));
-            }
-            let alpha = match b.ty {
-                "plastic" => json!(0.0),
-                _ => match rough_alpha(ctx, b, &at("alpha"), false)? {
-                    (alpha, Distribution::Ggx) => alpha,
-                    (_, Distribution::Beckmann) => {
-                        let at = b.get("distribution").map_or(b.pos(), |p| p.pos());
-                        return Err(at.error(
-                            "roughplastic with Beckmann microfacets (Mitsuba's default where no \
-                             distribution is named) is not supported: lumis' plastic coat is \
-                             GGX",
-                        ));
-                    }
-                },
+            let nonlinear = b.bool("nonlinear", false)?;
+            let (alpha, distribution) = match b.ty {
+                "plastic" => (json!(0.0), Distribution::Ggx),
+                _ => rough_alpha(ctx, b, &at("alpha"), false)?,
             };
             b.finish(
-                "diffuse_reflectance, specular_reflectance, int_ior, ext_ior, nonlinear false, \
-                 and for roughplastic distribution ggx and alpha; sample_visible is ignored",
+                "diffuse_reflectance, specular_reflectance, int_ior, ext_ior, nonlinear, and \
+                 for roughplastic distribution (beckmann or ggx) and alpha; sample_visible is \
+                 ignored",
             )?;
-            ctx.warnings.push(format!(
-                "{}: Mitsuba's {} is imported as lumis' plastic, whose coupling of the \
-                 diffuse base and the specular coat differs (Schlick Fresnel, no internal \
-                 scattering): the image is close to Mitsuba's, not equal",
-                b.pos().describe(),
-                b.ty
-            ));
+            // Mitsuba's own coupling, exactly (`materials/plastic_mitsuba.rs`).
             json!({
-                "type": "plastic", "albedo": albedo, "alpha": alpha, "ior": eta,
-                "specular": specular,
+                "type": "plastic", "model": "mitsuba", "albedo": albedo, "alpha": alpha,
+                "ior": eta, "specular": specular, "distribution": distribution.name(),
+                "nonlinear": nonlinear,
             })
         }
         "dielectric" | "roughdielectric" => {

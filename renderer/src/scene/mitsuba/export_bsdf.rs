@@ -7,7 +7,9 @@
 //! and a checkerboard read as a scalar (α) has its colours swapped (Mitsuba's `eval_1`).
 
 use super::export::{Xml, file_name, num, num32};
-use crate::scene::desc::{Distribution, FresnelDesc, MaterialDesc, NamedMaterial, TextureDesc};
+use crate::scene::desc::{
+    Distribution, FresnelDesc, MaterialDesc, NamedMaterial, PlasticModel, TextureDesc,
+};
 use crate::scene::error::SceneError;
 use crate::scene::walk::join;
 use crate::textures::{Channel, Texture, UvTransform};
@@ -116,6 +118,7 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
             alpha,
             ior,
             specular,
+            model,
         } => {
             if tex(&t.alpha).is_some() {
                 return Err(SceneError::new(
@@ -134,10 +137,24 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
             )?;
             color_value(x, "specular_reflectance", *specular);
             index(x, *ior);
+            // lumis' own coupling has no Mitsuba equivalent: Mitsuba's GGX plastic is the
+            // nearest (the image differs slightly, see docs/mitsuba.md).
+            let distribution = match model {
+                PlasticModel::Lumis => Distribution::Ggx,
+                PlasticModel::Mitsuba {
+                    distribution,
+                    nonlinear,
+                } => {
+                    if *nonlinear {
+                        x.leaf("boolean", &[("name", "nonlinear"), ("value", "true")]);
+                    }
+                    *distribution
+                }
+            };
             rough(
                 x,
                 ty,
-                Distribution::Ggx,
+                distribution,
                 Alpha(*alpha, None),
                 None,
                 folder,

@@ -22,7 +22,10 @@ pub const PARITY_SCENE: &str = r#"{
     "beckmann": {"type": "conductor", "alpha": 0.3, "distribution": "beckmann", "reflectance": [0.8, 0.9, 0.7]},
     "plastic_rough": {"type": "plastic", "albedo": [0.2, 0.6, 0.3], "alpha": 0.3, "ior": 1.5},
     "plastic_sharp": {"type": "plastic", "albedo": [0.8, 0.2, 0.1], "alpha": 0.02, "ior": 1.8, "specular": [0.9, 0.8, 0.7]},
-    "plastic_smooth": {"type": "plastic", "albedo": [0.3, 0.3, 0.9], "alpha": 0.0, "ior": 1.4}
+    "plastic_smooth": {"type": "plastic", "albedo": [0.3, 0.3, 0.9], "alpha": 0.0, "ior": 1.4},
+    "mitsuba_smooth": {"type": "plastic", "model": "mitsuba", "albedo": [0.6, 0.45, 0.3], "alpha": 0.0, "ior": 1.49, "nonlinear": true},
+    "mitsuba_beckmann": {"type": "plastic", "model": "mitsuba", "distribution": "beckmann", "albedo": [0.8, 0.5, 0.2], "alpha": 0.15, "ior": 1.5},
+    "mitsuba_ggx": {"type": "plastic", "model": "mitsuba", "albedo": [0.1, 0.3, 0.6], "alpha": 0.3, "ior": 1.3, "specular": [0.8, 0.9, 1.0], "nonlinear": true}
   },
   "shapes": [
     {"type": "quad", "corner": [-4, 0, -4], "edge_u": [0, 0, 8], "edge_v": [8, 0, 0], "material": "diffuse"},
@@ -38,7 +41,10 @@ pub const PARITY_SCENE: &str = r#"{
     {"type": "sphere", "center": [0.0, 2.5, -0.5], "radius": 0.2, "material": "mirror"},
     {"type": "sphere", "center": [-2.5, 0.4, -1.5], "radius": 0.4, "material": "plastic_sharp"},
     {"type": "sphere", "center": [0.5, 0.3, -2.0], "radius": 0.3, "material": "plastic_smooth"},
-    {"type": "sphere", "center": [-0.6, 0.25, -2.4], "radius": 0.25, "material": "beckmann"}
+    {"type": "sphere", "center": [-0.6, 0.25, -2.4], "radius": 0.25, "material": "beckmann"},
+    {"type": "sphere", "center": [1.6, 0.25, -2.4], "radius": 0.25, "material": "mitsuba_smooth"},
+    {"type": "sphere", "center": [-1.6, 0.25, -3.0], "radius": 0.25, "material": "mitsuba_beckmann"},
+    {"type": "sphere", "center": [1.0, 0.2, -3.0], "radius": 0.2, "material": "mitsuba_ggx"}
   ]
 }"#;
 
