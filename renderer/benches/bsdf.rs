@@ -45,6 +45,7 @@ fn materials() -> Vec<(&'static str, Material)> {
     let copper = ConductorFresnel::Complex {
         eta: Vec3::new(0.200, 0.924, 1.102),
         k: Vec3::new(3.912, 2.452, 2.142),
+        tint: Vec3::ONE,
     };
     vec![
         (

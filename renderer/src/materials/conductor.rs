@@ -12,12 +12,15 @@ use glam::{Vec2, Vec3};
 /// How a conductor's Fresnel reflectance is specified.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ConductorFresnel {
-    /// Exact Fresnel of a complex IOR η + ik per RGB channel.
+    /// Exact Fresnel of a complex IOR η + ik per RGB channel, times a tint (Mitsuba's
+    /// `specular_reflectance`; 1 for a physical metal).
     Complex {
         /// Real part of the IOR.
         eta: Vec3,
         /// Extinction coefficient.
         k: Vec3,
+        /// Factor on the Fresnel term, each channel in [0, 1].
+        tint: Vec3,
     },
     /// Fresnel = 1 times a constant reflectance (an artist's tint).
     Tint(Vec3),
@@ -28,7 +31,10 @@ impl ConductorFresnel {
     #[inline]
     pub fn eval(&self, cos: f32) -> Vec3 {
         match *self {
-            ConductorFresnel::Complex { eta, k } => fresnel::fresnel_conductor(cos, eta, k),
+            // × 1 is exact: an untinted metal's Fresnel is bit for bit the untinted formula.
+            ConductorFresnel::Complex { eta, k, tint } => {
+                fresnel::fresnel_conductor(cos, eta, k) * tint
+            }
             ConductorFresnel::Tint(r) => r,
         }
     }
@@ -122,15 +128,59 @@ mod tests {
     use super::super::{Material, testing};
     use super::*;
 
-    fn fresnels() -> [ConductorFresnel; 2] {
+    fn fresnels() -> [ConductorFresnel; 3] {
         [
             // Gold-like complex IOR and a coloured tint.
             ConductorFresnel::Complex {
                 eta: Vec3::new(0.143, 0.374, 1.442),
                 k: Vec3::new(3.983, 2.385, 1.603),
+                tint: Vec3::ONE,
             },
             ConductorFresnel::Tint(Vec3::new(0.95, 0.64, 0.54)),
+            ConductorFresnel::Complex {
+                eta: Vec3::new(0.2, 0.92, 1.1),
+                k: Vec3::new(3.9, 2.45, 2.14),
+                tint: Vec3::new(0.9, 0.6, 0.3),
+            },
         ]
+    }
+
+    /// The tint multiplies the complex Fresnel, and nothing else: eval and sample weights scale
+    /// by it, pdf and directions stay (Mitsuba's `specular_reflectance` on a conductor).
+    #[test]
+    fn a_tint_scales_the_complex_fresnel() {
+        let [plain, _, _] = fresnels();
+        let ConductorFresnel::Complex { eta, k, .. } = plain else {
+            unreachable!()
+        };
+        let tint = Vec3::new(0.9, 0.6, 0.3);
+        let tinted = ConductorFresnel::Complex { eta, k, tint };
+        let mf = Microfacet::ggx(0.3);
+        let (a, b) = (
+            Conductor {
+                microfacet: mf,
+                fresnel: plain,
+            },
+            Conductor {
+                microfacet: mf,
+                fresnel: tinted,
+            },
+        );
+        let (wo, wi) = (
+            Vec3::new(0.6, 0.0, 0.8),
+            Vec3::new(-0.3, 0.4, 0.866).normalize(),
+        );
+        // Equal up to the order of the products (an ulp).
+        let (fa, fb) = (a.eval(wo, wi), b.eval(wo, wi));
+        assert!(
+            ((fb - fa * tint) / fb).abs().max_element() < 1e-6,
+            "{fb} vs {fa}"
+        );
+        assert_eq!(b.pdf(wo, wi), a.pdf(wo, wi));
+        let u = Vec2::new(0.3, 0.7);
+        let (sa, sb) = (a.sample(wo, u).unwrap(), b.sample(wo, u).unwrap());
+        assert_eq!((sb.wi, sb.pdf), (sa.wi, sa.pdf));
+        assert!((sb.weight - sa.weight * tint).abs().max_element() < 1e-6);
     }
 
     fn check(microfacets: &[Microfacet]) {

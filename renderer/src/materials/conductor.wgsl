@@ -7,6 +7,11 @@ fn conductor_fresnel(m: Material, cos_h: f32) -> vec3f {
         case FRESNEL_COMPLEX: {
             return fresnel_conductor(cos_h, m.a.xyz, m.b.xyz);
         }
+        case FRESNEL_COMPLEX_TINTED: {
+            let o = bitcast<u32>(m.b.w);
+            let tint = vec3f(tables[o], tables[o + 1u], tables[o + 2u]);
+            return fresnel_conductor(cos_h, m.a.xyz, m.b.xyz) * tint;
+        }
 // #endif
         case FRESNEL_TINT: {
             return m.a.xyz;

@@ -85,9 +85,10 @@ fn material(desc: &MaterialDesc) -> Material {
         } => Material::Conductor(Conductor {
             microfacet: microfacet(*distribution, *alpha, *alpha_v),
             fresnel: match fresnel {
-                FresnelDesc::Complex { eta, k } => ConductorFresnel::Complex {
+                FresnelDesc::Complex { eta, k, tint } => ConductorFresnel::Complex {
                     eta: v(*eta),
                     k: v(*k),
+                    tint: v(*tint),
                 },
                 FresnelDesc::Reflectance(r) => ConductorFresnel::Tint(v(*r)),
             },

@@ -297,12 +297,15 @@ pub enum PlasticModel {
 /// A conductor's Fresnel term.
 #[derive(Clone, Debug, PartialEq)]
 pub enum FresnelDesc {
-    /// Exact conductor Fresnel from the complex index of refraction `eta + i k` per channel.
+    /// Exact conductor Fresnel from the complex index of refraction `eta + i k` per channel,
+    /// times `tint`.
     Complex {
         /// Real part, > 0.
         eta: DVec3,
         /// Imaginary part (absorption), ≥ 0.
         k: DVec3,
+        /// Factor on the Fresnel term (`specular`), each channel in [0, 1]; 1 for a metal.
+        tint: DVec3,
     },
     /// Fresnel = this reflectance at every angle, in [0, 1].
     Reflectance(DVec3),
@@ -538,9 +541,15 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
             fresnel,
         } => {
             let mut obj = match fresnel {
-                FresnelDesc::Complex { eta, k } => json!({
-                    "type": "conductor", "alpha": alpha, "eta": vec3(*eta), "k": vec3(*k),
-                }),
+                FresnelDesc::Complex { eta, k, tint } => {
+                    let mut obj = json!({
+                        "type": "conductor", "alpha": alpha, "eta": vec3(*eta), "k": vec3(*k),
+                    });
+                    if *tint != DVec3::ONE {
+                        obj["specular"] = vec3(*tint);
+                    }
+                    obj
+                }
                 FresnelDesc::Reflectance(r) => {
                     json!({"type": "conductor", "alpha": alpha, "reflectance": vec3(*r)})
                 }

@@ -63,6 +63,7 @@ fn parse_material(
                     "eta",
                     "k",
                     "reflectance",
+                    "specular",
                     "two_sided",
                 ],
                 true,
@@ -440,8 +441,17 @@ fn fresnel(
             check_components(eta, &obj.at("eta"), |x| x > 0.0, "must be positive")?;
             let k = obj.vec3("k")?;
             check_components(k, &obj.at("k"), |x| x >= 0.0, "must not be negative")?;
-            Ok(FresnelDesc::Complex { eta, k })
+            let tint = match obj.get("specular") {
+                Some(_) => unit_color(obj, "specular")?,
+                None => DVec3::ONE,
+            };
+            Ok(FresnelDesc::Complex { eta, k, tint })
         }
+        (false, false, true) if obj.get("specular").is_some() => Err(SceneError::new(
+            obj.at("specular"),
+            "`specular` tints the Fresnel of `eta` and `k`; with `reflectance`, fold it into \
+             the reflectance",
+        )),
         (false, false, true) => {
             *slot = texture_at(obj, "reflectance", TextureUse::Reflectance, loader)?;
             Ok(FresnelDesc::Reflectance(match slot {

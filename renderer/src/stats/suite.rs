@@ -64,6 +64,7 @@ pub fn conductor(alpha: f32, complex: bool) -> Material {
         ConductorFresnel::Complex {
             eta: Vec3::new(0.143, 0.374, 1.442),
             k: Vec3::new(3.983, 2.385, 1.603),
+            tint: Vec3::ONE,
         }
     } else {
         ConductorFresnel::Tint(Vec3::new(0.95, 0.64, 0.54))

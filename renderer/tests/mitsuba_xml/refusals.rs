@@ -102,7 +102,7 @@ fn json_validation_errors_name_the_xml() {
 #[test]
 fn refusals_name_file_line_and_element() {
     let dir = Dir::new("refusals");
-    let cases: [(&str, &str, &str, &str); 19] = [
+    let cases: [(&str, &str, &str, &str); 20] = [
         (
             r#"<emitter type="point"/>"#,
             "point",
@@ -140,10 +140,16 @@ fn refusals_name_file_line_and_element() {
             "no BSDF mixtures",
         ),
         (
-            r#"<shape type="sphere"><bsdf type="roughplastic"/></shape>"#,
+            r#"<shape type="sphere"><bsdf type="roughplastic"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.3"/></bsdf></shape>"#,
             "roughplastic",
             "scene/shape/bsdf",
-            "Beckmann",
+            "anisotropic alpha_u, alpha_v are not supported in roughplastic",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="conductor"><string name="material" value="Au"/><texture type="checkerboard" name="specular_reflectance"/></bsdf></shape>"#,
+            "<texture",
+            "scene/shape/bsdf/texture",
+            "textured specular_reflectance together with eta and k",
         ),
         (
             r#"<shape type="sphere"><bsdf type="roughconductor"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.3"/></bsdf></shape>"#,

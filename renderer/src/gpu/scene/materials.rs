@@ -82,6 +82,9 @@ gpu_tags! {
         Complex => "FRESNEL_COMPLEX",
         /// [`ConductorFresnel::Tint`]: the reflectance in `a`.
         Tint => "FRESNEL_TINT",
+        /// [`ConductorFresnel::Complex`] with a tint other than 1: η in `a`, k in `b`, the
+        /// tint's three values in `tables` at the offset whose bits are `b.w`.
+        ComplexTinted => "FRESNEL_COMPLEX_TINTED",
     }
 }
 
@@ -177,14 +180,22 @@ pub(super) fn encode(
                     c: z,
                 },
                 Material::Conductor(c) => {
-                    let (fresnel, a, b) = match c.fresnel {
-                        ConductorFresnel::Complex { eta, k } => (FresnelTag::Complex, eta, k),
-                        ConductorFresnel::Tint(r) => (FresnelTag::Tint, r, glam::Vec3::ZERO),
+                    let (fresnel, a, b, bw) = match c.fresnel {
+                        ConductorFresnel::Complex { eta, k, tint } if tint == glam::Vec3::ONE => {
+                            (FresnelTag::Complex, eta, k, 0.0)
+                        }
+                        // The tint in `tables`, at the offset in b.w.
+                        ConductorFresnel::Complex { eta, k, tint } => {
+                            let offset = tables.len() as u32;
+                            tables.extend(tint.to_array());
+                            (FresnelTag::ComplexTinted, eta, k, bits(offset))
+                        }
+                        ConductorFresnel::Tint(r) => (FresnelTag::Tint, r, glam::Vec3::ZERO, 0.0),
                     };
                     GpuMaterial {
                         h: [kind, two_sided as u32, fresnel.gpu_tag(), smooth],
                         a: v4(a, 0.0),
-                        b: v4(b, 0.0),
+                        b: v4(b, bw),
                         c: microfacet_slot(&c.microfacet),
                     }
                 }

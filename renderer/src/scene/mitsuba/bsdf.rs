@@ -253,8 +253,8 @@ fn rough_alpha(
                 }
                 (Some(_), Some(_)) => {
                     return Err(b.error(format!(
-                        "anisotropic alpha_u, alpha_v are not supported in {} (lumis' plastic \
-                         coat is isotropic)",
+                        "anisotropic alpha_u, alpha_v are not supported in {} (Mitsuba refuses \
+                         them there too)",
                         b.ty
                     )));
                 }
@@ -279,8 +279,9 @@ fn rough_alpha(
     Ok((scalar_param(ctx, b, key, 0.1, json_path)?, distribution))
 }
 
-/// A conductor's Fresnel term into `m`: a named preset, `eta` + `k`, or with neither (or
-/// eta = 0: Fresnel 1 everywhere) a `reflectance` = specular_reflectance.
+/// A conductor's Fresnel term into `m`: a named preset, `eta` + `k` (a constant
+/// specular_reflectance other than 1 their `specular` tint), or with neither (or eta = 0:
+/// Fresnel 1 everywhere) a `reflectance` = specular_reflectance.
 fn conductor_fresnel(
     ctx: &mut Ctx,
     b: &super::plugin::Plugin,
@@ -338,12 +339,20 @@ fn conductor_fresnel(
         ));
     }
     if let Some(p) = refl {
-        let c = constant_color(p, Slot::Reflectance, &mut ctx.warnings)?;
-        if c != Some(DVec3::ONE) {
-            return Err(p.error(
-                "specular_reflectance other than 1 together with eta and k is not supported \
-                 (lumis' conductor takes either eta and k, or a reflectance)",
-            ));
+        // A factor on the complex Fresnel: lumis' conductor `specular`.
+        match constant_color(p, Slot::Reflectance, &mut ctx.warnings)? {
+            Some(c) if c == DVec3::ONE => {}
+            Some(c) => {
+                ctx.origin(&format!("{path}.specular"), p.pos());
+                m["specular"] = json!(c.to_array());
+            }
+            None => {
+                return Err(p.error(
+                    "a textured specular_reflectance together with eta and k is not supported \
+                     (lumis tints a metal's Fresnel by a constant; a texture replaces a \
+                     Fresnel of 1)",
+                ));
+            }
         }
     }
     m["eta"] = json!(eta.to_array());

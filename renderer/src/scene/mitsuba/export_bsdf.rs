@@ -94,9 +94,12 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
             fresnel,
         } => {
             match fresnel {
-                FresnelDesc::Complex { eta, k } => {
+                FresnelDesc::Complex { eta, k, tint } => {
                     color_value(x, "eta", *eta);
                     color_value(x, "k", *k);
+                    if *tint != DVec3::ONE {
+                        color_value(x, "specular_reflectance", *tint);
+                    }
                 }
                 FresnelDesc::Reflectance(r) => {
                     x.leaf("string", &[("name", "material"), ("value", "none")]);

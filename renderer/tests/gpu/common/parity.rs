@@ -17,6 +17,7 @@ pub const PARITY_SCENE: &str = r#"{
   "materials": {
     "diffuse": {"type": "diffuse", "albedo": [0.7, 0.5, 0.3]},
     "gold": {"type": "conductor", "alpha": 0.2, "eta": [0.143, 0.374, 1.442], "k": [3.983, 2.385, 1.603]},
+    "tinted_copper": {"type": "conductor", "alpha": 0.25, "eta": [0.2, 0.92, 1.1], "k": [3.9, 2.45, 2.14], "specular": [0.9, 0.7, 0.5]},
     "tint": {"type": "conductor", "alpha": 0.6, "reflectance": [0.9, 0.6, 0.3]},
     "mirror": {"type": "conductor", "alpha": 0.0, "reflectance": [0.95, 0.95, 0.95]},
     "beckmann": {"type": "conductor", "alpha": 0.3, "distribution": "beckmann", "reflectance": [0.8, 0.9, 0.7]},
@@ -44,7 +45,8 @@ pub const PARITY_SCENE: &str = r#"{
     {"type": "sphere", "center": [-0.6, 0.25, -2.4], "radius": 0.25, "material": "beckmann"},
     {"type": "sphere", "center": [1.6, 0.25, -2.4], "radius": 0.25, "material": "mitsuba_smooth"},
     {"type": "sphere", "center": [-1.6, 0.25, -3.0], "radius": 0.25, "material": "mitsuba_beckmann"},
-    {"type": "sphere", "center": [1.0, 0.2, -3.0], "radius": 0.2, "material": "mitsuba_ggx"}
+    {"type": "sphere", "center": [1.0, 0.2, -3.0], "radius": 0.2, "material": "mitsuba_ggx"},
+    {"type": "sphere", "center": [2.0, 0.2, -3.4], "radius": 0.2, "material": "tinted_copper"}
   ]
 }"#;
 
