@@ -22,6 +22,7 @@ prints one Markdown row per scene (docs/mitsuba.md keeps the last table with its
 import argparse
 import math
 import os
+import re
 import struct
 import subprocess
 import sys
@@ -151,7 +152,18 @@ def mitsuba_renders(mi, path, scale, spp, k):
             node.props["width"], node.props["height"] = size
             break
     mi.parser.transform_all(cfg, state)
-    scene = mi.parser.instantiate(cfg, state)
+    # Files named relative to the scene or to its <path>s (an included file's meshes, e.g.
+    # integrator_direct_*.xml's veach_mis.xml) resolve at instantiation, which parse_file's
+    # resolver no longer covers; mi.load_file keeps it for both.
+    saved = mi.FileResolver(mi.file_resolver())
+    resolver = mi.file_resolver()
+    for value in reversed(re.findall(r'<path\s+value="([^"]+)"', path.read_text())):
+        resolver.prepend(str((path.parent / value).resolve()))
+    resolver.prepend(str(path.parent))
+    try:
+        scene = mi.parser.instantiate(cfg, state)
+    finally:
+        mi.set_file_resolver(saved)
     images = []
     for seed in range(1, k + 1):
         img = mi.render(scene, seed=seed, spp=spp)
