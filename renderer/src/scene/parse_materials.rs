@@ -474,7 +474,7 @@ fn fresnel(
 
 #[cfg(test)]
 mod tests {
-    use crate::scene::desc::{FresnelDesc, MaterialDesc};
+    use crate::scene::desc::{Distribution, FresnelDesc, MaterialDesc, PlasticModel};
     use crate::scene::parse::parse_scene_value;
     use crate::scene::tests::{base, expect_err};
     use glam::DVec3;
@@ -612,13 +612,75 @@ mod tests {
             "materials.metal.distribution",
             "unknown distribution `phong`",
         );
-        // A plastic has neither.
+        // A plastic in lumis' coupling has none (Mitsuba's has: `plastic_model_keys`).
         let s = metal(json!({"type": "plastic", "albedo": [0, 0, 0], "alpha": 0.1,
             "distribution": "beckmann"}));
         expect_err(
             &s,
             "materials.metal.distribution",
-            "unknown key `distribution`",
+            "`distribution` needs \"model\": \"mitsuba\"",
+        );
+    }
+
+    #[test]
+    fn plastic_model_keys() {
+        let plastic = |v: Value| with("plastic", v);
+        let d = parse_scene_value(&plastic(
+            json!({"type": "plastic", "albedo": [0.5, 0.5, 0.5],
+            "alpha": 0.2, "model": "mitsuba", "distribution": "beckmann", "nonlinear": true}),
+        ))
+        .unwrap();
+        assert!(matches!(
+            d.materials[2].material,
+            MaterialDesc::Plastic {
+                model: PlasticModel::Mitsuba {
+                    distribution: Distribution::Beckmann,
+                    nonlinear: true
+                },
+                ..
+            }
+        ));
+        // Mitsuba's defaults here: GGX, linear.
+        let d = parse_scene_value(&plastic(
+            json!({"type": "plastic", "albedo": [0.5, 0.5, 0.5], "alpha": 0.2, "model": "mitsuba"}),
+        ))
+        .unwrap();
+        assert!(matches!(
+            d.materials[2].material,
+            MaterialDesc::Plastic {
+                model: PlasticModel::Mitsuba {
+                    distribution: Distribution::Ggx,
+                    nonlinear: false
+                },
+                ..
+            }
+        ));
+        let s = plastic(
+            json!({"type": "plastic", "albedo": [0.5, 0.5, 0.5], "alpha": 0.2,
+            "nonlinear": true}),
+        );
+        expect_err(
+            &s,
+            "materials.plastic.nonlinear",
+            "needs \"model\": \"mitsuba\"",
+        );
+        let s = plastic(
+            json!({"type": "plastic", "albedo": [0.5, 0.5, 0.5], "alpha": 0.2,
+            "model": "pbrt"}),
+        );
+        expect_err(
+            &s,
+            "materials.plastic.model",
+            "unknown plastic model `pbrt`",
+        );
+        let s = plastic(
+            json!({"type": "plastic", "albedo": [0.5, 0.5, 0.5], "model": "mitsuba",
+            "alpha": {"type": "checkerboard", "color0": 0.1, "color1": 0.3}}),
+        );
+        expect_err(
+            &s,
+            "materials.plastic.alpha",
+            "a textured alpha needs lumis' coupling",
         );
     }
 
