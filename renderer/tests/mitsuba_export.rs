@@ -237,6 +237,12 @@ fn kitchen_sink() -> SceneDesc {
         "glossy": {"type": "plastic", "albedo": {"type": "checkerboard", "color0": 0.6, "color1": 0.1},
                    "alpha": 0, "ior": 1.6, "specular": [1, 1, 1], "two_sided": false},
         "glass": {"type": "dielectric", "ior": 1.5, "alpha": 0},
+        "carbon": {"type": "conductor", "eta": [0.2, 0.9, 1.1], "k": [3.9, 2.4, 2.2],
+                   "specular": [0.9, 0.8, 0.7], "distribution": "beckmann",
+                   "alpha": [{"type": "checkerboard", "color0": 0.05, "color1": 0.3,
+                              "uv_scale": [4, 4]}, 0.2]},
+        "varnish": {"type": "plastic", "model": "mitsuba", "distribution": "beckmann",
+                    "nonlinear": true, "albedo": [0.6, 0.4, 0.2], "alpha": 0.15, "ior": 1.5},
         "frosted": {"type": "dielectric", "ior": 1.33,
                     "alpha": {"type": "bitmap", "file": "textured_mesh_albedo.png"}}
       },
@@ -263,7 +269,9 @@ fn kitchen_sink() -> SceneDesc {
          "emission": [6, 6, 5]},
         {"type": "disk", "center": [-2.5, 0.01, -1.5], "normal": [0, 1, 0], "radius": 0.5},
         {"type": "triangles", "positions": [[-2, 0, -2], [-1.5, 0, -2], [-1.8, 0.8, -1.9]],
-         "indices": [[0, 1, 2]], "material": "plastic"}
+         "indices": [[0, 1, 2]], "material": "varnish"},
+        {"type": "quad", "corner": [-2.9, 0, 2.0], "edge_u": [0.8, 0, 0], "edge_v": [0, 0.8, 0],
+         "material": "carbon"}
       ]
     }"#;
     parse_scene_in(json, &scenes_dir()).unwrap_or_else(|e| panic!("{e}"))

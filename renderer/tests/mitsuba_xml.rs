@@ -598,6 +598,38 @@ fn bsdfs_map_onto_lumis_materials() {
     assert!(m.desc.shapes.is_empty());
 }
 
+/// Textured alpha_u and alpha_v (each a number or a texture) become the scene format's textured
+/// pair: α_u's texture in `alpha`, α_v's (a number as a constant) in `alpha_v`.
+#[test]
+fn textured_alpha_u_and_alpha_v_are_a_textured_pair() {
+    let dir = Dir::new("textured_pair");
+    let body = r#"<shape type="rectangle"><bsdf type="roughconductor" id="carbon">
+    <texture name="alpha_u" type="checkerboard"><float name="color0" value="0.05"/><float name="color1" value="0.3"/></texture>
+    <float name="alpha_v" value="0.2"/></bsdf></shape>"#;
+    let m = ok(&dir, body);
+    let named = m
+        .desc
+        .materials
+        .iter()
+        .find(|n| n.name == "carbon")
+        .unwrap();
+    let lumis::scene::MaterialDesc::Conductor {
+        alpha,
+        alpha_v,
+        distribution,
+        ..
+    } = named.material
+    else {
+        panic!("{named:?}")
+    };
+    assert_eq!(distribution, lumis::materials::Distribution::Beckmann);
+    assert!((alpha - 0.175).abs() < 1e-6, "α_u's mean: {alpha}");
+    assert_eq!(alpha_v, Some(0.2));
+    let t = &named.textures;
+    assert!(t.alpha.as_ref().is_some_and(|t| !t.texture.is_constant()));
+    assert!(t.alpha_v.as_ref().is_some_and(|t| t.texture.is_constant()));
+}
+
 #[test]
 fn values_spectra_and_emitters() {
     let dir = Dir::new("values");

@@ -97,6 +97,7 @@ impl ViewerApp {
         {
             edit::set_alpha(m, a);
             textures.alpha = None;
+            textures.alpha_v = None;
             changed = true;
         }
         // Anisotropy beside the roughness: α_v/α_u (α_u is the slider above), and the
@@ -112,6 +113,7 @@ impl ViewerApp {
         {
             edit::set_aspect(m, r);
             textures.alpha = None;
+            textures.alpha_v = None;
             changed = true;
         }
         // A plastic's coupling: lumis' (energy conserving) or Mitsuba's, with its nonlinear
@@ -134,6 +136,7 @@ impl ViewerApp {
                 edit::set_plastic_model(m, if choice { mitsuba } else { PlasticModel::Lumis });
                 if choice {
                     textures.alpha = None;
+                    textures.alpha_v = None;
                 }
                 changed = true;
             }

@@ -255,12 +255,12 @@ impl Features {
                 }
             }
         }
-        // A textured α may be rough where the material's constant (its mean) is smooth.
-        f.has_ggx |= scene
-            .material_textures
-            .iter()
-            .flatten()
-            .any(|t| t.alpha.is_some());
+        // A textured α may be rough where the material's constant (its mean) is smooth; a
+        // textured pair anisotropic where its means are equal.
+        for t in scene.material_textures.iter().flatten() {
+            f.has_ggx |= t.alpha.is_some();
+            f.has_anisotropic |= t.alpha_v.is_some();
+        }
         for p in scene.accel.primitives() {
             match p.shape {
                 Shape::Triangle { .. } => {}

@@ -18,8 +18,10 @@
 //   Dielectric: a.x ior, c.xyz the microfacet slot as a conductor's; never two-sided (its two
 //               sides are its two media).
 //   Every kind: a.w, c.w = bits of the ids of its colour texture (a diffuse's or plastic's albedo,
-//       a conductor's reflectance: replaces a.xyz) and its roughness texture (α: replaces a
-//       conductor's or dielectric's c.xy), NONE where constant (`textures/mod.wgsl`).
+//       a conductor's reflectance: replaces a.xyz) and its roughness textures (α, or α_u in the
+//       low 16 bits and α_v in the high 16, 0xFFFF for none: replace a conductor's or
+//       dielectric's c.xy), NONE where constant (`textures/mod.wgsl`,
+//       `gpu/scene/materials.rs` `roughness_slot`).
 
 struct Material {
     h: vec4<u32>,
@@ -198,7 +200,9 @@ fn material_textured(m: Material) -> bool {
 fn material_at(m_in: Material, uv: vec2f) -> Material {
     var m = m_in;
     let colour = bitcast<u32>(m.a.w);
-    let alpha = bitcast<u32>(m.c.w);
+    let slot = bitcast<u32>(m.c.w);
+    let alpha = select(slot & 0xFFFFu, NONE, slot == NONE);
+    let alpha_v = select(slot >> 16u, NONE, slot == NONE || (slot >> 16u) == 0xFFFFu);
     switch m.h.x {
         case MATERIAL_DIFFUSE, MATERIAL_PLASTIC, MATERIAL_PLASTIC_MITSUBA: {
             // `Plastic::set_albedo` sets the albedo only: the coat's table and norm stay.
@@ -212,7 +216,7 @@ fn material_at(m_in: Material, uv: vec2f) -> Material {
             }
 // #endif
         }
-        // A textured α is isotropic: (α_u, α_v) = (α, α) (`Microfacet::with_alpha`).
+        // A textured α alone is isotropic: (α_u, α_v) = (α, α) (`Microfacet::with_alpha`).
         case MATERIAL_CONDUCTOR: {
             // A textured reflectance is a tint, whatever the constant's Fresnel.
             if colour != NONE {
@@ -220,12 +224,12 @@ fn material_at(m_in: Material, uv: vec2f) -> Material {
                 m.h.z = FRESNEL_TINT;
             }
             if alpha != NONE {
-                m.c = vec4f(vec2f(texture_eval_scalar(alpha, uv)), m.c.zw);
+                m.c = vec4f(textured_alphas(alpha, alpha_v, uv), m.c.zw);
             }
         }
         case MATERIAL_DIELECTRIC: {
             if alpha != NONE {
-                m.c = vec4f(vec2f(texture_eval_scalar(alpha, uv)), m.c.zw);
+                m.c = vec4f(textured_alphas(alpha, alpha_v, uv), m.c.zw);
             }
         }
         default: {
@@ -234,6 +238,20 @@ fn material_at(m_in: Material, uv: vec2f) -> Material {
     }
     m.h.w = select(0u, 1u, material_smooth_part(m));
     return m;
+}
+
+// `MaterialTextures::microfacet_at`: (α_u, α_v) from the α texture and, if any, the α_v one; the
+// narrower raised to SMOOTH_ALPHA where the lobe is rough (`Microfacet::new`).
+fn textured_alphas(alpha: u32, alpha_v: u32, uv: vec2f) -> vec2f {
+    let u = texture_eval_scalar(alpha, uv);
+    if alpha_v == NONE {
+        return vec2f(u);
+    }
+    var a = vec2f(u, texture_eval_scalar(alpha_v, uv));
+    if !(max(a.x, a.y) < SMOOTH_ALPHA) {
+        a = max(a, vec2f(SMOOTH_ALPHA));
+    }
+    return a;
 }
 
 // `Material::has_smooth_part` of a record's current parameters.

@@ -10,7 +10,7 @@
 //! WGSL twin: `materials/mod.wgsl` (`material_at`).
 
 use super::plastic_textured::CoatGrid;
-use super::{ConductorFresnel, Material, Plastic};
+use super::{ConductorFresnel, Material, Microfacet, Plastic};
 use crate::textures::Texture;
 use glam::Vec2;
 
@@ -21,8 +21,11 @@ pub struct MaterialTextures {
     pub albedo: Option<Texture>,
     /// Conductor reflectance (tint).
     pub reflectance: Option<Texture>,
-    /// GGX α of a conductor, plastic or dielectric (the texture's scalar).
+    /// GGX α of a conductor, plastic or dielectric (the texture's scalar); α_u where `alpha_v`
+    /// is set.
     pub alpha: Option<Texture>,
+    /// α_v of an anisotropic conductor or dielectric (with `alpha` as α_u).
+    pub alpha_v: Option<Texture>,
     /// A plastic with a textured α: its coat tables on the α grid, for its F0.
     pub(crate) coat_grid: Option<CoatGrid>,
 }
@@ -34,12 +37,14 @@ impl MaterialTextures {
         albedo: Option<Texture>,
         reflectance: Option<Texture>,
         alpha: Option<Texture>,
+        alpha_v: Option<Texture>,
         base: &Material,
     ) -> Result<MaterialTextures, &'static str> {
         let mut t = MaterialTextures {
             albedo,
             reflectance,
             alpha,
+            alpha_v,
             coat_grid: None,
         };
         t.check(base)?;
@@ -51,15 +56,20 @@ impl MaterialTextures {
 
     /// Whether a slot is textured for `base`'s kind, or why it cannot be.
     pub fn check(&self, base: &Material) -> Result<(), &'static str> {
-        let ok = match base {
-            Material::Diffuse(_) => self.reflectance.is_none() && self.alpha.is_none(),
-            Material::Conductor(_) => self.albedo.is_none(),
-            // Mitsuba's coupling tabulates one α.
-            Material::Plastic(p) => {
-                self.reflectance.is_none() && (self.alpha.is_none() || p.coat().is_some())
-            }
-            Material::Dielectric(_) => self.albedo.is_none() && self.reflectance.is_none(),
-        };
+        // α_v only beside an α_u, and only where roughness may be anisotropic.
+        let pair = self.alpha_v.is_none()
+            || (self.alpha.is_some()
+                && matches!(base, Material::Conductor(_) | Material::Dielectric(_)));
+        let ok = pair
+            && match base {
+                Material::Diffuse(_) => self.reflectance.is_none() && self.alpha.is_none(),
+                Material::Conductor(_) => self.albedo.is_none(),
+                // Mitsuba's coupling tabulates one α.
+                Material::Plastic(p) => {
+                    self.reflectance.is_none() && (self.alpha.is_none() || p.coat().is_some())
+                }
+                Material::Dielectric(_) => self.albedo.is_none() && self.reflectance.is_none(),
+            };
         if ok {
             Ok(())
         } else {
@@ -81,7 +91,7 @@ impl MaterialTextures {
                     c.fresnel = ConductorFresnel::Tint(t.eval(uv));
                 }
                 if let Some(t) = &self.alpha {
-                    c.microfacet = c.microfacet.with_alpha(t.eval_scalar(uv));
+                    c.microfacet = self.microfacet_at(c.microfacet, t, uv);
                 }
             }
             Material::Plastic(p) => {
@@ -99,11 +109,21 @@ impl MaterialTextures {
             }
             Material::Dielectric(d) => {
                 if let Some(t) = &self.alpha {
-                    d.microfacet = d.microfacet.with_alpha(t.eval_scalar(uv));
+                    d.microfacet = self.microfacet_at(d.microfacet, t, uv);
                 }
             }
         }
         m
+    }
+
+    /// `base`'s distribution with the roughness of textures `alpha` (α_u) and `alpha_v` at `uv`;
+    /// isotropic without `alpha_v`.
+    fn microfacet_at(&self, base: Microfacet, alpha: &Texture, uv: Vec2) -> Microfacet {
+        let u = alpha.eval_scalar(uv);
+        match &self.alpha_v {
+            Some(v) => Microfacet::new(base.distribution, u, v.eval_scalar(uv)),
+            None => base.with_alpha(u),
+        }
     }
 }
 
@@ -211,7 +231,7 @@ mod tests {
         let tex = checker(Vec3::splat(0.03), Vec3::splat(0.6));
         let base = Plastic::new(Vec3::splat(0.5), 0.3, 1.5, Vec3::ONE);
         let base_m = Material::Plastic(base.clone());
-        let t = MaterialTextures::new(None, None, Some(tex.clone()), &base_m).unwrap();
+        let t = MaterialTextures::new(None, None, Some(tex.clone()), None, &base_m).unwrap();
         let grid = t
             .coat_grid
             .as_ref()
@@ -250,15 +270,22 @@ mod tests {
             ))
         );
         // Other materials and an untextured plastic alpha get no grid.
-        let albedo_only = MaterialTextures::new(Some(tex.clone()), None, None, &base_m).unwrap();
+        let albedo_only =
+            MaterialTextures::new(Some(tex.clone()), None, None, None, &base_m).unwrap();
         assert!(albedo_only.coat_grid.is_none());
         let glass = Material::Dielectric(Dielectric {
             ior: 1.5,
             microfacet: Microfacet::ggx(0.1),
         });
-        let rough = MaterialTextures::new(None, None, Some(tex), &glass).unwrap();
+        let rough = MaterialTextures::new(None, None, Some(tex), None, &glass).unwrap();
         assert!(rough.coat_grid.is_none());
-        let err = MaterialTextures::new(None, Some(checker(Vec3::ONE, Vec3::ZERO)), None, &glass);
+        let err = MaterialTextures::new(
+            None,
+            Some(checker(Vec3::ONE, Vec3::ZERO)),
+            None,
+            None,
+            &glass,
+        );
         assert!(err.is_err());
     }
 }

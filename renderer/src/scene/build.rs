@@ -317,6 +317,7 @@ impl Scene {
                 t.albedo.as_ref().map(|d| d.texture.clone()),
                 t.reflectance.as_ref().map(|d| d.texture.clone()),
                 t.alpha.as_ref().map(|d| d.texture.clone()),
+                t.alpha_v.as_ref().map(|d| d.texture.clone()),
                 built,
             )
             .map_err(|e| SceneError::new(format!("materials.{}", m.name), e))?;

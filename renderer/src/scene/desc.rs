@@ -159,14 +159,21 @@ pub struct MaterialTextures {
     /// `reflectance` of a conductor (every texel in [0, 1]); never with `eta`/`k`.
     pub reflectance: Option<TextureDesc>,
     /// GGX `alpha` of a conductor, plastic or dielectric, read by
-    /// [`crate::textures::Texture::eval_scalar`] (every scalar texel in [0, 1]).
+    /// [`crate::textures::Texture::eval_scalar`] (every scalar texel in [0, 1]); α_u where
+    /// `alpha_v` is set.
     pub alpha: Option<TextureDesc>,
+    /// α_v of a conductor or dielectric whose `alpha` is a pair with a texture in it (then
+    /// `alpha` holds α_u, a number of the pair as a constant texture).
+    pub alpha_v: Option<TextureDesc>,
 }
 
 impl MaterialTextures {
     /// Whether no slot has a texture.
     pub fn is_empty(&self) -> bool {
-        self.albedo.is_none() && self.reflectance.is_none() && self.alpha.is_none()
+        self.albedo.is_none()
+            && self.reflectance.is_none()
+            && self.alpha.is_none()
+            && self.alpha_v.is_none()
     }
 }
 
@@ -600,6 +607,24 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
         if let Some(tex) = slot.as_ref().filter(|t| !t.texture.is_constant()) {
             obj[key] = tex.to_json();
         }
+    }
+    // A textured pair [α_u, α_v]: a constant element as its number (the material's constant).
+    if let (Some(u), Some(v)) = (&t.alpha, &t.alpha_v) {
+        let (cu, cv) = match &m.material {
+            MaterialDesc::Conductor { alpha, alpha_v, .. }
+            | MaterialDesc::Dielectric { alpha, alpha_v, .. } => {
+                (*alpha, alpha_v.unwrap_or(*alpha))
+            }
+            _ => (0.0, 0.0),
+        };
+        let element = |t: &TextureDesc, c: f64| {
+            if t.texture.is_constant() {
+                json!(c)
+            } else {
+                t.to_json()
+            }
+        };
+        obj["alpha"] = json!([element(u, cu), element(v, cv)]);
     }
     if !m.two_sided && !matches!(m.material, MaterialDesc::Dielectric { .. }) {
         obj["two_sided"] = json!(false);

@@ -5,8 +5,9 @@ use super::desc::{
     FresnelDesc, MaterialDesc, MaterialTextures, MixDesc, NamedMaterial, PlasticModel, TextureDesc,
 };
 use super::error::SceneError;
-use super::parse_texture::{TextureLoader, TextureUse, texture_at};
+use super::parse_texture::{TextureLoader, TextureUse, parse_texture, texture_at};
 use super::walk::{Obj, array, check_components};
+use crate::textures::Texture;
 use glam::DVec3;
 use serde_json::Value;
 
@@ -68,7 +69,7 @@ fn parse_material(
                 ],
                 true,
             )?;
-            let (alpha, alpha_v) = microfacet_alpha(obj, loader, &mut t.alpha)?;
+            let (alpha, alpha_v) = microfacet_alpha(obj, loader, t)?;
             MaterialDesc::Conductor {
                 alpha,
                 alpha_v,
@@ -129,7 +130,7 @@ fn parse_material(
                 return Err(SceneError::new(obj.at("ior"), msg));
             }
             let (alpha, alpha_v) = match obj.get("alpha") {
-                Some(_) => microfacet_alpha(obj, loader, &mut t.alpha)?,
+                Some(_) => microfacet_alpha(obj, loader, t)?,
                 None => (0.0, None),
             };
             MaterialDesc::Dielectric {
@@ -359,30 +360,63 @@ fn alpha(
     Ok(a)
 }
 
-/// A microfacet material's `alpha`: as [`alpha`], or [α_u, α_v] (each in [0, 1]) for
-/// anisotropic roughness, `None` as the second where the two are equal.
+/// A microfacet material's `alpha`: as [`alpha`], or [α_u, α_v] (each a number in [0, 1] or a
+/// texture) for anisotropic roughness, `None` as the second where two numbers are equal. A pair
+/// with a texture fills both slots (`alpha`: α_u, `alpha_v`), a number as a constant texture.
 fn microfacet_alpha(
     obj: &Obj,
     loader: &mut TextureLoader,
-    slot: &mut Option<TextureDesc>,
+    t: &mut MaterialTextures,
 ) -> Result<(f64, Option<f64>), SceneError> {
     let Some(pair) = obj.get("alpha").and_then(Value::as_array) else {
-        return Ok((alpha(obj, loader, slot)?, None));
+        return Ok((alpha(obj, loader, &mut t.alpha)?, None));
     };
     let at = obj.at("alpha");
-    let uv: Vec<f64> = pair.iter().filter_map(Value::as_f64).collect();
-    let [u, v] = uv[..] else {
+    let [u, v] = &pair[..] else {
         return Err(SceneError::new(
             at,
-            "alpha must be a number, a texture or two numbers [alpha_u, alpha_v]",
+            "alpha must be a number, a texture or a pair [alpha_u, alpha_v] of numbers or textures",
         ));
     };
-    for a in [u, v] {
-        if !(0.0..=1.0).contains(&a) {
-            return Err(SceneError::new(at, format!("alpha {a} is outside [0, 1]")));
+    if !(u.is_object() || v.is_object()) {
+        let (Some(u), Some(v)) = (u.as_f64(), v.as_f64()) else {
+            let msg = "alpha_u and alpha_v must be numbers or textures";
+            return Err(SceneError::new(at, msg));
+        };
+        for a in [u, v] {
+            if !(0.0..=1.0).contains(&a) {
+                return Err(SceneError::new(at, format!("alpha {a} is outside [0, 1]")));
+            }
         }
+        return Ok((u, (u != v).then_some(v)));
     }
-    Ok((u, (u != v).then_some(v)))
+    // Textured: each element a texture or a number, both kept as slots.
+    let mut element = |i: usize, v: &Value| -> Result<TextureDesc, SceneError> {
+        let path = format!("{at}[{i}]");
+        if v.is_object() {
+            return parse_texture(v, &path, TextureUse::Alpha, loader);
+        }
+        match v.as_f64() {
+            Some(a) if (0.0..=1.0).contains(&a) => Ok(TextureDesc {
+                texture: Texture::Constant(glam::Vec3::splat(a as f32)),
+            }),
+            Some(a) => Err(SceneError::new(
+                path,
+                format!("alpha {a} is outside [0, 1]"),
+            )),
+            None => Err(SceneError::new(
+                path,
+                "alpha_u and alpha_v must be numbers or textures",
+            )),
+        }
+    };
+    let (tu, tv) = (element(0, u)?, element(1, v)?);
+    // A number's constant is the number itself, a texture's its mean.
+    let constant = |v: &Value, t: &TextureDesc| v.as_f64().unwrap_or_else(|| t.mean_scalar());
+    let (mu, mv) = (constant(u, &tu), constant(v, &tv));
+    t.alpha = Some(tu);
+    t.alpha_v = Some(tv);
+    Ok((mu, Some(mv)))
 }
 
 /// `distribution`: `ggx` (the default) or `beckmann`.
@@ -556,6 +590,47 @@ mod tests {
         expect_err(&s, "materials.plastic.alpha", "outside [0, 1]");
     }
 
+    /// A pair with a texture: both slots textured (a number as a constant), the constants the
+    /// means (a number's exactly), written back as the same pair.
+    #[test]
+    fn textured_anisotropic_alpha() {
+        use crate::scene::desc::TextureDesc;
+        let s = with(
+            "metal",
+            json!({"type": "conductor", "reflectance": [1, 1, 1], "distribution": "beckmann",
+                "alpha": [{"type": "checkerboard", "color0": 0.05, "color1": 0.3}, 0.2]}),
+        );
+        let d = parse_scene_value(&s).unwrap();
+        let m = d.materials.iter().find(|m| m.name == "metal").unwrap();
+        let MaterialDesc::Conductor { alpha, alpha_v, .. } = m.material else {
+            panic!("{m:?}")
+        };
+        assert!(
+            (alpha - 0.175).abs() < 1e-6 && alpha_v == Some(0.2),
+            "{alpha} {alpha_v:?}"
+        );
+        let t = &m.textures;
+        assert!(matches!(
+            t.alpha,
+            Some(TextureDesc {
+                texture: crate::textures::Texture::Checkerboard(_)
+            })
+        ));
+        assert!(t.alpha_v.as_ref().is_some_and(|v| v.texture.is_constant()));
+        let again = parse_scene_value(&d.to_json()).unwrap();
+        assert_eq!(
+            again.materials, d.materials,
+            "written back as the same pair"
+        );
+        // Not for a plastic: its alpha is one number or one texture.
+        let s = with(
+            "plastic",
+            json!({"type": "plastic", "albedo": [0, 0, 0],
+                "alpha": [{"type": "checkerboard", "color0": 0.05, "color1": 0.3}, 0.2]}),
+        );
+        expect_err(&s, "materials.plastic.alpha", "");
+    }
+
     #[test]
     fn microfacet_distribution_and_anisotropic_alpha() {
         let metal = |v: Value| with("metal", v);
@@ -592,12 +667,27 @@ mod tests {
             (
                 json!([0.1]),
                 "materials.metal.alpha",
-                "two numbers [alpha_u, alpha_v]",
+                "a pair [alpha_u, alpha_v] of numbers or textures",
             ),
             (
                 json!([0.1, 0.2, 0.3]),
                 "materials.metal.alpha",
-                "two numbers",
+                "a pair [alpha_u, alpha_v]",
+            ),
+            (
+                json!([{"type": "checkerboard", "color0": 0.05, "color1": 0.3}, 1.5]),
+                "materials.metal.alpha[1]",
+                "alpha 1.5 is outside [0, 1]",
+            ),
+            (
+                json!([{"type": "checkerboard", "color0": 0.05, "color1": 0.3}, "rough"]),
+                "materials.metal.alpha[1]",
+                "alpha_u and alpha_v must be numbers or textures",
+            ),
+            (
+                json!([0.1, {"type": "checkerboard", "color0": 0.05, "color1": 1.3}]),
+                "materials.metal.alpha[1].color1",
+                "outside [0, 1]",
             ),
         ] {
             let s = metal(json!({"type": "conductor", "alpha": bad, "reflectance": [1, 1, 1]}));

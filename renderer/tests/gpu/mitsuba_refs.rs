@@ -87,3 +87,11 @@ fn gpu_xml_plastic_matches_the_cpu_and_mitsuba() {
     let failures = check("xml_plastic");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// `xml_anisotropic_textured.xml` (textured α_u and α_v: the roughness slot's two texture ids,
+/// `material_at` in `materials/mod.wgsl`).
+#[test]
+fn gpu_xml_anisotropic_textured_matches_the_cpu_and_mitsuba() {
+    let failures = check("xml_anisotropic_textured");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

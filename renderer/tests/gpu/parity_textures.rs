@@ -241,8 +241,13 @@ fn texture_lookups_match_the_cpu() {
     let textures = textures_under_test(&mut r);
     let mut scene = holder_scene(textures.len());
     for (i, t) in textures.iter().enumerate() {
-        let textures =
-            MaterialTextures::new(None, Some(t.clone()), Some(t.clone()), &scene.materials[i]);
+        let textures = MaterialTextures::new(
+            None,
+            Some(t.clone()),
+            Some(t.clone()),
+            None,
+            &scene.materials[i],
+        );
         scene.material_textures[i] = Some(textures.unwrap());
     }
     let gpu = GpuScene::new(ctx, Arc::new(scene)).unwrap();
@@ -378,7 +383,7 @@ fn resolution_scene() -> Scene {
     // Built by `MaterialTextures::new`, as the scene builder does, so a kind's slots are checked.
     let mut set = |name: &str, [albedo, reflectance, alpha]: [Option<Texture>; 3]| {
         let i = scene.material_names.iter().position(|n| n == name).unwrap();
-        let t = MaterialTextures::new(albedo, reflectance, alpha, &scene.materials[i]);
+        let t = MaterialTextures::new(albedo, reflectance, alpha, None, &scene.materials[i]);
         scene.material_textures[i] = Some(t.unwrap());
     };
     set(

@@ -158,10 +158,10 @@ fn refusals_name_file_line_and_element() {
             "anisotropic BSDF on a sphere",
         ),
         (
-            r#"<shape type="obj"><string name="filename" value="x.obj"/><bsdf type="roughconductor"><float name="alpha_u" value="0.1"/><texture type="checkerboard" name="alpha_v"/></bsdf></shape>"#,
-            "roughconductor",
+            r#"<shape type="obj"><string name="filename" value="x.obj"/><bsdf type="roughplastic"><float name="alpha_u" value="0.1"/><texture type="checkerboard" name="alpha_v"/></bsdf></shape>"#,
+            "roughplastic",
             "scene/shape/bsdf",
-            "textured alpha_u and alpha_v",
+            "textured alpha_u and alpha_v are not supported in roughplastic",
         ),
         (
             r#"<shape type="sphere"><bsdf type="roughconductor"><string name="distribution" value="phong"/></bsdf></shape>"#,

@@ -117,6 +117,17 @@ fn microfacet_slot(m: &Microfacet) -> [f32; 4] {
     [m.alpha_u, m.alpha_v, bits(tag), 0.0]
 }
 
+/// A record's roughness slot `c.w` from the ids of the α (α_u) and α_v textures: `NONE` without
+/// an α texture, else α's id in the low 16 bits and α_v's in the high 16 (`0xFFFF`: none,
+/// isotropic); `textures::check_records` keeps ids below 0xFFFF.
+pub(crate) fn roughness_slot(alpha: u32, alpha_v: u32) -> u32 {
+    if alpha == NONE {
+        return NONE;
+    }
+    let v = if alpha_v == NONE { 0xFFFF } else { alpha_v };
+    (alpha & 0xFFFF) | (v << 16)
+}
+
 /// Appends `grid`'s node tables, then their E_avg, to `tables` (layout in the module doc);
 /// returns its offset.
 pub(crate) fn push_grid(grid: &CoatGrid, tables: &mut Vec<f32>) -> u32 {
@@ -138,7 +149,7 @@ pub(crate) fn push_grid(grid: &CoatGrid, tables: &mut Vec<f32>) -> u32 {
 pub(super) fn encode(
     scene: &Scene,
     tables: &mut Vec<f32>,
-    slots: &[[u32; 2]],
+    slots: &[[u32; 3]],
     mix_weights: &[u32],
 ) -> Vec<GpuMaterial> {
     scene
@@ -147,7 +158,7 @@ pub(super) fn encode(
         .zip(&scene.two_sided)
         .zip(slots)
         .enumerate()
-        .map(|(index, ((m, &two_sided), &[colour, alpha]))| {
+        .map(|(index, ((m, &two_sided), &[colour, alpha, alpha_v]))| {
             if let Some(Some(mix)) = scene.mixes.get(index) {
                 let weight = match &mix.weight {
                     crate::textures::Texture::Constant(c) => c.x,
@@ -250,7 +261,7 @@ pub(super) fn encode(
                 },
             };
             r.a[3] = bits(colour);
-            r.c[3] = bits(alpha);
+            r.c[3] = bits(roughness_slot(alpha, alpha_v));
             r
         })
         .collect()

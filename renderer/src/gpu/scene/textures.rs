@@ -19,8 +19,9 @@
 //!   [`TextureTexels::layout`] names the texture that does not fit.
 //! - **Materials** name their textures in two slots every record has free (see
 //!   `materials/mod.wgsl`): `a.w` the colour texture (albedo of a diffuse or plastic, a conductor's
-//!   reflectance), `c.w` the roughness texture (a conductor's or dielectric's α); the bits of
-//!   `NONE` where the slot is constant.
+//!   reflectance), `c.w` the roughness textures (α, or α_u in the low 16 bits and α_v in the high
+//!   16, `0xFFFF` for none: [`super::materials::roughness_slot`]); the bits of `NONE` where the
+//!   slot is constant. Hence at most [`MAX_TEXTURES`] textures.
 //! - **Area lights** name their emission texture in `h.w` of their record (see `lights/mod.wgsl`),
 //!   `NONE` for a constant radiance.
 //!
@@ -220,8 +221,9 @@ pub(crate) fn upload_rgba32float(
 pub(crate) struct SceneTextures {
     /// [`RECORD_VEC4S`] vec4s per texture, for `vertex_data`.
     pub(crate) records: Vec<[f32; 4]>,
-    /// Per material: the ids of its colour and roughness textures (`NONE`: constant).
-    pub(crate) slots: Vec<[u32; 2]>,
+    /// Per material: the ids of its colour, roughness (α or α_u) and α_v textures (`NONE`:
+    /// constant).
+    pub(crate) slots: Vec<[u32; 3]>,
     /// Per material: the id of its weight's texture if it is a mix with a textured weight, else
     /// `NONE` (`materials/mix.wgsl`).
     pub(crate) mix_weights: Vec<u32>,
@@ -234,13 +236,14 @@ pub(crate) struct SceneTextures {
 }
 
 /// The slots of `t` in the record's order, with their names: colour (`albedo` or `reflectance`),
-/// then roughness (`alpha`). Destructured without `..`, so that a slot added to
+/// then roughness (`alpha`), then `alpha_v`. Destructured without `..`, so that a slot added to
 /// [`MaterialTextures`] does not compile here until the GPU has it.
-fn slots(t: &MaterialTextures) -> [(Option<&Texture>, &'static str); 2] {
+fn slots(t: &MaterialTextures) -> [(Option<&Texture>, &'static str); 3] {
     let MaterialTextures {
         albedo,
         reflectance,
         alpha,
+        alpha_v,
         // Uploaded with the plastic's record (`materials::push_grid`).
         coat_grid: _,
     } = t;
@@ -250,8 +253,16 @@ fn slots(t: &MaterialTextures) -> [(Option<&Texture>, &'static str); 2] {
         (None, Some(t)) => (Some(t), "reflectance"),
         (None, None) => (None, "albedo"),
     };
-    [colour, (alpha.as_ref(), "alpha")]
+    [
+        colour,
+        (alpha.as_ref(), "alpha"),
+        (alpha_v.as_ref(), "alpha_v"),
+    ]
 }
+
+/// The most textures a scene may have on the GPU: a material's roughness slot holds two ids in
+/// 16 bits each, `0xFFFF` standing for none.
+pub(crate) const MAX_TEXTURES: usize = 0xFFFF;
 
 /// Encodes the textures of `scene`'s materials, then its emission textures, in one record
 /// array (layout in the module doc).
@@ -272,7 +283,7 @@ pub(crate) fn encode(scene: &Scene) -> SceneTextures {
     let mut stored: HashMap<*const Image, u32> = HashMap::new();
     for (i, textures) in scene.material_textures.iter().enumerate() {
         let Some(textures) = textures else {
-            out.slots.push([none; 2]);
+            out.slots.push([none; 3]);
             continue;
         };
         let ids = slots(textures).map(|(texture, slot)| {
@@ -313,6 +324,12 @@ pub(crate) fn encode(scene: &Scene) -> SceneTextures {
 /// Checks that the texture records, starting at vec4 `start` of the vertex data, fit a storage
 /// binding of `limit` bytes; else an error naming the first texture whose record does not.
 pub(crate) fn check_records(names: &[String], start: usize, limit: usize) -> Result<(), GpuError> {
+    if names.len() > MAX_TEXTURES {
+        return Err(GpuError::TooLarge(format!(
+            "{} textures, beyond the {MAX_TEXTURES} a scene may have on the GPU",
+            names.len()
+        )));
+    }
     let vec4s = limit / size_of::<[f32; 4]>();
     let per = RECORD_VEC4S as usize;
     match (0..names.len()).find(|k| start + (k + 1) * per > vec4s) {
@@ -436,11 +453,28 @@ mod tests {
         scene
     }
 
+    /// The roughness slot: NONE without an α texture; α's id low and α_v's high (0xFFFF for
+    /// none) with one; a scene with more textures than the 16 bits hold is refused.
+    #[test]
+    fn roughness_slots_pack_two_ids() {
+        use super::super::materials::roughness_slot;
+        let none = crate::geometry::primitive::NONE;
+        assert_eq!(roughness_slot(none, none), none);
+        assert_eq!(roughness_slot(7, none), 0xFFFF_0007);
+        assert_eq!(roughness_slot(7, 9), 0x0009_0007);
+        let names = vec![String::new(); MAX_TEXTURES + 1];
+        assert!(check_records(&names, 0, usize::MAX / 2).is_err());
+        assert!(check_records(&names[1..], 0, usize::MAX / 2).is_ok());
+    }
+
     #[test]
     fn records_name_their_texels_once_per_image() {
         let t = encode(&scene());
         let none = crate::geometry::primitive::NONE;
-        assert_eq!(t.slots, vec![[0, 1], [2, none], [none, none]]);
+        assert_eq!(
+            t.slots,
+            vec![[0, 1, none], [2, none, none], [none, none, none]]
+        );
         assert_eq!(t.records.len(), 3 * RECORD_VEC4S as usize);
         // One image, stored once for both bitmaps.
         assert_eq!(t.texels.rgba.len(), 6);

@@ -220,9 +220,9 @@ fn distribution_key(m: &mut Json, distribution: Distribution) {
 }
 
 /// A rough model's α and distribution: `distribution` beckmann (Mitsuba's default) or ggx,
-/// `alpha` (default 0.1) or `alpha_u` and `alpha_v` (two constants, [α_u, α_v] where they differ);
-/// `textured` says whether lumis takes a texture or an anisotropic pair there (conductor and
-/// dielectric, not plastic).
+/// `alpha` (default 0.1) or `alpha_u` and `alpha_v` (the pair [α_u, α_v] where they differ or
+/// either is a texture); `textured` says whether lumis takes a texture or an anisotropic pair
+/// there (conductor and dielectric, not plastic).
 fn rough_alpha(
     ctx: &mut Ctx,
     b: &super::plugin::Plugin,
@@ -258,11 +258,22 @@ fn rough_alpha(
                         b.ty
                     )));
                 }
+                // A texture in the pair: [α_u, α_v], each a number or a texture (the scene
+                // format's textured pair).
+                _ if textured => {
+                    let u = scalar_param(ctx, b, "alpha_u", 0.1, &format!("{json_path}[0]"))?;
+                    let v = scalar_param(ctx, b, "alpha_v", 0.1, &format!("{json_path}[1]"))?;
+                    if let Some(p) = b.get("alpha_u") {
+                        ctx.origin(json_path, p.pos());
+                    }
+                    return Ok((json!([u, v]), distribution));
+                }
                 _ => {
-                    return Err(b.error(
-                        "textured alpha_u and alpha_v are not supported (lumis' anisotropic \
-                         roughness is two numbers; a texture is one isotropic alpha)",
-                    ));
+                    return Err(b.error(format!(
+                        "textured alpha_u and alpha_v are not supported in {} (Mitsuba's has \
+                         no textured roughness)",
+                        b.ty
+                    )));
                 }
             }
         }

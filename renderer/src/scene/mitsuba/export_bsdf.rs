@@ -114,7 +114,15 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
                 }
             }
             let a = Alpha(*alpha, *alpha_v);
-            rough(x, ty, *distribution, a, tex(&t.alpha), folder, &path)?;
+            rough(
+                x,
+                ty,
+                *distribution,
+                a,
+                [tex(&t.alpha), tex(&t.alpha_v)],
+                folder,
+                &path,
+            )?;
         }
         MaterialDesc::Plastic {
             albedo,
@@ -159,7 +167,7 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
                 ty,
                 distribution,
                 Alpha(*alpha, None),
-                None,
+                [None, None],
                 folder,
                 &path,
             )?;
@@ -172,7 +180,15 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
         } => {
             index(x, *ior);
             let a = Alpha(*alpha, *alpha_v);
-            rough(x, ty, *distribution, a, tex(&t.alpha), folder, &path)?;
+            rough(
+                x,
+                ty,
+                *distribution,
+                a,
+                [tex(&t.alpha), tex(&t.alpha_v)],
+                folder,
+                &path,
+            )?;
         }
     }
     x.close("bsdf");
@@ -217,7 +233,7 @@ fn rough(
     ty: &str,
     distribution: Distribution,
     alpha: Alpha,
-    texture: Option<TextureDesc>,
+    texture: [Option<TextureDesc>; 2],
     folder: &Path,
     path: &str,
 ) -> Result<(), SceneError> {
@@ -228,14 +244,26 @@ fn rough(
         "string",
         &[("name", "distribution"), ("value", distribution.name())],
     );
-    match texture {
-        Some(t) => texture_xml(x, "alpha", &t, true, folder, &format!("{path}.alpha")),
-        None => {
-            match alpha {
-                Alpha(a, None) => x.leaf("float", &[("name", "alpha"), ("value", &num(a))]),
-                Alpha(u, Some(v)) => {
-                    x.leaf("float", &[("name", "alpha_u"), ("value", &num(u))]);
-                    x.leaf("float", &[("name", "alpha_v"), ("value", &num(v))]);
+    let [tu, tv] = texture;
+    match alpha {
+        Alpha(a, None) => match tu {
+            Some(t) => texture_xml(x, "alpha", &t, true, folder, &format!("{path}.alpha")),
+            None => {
+                x.leaf("float", &[("name", "alpha"), ("value", &num(a))]);
+                Ok(())
+            }
+        },
+        // A pair: each element its texture, or its number.
+        Alpha(u, Some(v)) => {
+            for (i, (key, t, c)) in [("alpha_u", tu, u), ("alpha_v", tv, v)]
+                .into_iter()
+                .enumerate()
+            {
+                match t {
+                    Some(t) => {
+                        texture_xml(x, key, &t, true, folder, &format!("{path}.alpha[{i}]"))?
+                    }
+                    None => x.leaf("float", &[("name", key), ("value", &num(c))]),
                 }
             }
             Ok(())
