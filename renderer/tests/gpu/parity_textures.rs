@@ -223,11 +223,13 @@ fn texel_stats(b: &BitmapTexture) -> (Vec3, Vec3) {
 }
 
 /// WGSL item: inputs (bits of the material, u, v, _); outputs the colour texture's value and the
-/// roughness texture's scalar (both slots hold the same texture).
+/// roughness texture's scalar (both slots hold the same texture; the roughness slot's low 16
+/// bits are α's id, `roughness_slot` in `gpu/scene/materials.rs`).
 const LOOKUP_BODY: &str = "let a = inp(0u);
     let m = materials[bitcast<u32>(a.x)];
     let uv = a.yz;
-    outp(0u, vec4f(texture_eval(bitcast<u32>(m.a.w), uv), texture_eval_scalar(bitcast<u32>(m.c.w), uv)));";
+    let alpha = bitcast<u32>(m.c.w) & 0xFFFFu;
+    outp(0u, vec4f(texture_eval(bitcast<u32>(m.a.w), uv), texture_eval_scalar(alpha, uv)));";
 
 /// `texture_eval` and `texture_eval_scalar` against `Texture::eval` and `eval_scalar` for every
 /// texture of [`textures_under_test`] at its [`lookup_points`] (41936 lookups), to the
