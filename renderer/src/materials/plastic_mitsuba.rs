@@ -60,11 +60,26 @@ pub fn fresnel_diffuse_reflectance(eta: f32) -> f32 {
 /// (1 − F)·G1 of the refracted direction, or of F·G1 of the reflected one, by Mitsuba's
 /// Gauss–Legendre rule over the sampler's unit square (32² nodes for η > 1, else 128²).
 pub fn rough_interface(mf: &Microfacet, mu: f32, eta: f32, transmit: bool) -> f32 {
-    let rule = gauss_legendre(if eta > 1.0 { 32 } else { 128 });
+    rough_interface_by(&interface_rule(eta), mf, mu, eta, transmit)
+}
+
+/// Mitsuba's Gauss–Legendre rule for an interface of relative index `eta`.
+fn interface_rule(eta: f32) -> Vec<(f64, f64)> {
+    gauss_legendre(if eta > 1.0 { 32 } else { 128 })
+}
+
+/// [`rough_interface`] with its rule ([`interface_rule`]) given, built once per table.
+fn rough_interface_by(
+    rule: &[(f64, f64)],
+    mf: &Microfacet,
+    mu: f32,
+    eta: f32,
+    transmit: bool,
+) -> f32 {
     let wo = Vec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
     let mut sum = 0.0f64;
-    for &(x, wx) in &rule {
-        for &(y, wy) in &rule {
+    for &(x, wx) in rule {
+        for &(y, wy) in rule {
             let u = Vec2::new(0.5 * x as f32 + 0.5, 0.5 * y as f32 + 0.5);
             let m = mf.sample_visible_normal(wo, u);
             let cos = wo.dot(m);
@@ -118,12 +133,14 @@ impl MitsubaCoat {
             fresnel_diffuse_reflectance(1.0 / eta)
         } else {
             // Entries in parallel, summed in order: the same R on any number of threads.
+            let (outside, inside) = (interface_rule(eta), interface_rule(1.0 / eta));
             let entries: Vec<(f32, f32)> = (0..TRANSMITTANCE_SIZE)
                 .into_par_iter()
                 .map(|i| {
                     let mu = node_mu(i);
-                    let t = rough_interface(&microfacet, mu, eta, true);
-                    (t, rough_interface(&microfacet, mu, 1.0 / eta, false) * mu)
+                    let t = rough_interface_by(&outside, &microfacet, mu, eta, true);
+                    let r = rough_interface_by(&inside, &microfacet, mu, 1.0 / eta, false);
+                    (t, r * mu)
                 })
                 .collect();
             let mut sum = 0.0f64;
