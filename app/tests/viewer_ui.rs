@@ -452,8 +452,8 @@ fn dragging_the_image_orbits_the_camera_and_it_can_be_saved_and_reset() {
     // The view is saved; the image size stays the file's (24×24 is this test's override).
     let saved = lumis::scene::load_scene(&scene).unwrap().camera;
     assert_eq!(
-        (saved.from, saved.to, saved.up, saved.vfov_deg),
-        (moved.from, moved.to, moved.up, moved.vfov_deg)
+        (saved.from, saved.to, saved.up, saved.vfov_deg()),
+        (moved.from, moved.to, moved.up, moved.vfov_deg())
     );
     assert_eq!((saved.width, saved.height), (256, 256));
     assert_restarts(&mut h, "reset camera", |h| {
@@ -649,4 +649,71 @@ fn editing_a_textured_colour_replaces_the_texture_by_that_constant() {
     assert_eq!(d.albedo, albedo.as_vec3());
     let after = contrast(&h);
     assert!(after < 0.1 * before, "contrast {before} → {after}");
+}
+
+/// The camera controls: the projection menu turns the pinhole into a thin lens (closed, focused
+/// on the look-at point), the aperture and focus sliders edit it and the render thread renders
+/// that lens; the orthographic choice gives a film height slider. Each edit restarts.
+#[test]
+fn camera_controls_switch_projection_and_edit_the_lens() {
+    use lumis::camera::Projection;
+    use lumis::scene::ProjectionDesc;
+    let mut h = harness("seed_cornell.json", 16, scratch("lens"));
+    let cam = |h: &Harness<'static, ViewerApp>| h.state().desc.as_ref().unwrap().camera.clone();
+    let dist = {
+        let c = cam(&h);
+        (c.to - c.from).length()
+    };
+    assert_restarts(&mut h, "thin lens", |h| {
+        pick_combo(h, "Projection", "thinlens")
+    });
+    assert!(matches!(
+        cam(&h).projection,
+        ProjectionDesc::ThinLens { aperture_radius: 0.0, focus_distance, .. }
+            if (focus_distance - dist).abs() < 1e-9 * dist
+    ));
+    assert_restarts(&mut h, "aperture", |h| {
+        set_slider(h, "Aperture radius", 0.1 * dist)
+    });
+    assert_restarts(&mut h, "focus", |h| {
+        set_slider(h, "Focus distance", 0.5 * dist)
+    });
+    let ProjectionDesc::ThinLens {
+        aperture_radius,
+        focus_distance,
+        ..
+    } = cam(&h).projection
+    else {
+        panic!("still a thin lens")
+    };
+    assert!(
+        (aperture_radius - 0.1 * dist).abs() < 1e-6 * dist,
+        "{aperture_radius}"
+    );
+    assert!(
+        (focus_distance - 0.5 * dist).abs() < 1e-6 * dist,
+        "{focus_distance}"
+    );
+    wait_for_current_scene(&mut h, "the thin lens");
+    let scene = h.state().output().scene.clone().unwrap();
+    assert_eq!(
+        scene.camera.projection,
+        Projection::ThinLens {
+            aperture_radius: aperture_radius as f32,
+            focus_distance: focus_distance as f32
+        }
+    );
+    assert_restarts(&mut h, "orthographic", |h| {
+        pick_combo(h, "Projection", "orthographic")
+    });
+    assert_restarts(&mut h, "film height", |h| {
+        set_slider(h, "Film height", 0.5 * dist)
+    });
+    let ProjectionDesc::Orthographic { view_size } = cam(&h).projection else {
+        panic!("orthographic")
+    };
+    assert!(
+        (view_size[1] - 0.5 * dist).abs() < 1e-6 * dist,
+        "{view_size:?}"
+    );
 }

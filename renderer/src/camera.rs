@@ -1,24 +1,62 @@
-//! The pinhole camera of the scene format (Mitsuba `look_at` convention: image left→right along
-//! `cross(forward, up)`, top→bottom along the projection of `-up`).
+//! The camera of the scene format (Mitsuba `look_at` convention: image left→right along
+//! `cross(forward, up)`, top→bottom along the projection of `-up`), in Mitsuba's three
+//! projections: the pinhole (`perspective`), the thin lens (`thinlens`: depth of field) and the
+//! parallel `orthographic` view.
+//!
+//! **Thin lens** (Mitsuba's `thinlens.cpp`): the film point fixes a point on the plane of focus,
+//! at perpendicular distance `focus_distance` along the chief ray (the pinhole's ray through the
+//! lens centre); the ray starts at a point uniform on the lens disk of radius `aperture_radius`
+//! (concentric mapping) and passes through that focus point. Points on the plane of focus are
+//! sharp, others blur into a disk ∝ the aperture. A uniform lens sample keeps every sample's
+//! weight 1: the image is the average over the lens of pinhole images aimed at the same focus
+//! points, which is Mitsuba's estimator (its importance is constant over the lens too).
+//!
+//! **Orthographic** (Mitsuba's `orthographic.cpp`): parallel rays along `forward` from the plane
+//! through `origin`, the film spanning `2·half_x × 2·half_y` world units.
+//!
+//! The lens's 2-D sample is the sampler's [`Sampler::lens_2d`], drawn only by the thin lens, so
+//! that pinhole and orthographic renders draw exactly what they drew before lenses existed.
 //!
 //! WGSL twin: `camera.wgsl` (the primary ray).
 
 pub mod filter;
 
 use crate::geometry::Ray;
+use crate::sampler::Sampler;
+use crate::sampling::disk::sample_uniform_disk_concentric;
 pub use filter::PixelFilter;
 use glam::{Vec2, Vec3};
 
-/// A pinhole camera with a vertical field of view.
+/// How film positions become rays.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// A pinhole at `origin` (Mitsuba `perspective`).
+    Perspective,
+    /// A thin lens centred on `origin` (Mitsuba `thinlens`).
+    ThinLens {
+        /// Radius of the lens disk in world units (≥ 0; 0 is the pinhole).
+        aperture_radius: f32,
+        /// Distance from the lens to the plane in focus, along `forward` (> 0).
+        focus_distance: f32,
+    },
+    /// Parallel rays along `forward` (Mitsuba `orthographic`).
+    Orthographic,
+}
+
+/// A camera: a view frame, a projection and a film.
 #[derive(Clone, Copy, Debug)]
 pub struct Camera {
-    /// Eye position.
+    /// Eye position (the lens centre; the centre of an orthographic camera's film plane).
     pub origin: Vec3,
     forward: Vec3,
     right: Vec3,
     up: Vec3,
-    tan_x: f32,
-    tan_y: f32,
+    /// Half-extents of the film: on the image plane at distance 1 (the tangents of the half
+    /// fields of view) for a perspective or thin-lens camera, in world units for an orthographic.
+    half_x: f32,
+    half_y: f32,
+    /// How film positions become rays.
+    pub projection: Projection,
     /// Image width in pixels.
     pub width: u32,
     /// Image height in pixels.
@@ -28,25 +66,67 @@ pub struct Camera {
 }
 
 impl Camera {
-    /// Camera at `from` looking at `to`. The scene parser has already rejected `from == to` and an
-    /// `up` parallel to the view direction.
+    /// Pinhole camera at `from` looking at `to`. The scene parser has already rejected
+    /// `from == to` and an `up` parallel to the view direction.
     pub fn new(from: Vec3, to: Vec3, up: Vec3, vfov_deg: f32, width: u32, height: u32) -> Camera {
+        let tan_y = (vfov_deg.to_radians() * 0.5).tan();
+        let tan_x = tan_y * width as f32 / height as f32;
+        Camera::framed(from, to, up, tan_x, tan_y, width, height)
+    }
+
+    /// Orthographic camera whose film at `from`, facing `to`, spans `view_width × view_height`
+    /// world units.
+    pub fn orthographic(
+        from: Vec3,
+        to: Vec3,
+        up: Vec3,
+        view_width: f32,
+        view_height: f32,
+        width: u32,
+        height: u32,
+    ) -> Camera {
+        let (hx, hy) = (0.5 * view_width, 0.5 * view_height);
+        Camera {
+            projection: Projection::Orthographic,
+            ..Camera::framed(from, to, up, hx, hy, width, height)
+        }
+    }
+
+    fn framed(
+        from: Vec3,
+        to: Vec3,
+        up: Vec3,
+        half_x: f32,
+        half_y: f32,
+        width: u32,
+        height: u32,
+    ) -> Camera {
         let forward = (to - from).normalize();
         let right = forward.cross(up).normalize();
         let up = right.cross(forward);
-        let tan_y = (vfov_deg.to_radians() * 0.5).tan();
-        let tan_x = tan_y * width as f32 / height as f32;
         Camera {
             origin: from,
             forward,
             right,
             up,
-            tan_x,
-            tan_y,
+            half_x,
+            half_y,
+            projection: Projection::Perspective,
             width,
             height,
             filter: PixelFilter::Box,
         }
+    }
+
+    /// This perspective camera as a thin lens of radius `aperture_radius` focused at
+    /// `focus_distance` (the parser checked `aperture_radius ≥ 0`, `focus_distance > 0`).
+    pub fn with_thin_lens(mut self, aperture_radius: f32, focus_distance: f32) -> Camera {
+        debug_assert!(self.projection != Projection::Orthographic);
+        self.projection = Projection::ThinLens {
+            aperture_radius,
+            focus_distance,
+        };
+        self
     }
 
     /// This camera with pixel filter `filter` (a new camera has the box filter).
@@ -63,30 +143,82 @@ impl Camera {
             .film_position(u, px, py, self.width, self.height)
     }
 
-    /// The view basis as plain data: `(forward, right, up, tan_x, tan_y)`, the unit axes and the
-    /// half-extents of the image plane at distance 1 that [`Camera::ray`] combines (for the GPU).
+    /// The view basis as plain data: `(forward, right, up, half_x, half_y)`, the unit axes and
+    /// the film's half-extents that [`Camera::ray`] combines (for the GPU).
     pub fn basis(&self) -> (Vec3, Vec3, Vec3, f32, f32) {
-        (self.forward, self.right, self.up, self.tan_x, self.tan_y)
+        (self.forward, self.right, self.up, self.half_x, self.half_y)
     }
 
-    /// The ray through continuous film position `(x, y)` in pixels (0..width, 0..height, y down).
+    /// The camera ray of one sample of pixel `(px, py)`: the film position from the sampler's
+    /// camera dimensions, and for a thin lens the lens point from its lens dimensions.
+    #[inline]
+    pub fn sample_ray(&self, sampler: &mut Sampler, px: u32, py: u32) -> Ray {
+        let p = self.film_position(sampler.camera_2d(), px, py);
+        match self.projection {
+            Projection::ThinLens { .. } => self.lens_ray(p.x, p.y, sampler.lens_2d()),
+            Projection::Perspective | Projection::Orthographic => self.ray(p.x, p.y),
+        }
+    }
+
+    /// Film coordinates `(x, y)` in pixels (0..width, 0..height, y down) as the signed image
+    /// plane coordinates in [−1, 1] (+y up).
+    #[inline]
+    fn screen(&self, x: f32, y: f32) -> (f32, f32) {
+        (
+            2.0 * x / self.width as f32 - 1.0,
+            1.0 - 2.0 * y / self.height as f32,
+        )
+    }
+
+    /// The ray through continuous film position `(x, y)` in pixels (0..width, 0..height, y
+    /// down); for a thin lens the chief ray (through the lens centre).
     #[inline]
     pub fn ray(&self, x: f32, y: f32) -> Ray {
-        let sx = 2.0 * x / self.width as f32 - 1.0;
-        let sy = 1.0 - 2.0 * y / self.height as f32;
-        let d = self.forward + (sx * self.tan_x) * self.right + (sy * self.tan_y) * self.up;
-        Ray::new(self.origin, d.normalize())
+        let (sx, sy) = self.screen(x, y);
+        let (along_x, along_y) = (
+            (sx * self.half_x) * self.right,
+            (sy * self.half_y) * self.up,
+        );
+        // Summed in this order (the pinhole's since the first release) so images keep their bits.
+        match self.projection {
+            Projection::Orthographic => Ray::new(self.origin + along_x + along_y, self.forward),
+            Projection::Perspective | Projection::ThinLens { .. } => {
+                Ray::new(self.origin, (self.forward + along_x + along_y).normalize())
+            }
+        }
     }
 
-    /// Film position (pixels) that world point `p` projects to, or `None` if it is behind the eye.
+    /// The thin lens's ray through film position `(x, y)` from the lens point of the uniforms
+    /// `u` (the pinhole's ray for any other projection).
+    pub fn lens_ray(&self, x: f32, y: f32, u: Vec2) -> Ray {
+        let Projection::ThinLens {
+            aperture_radius,
+            focus_distance,
+        } = self.projection
+        else {
+            return self.ray(x, y);
+        };
+        let (sx, sy) = self.screen(x, y);
+        let chief = self.forward + (sx * self.half_x) * self.right + (sy * self.half_y) * self.up;
+        // `chief` has unit length along `forward`: this point is on the plane of focus.
+        let focus = chief * focus_distance;
+        let l = aperture_radius * sample_uniform_disk_concentric(u);
+        let on_lens = l.x * self.right + l.y * self.up;
+        Ray::new(self.origin + on_lens, (focus - on_lens).normalize())
+    }
+
+    /// Film position (pixels) that world point `p` projects to (through the lens centre), or
+    /// `None` if it is behind the eye (the film plane, for an orthographic camera).
     pub fn project(&self, p: Vec3) -> Option<(f32, f32)> {
         let v = p - self.origin;
         let z = v.dot(self.forward);
-        if z <= 0.0 {
-            return None;
-        }
-        let sx = v.dot(self.right) / (z * self.tan_x);
-        let sy = v.dot(self.up) / (z * self.tan_y);
+        let depth = match self.projection {
+            Projection::Orthographic if z >= 0.0 => 1.0,
+            Projection::Perspective | Projection::ThinLens { .. } if z > 0.0 => z,
+            _ => return None,
+        };
+        let sx = v.dot(self.right) / (depth * self.half_x);
+        let sy = v.dot(self.up) / (depth * self.half_y);
         Some((
             (sx + 1.0) * 0.5 * self.width as f32,
             (1.0 - sy) * 0.5 * self.height as f32,
@@ -95,32 +227,5 @@ impl Camera {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn orientation_and_projection_round_trip() {
-        let c = Camera::new(
-            Vec3::new(0.0, 1.0, -4.5),
-            Vec3::new(0.0, 0.35, 0.0),
-            Vec3::Y,
-            50.0,
-            256,
-            128,
-        );
-        // the centre pixel looks at `to`
-        let r = c.ray(128.0, 64.0);
-        assert!((r.d - (Vec3::new(0.0, 0.35, 0.0) - c.origin).normalize()).length() < 1e-6);
-        // left edge of the image is to the left: cross(forward, up) with forward≈+z, up=+y is -x
-        let left = c.ray(0.0, 64.0);
-        assert!(
-            left.d.x > 0.0,
-            "Mitsuba look_at: image x runs along cross(forward, up) = -x here"
-        );
-        // top row looks up
-        assert!(c.ray(128.0, 0.0).d.y > r.d.y);
-        let p = c.origin + c.ray(37.25, 101.5).d * 3.0;
-        let (x, y) = c.project(p).unwrap();
-        assert!((x - 37.25).abs() < 1e-3 && (y - 101.5).abs() < 1e-3);
-    }
-}
+#[path = "camera_tests.rs"]
+mod tests;

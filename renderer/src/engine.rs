@@ -375,10 +375,7 @@ impl Progressive {
                             width as u32,
                             s,
                         );
-                        let p = scene
-                            .camera
-                            .film_position(sampler.camera_2d(), x as u32, y as u32);
-                        let ray = scene.camera.ray(p.x, p.y);
+                        let ray = scene.camera.sample_ray(&mut sampler, x as u32, y as u32);
                         let mut one = learn.then(|| OptimalSample {
                             alpha: optimal_row[x].alpha_for(s),
                             ..OptimalSample::default()

@@ -305,7 +305,7 @@ fn fov_axes_and_focal_length_follow_parse_fov() {
             <rfilter type="box"/></film></sensor></scene>"#
         );
         let m = import(&dir, &text, &[]).unwrap_or_else(|e| panic!("{e}"));
-        let got = m.desc.camera.vfov_deg;
+        let got = m.desc.camera.vfov_deg().unwrap();
         assert!((got - vfov).abs() < 1e-9, "{fov}: {got} vs {vfov}");
         // Identity to_world: looking along +z with +y up.
         assert_eq!(
@@ -918,4 +918,61 @@ fn imported_gaussian_filter_renders_to_the_mitsuba_reference() {
         run("box-filtered gaussian_edges", &boxed).is_err(),
         "a box filter must fail against the gaussian reference"
     );
+}
+
+/// The thin lens keeps its aperture and focus distance (default: the far clip plane, as
+/// Mitsuba); the orthographic camera's film is its scaled axes' lengths (the height over the
+/// aspect), its `from` the near plane's centre, and its view the lookat's.
+#[test]
+fn thin_lens_and_orthographic_sensors_map_to_their_projections() {
+    use lumis::scene::ProjectionDesc;
+    let dir = Dir::new("projections");
+    let film = r#"<film type="hdrfilm"><integer name="width" value="80"/><integer name="height" value="40"/><rfilter type="box"/></film>"#;
+    let lens = |extra: &str| {
+        let text = format!(
+            r#"<scene version="3.0.0"><sensor type="thinlens"><float name="fov" value="30"/>
+            <string name="fov_axis" value="y"/><float name="aperture_radius" value="0.25"/>{extra}{film}</sensor></scene>"#
+        );
+        import(&dir, &text, &[])
+            .unwrap_or_else(|e| panic!("{e}"))
+            .desc
+            .camera
+    };
+    let ProjectionDesc::ThinLens {
+        vfov_deg,
+        aperture_radius,
+        focus_distance,
+    } = lens(r#"<float name="focus_distance" value="3"/>"#).projection
+    else {
+        panic!("not a thin lens")
+    };
+    assert!((vfov_deg - 30.0).abs() < 1e-9, "{vfov_deg}");
+    assert_eq!((aperture_radius, focus_distance), (0.25, 3.0));
+    assert!(matches!(
+        lens(r#"<float name="far_clip" value="50"/>"#).projection,
+        ProjectionDesc::ThinLens {
+            focus_distance: 50.0,
+            ..
+        }
+    ));
+    let text = format!(
+        r#"<scene version="3.0.0"><sensor type="orthographic"><float name="near_clip" value="0.5"/>
+        <transform name="to_world"><scale x="3" y="1.5"/><lookat origin="0, 0, -5" target="0, 0, 0" up="0, 1, 0"/></transform>
+        {film}</sensor></scene>"#
+    );
+    let c = import(&dir, &text, &[])
+        .unwrap_or_else(|e| panic!("{e}"))
+        .desc
+        .camera;
+    let ProjectionDesc::Orthographic { view_size } = c.projection else {
+        panic!("{c:?}")
+    };
+    assert!((view_size[0] - 6.0).abs() < 1e-12 && (view_size[1] - 1.5).abs() < 1e-12);
+    assert!(
+        (c.from - DVec3::new(0.0, 0.0, -4.5)).length() < 1e-12,
+        "{:?}",
+        c.from
+    );
+    assert!(((c.to - c.from).normalize() - DVec3::Z).length() < 1e-12);
+    assert!((c.up - DVec3::Y).length() < 1e-12);
 }

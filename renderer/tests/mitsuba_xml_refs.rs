@@ -272,3 +272,43 @@ fn xml_anisotropic_textured_swapped_slots_are_detected() {
         "with alpha_u and alpha_v swapped",
     );
 }
+
+/// `xml_thinlens.xml` (Mitsuba's `thinlens`: aperture radius 0.12, focused on the middle sphere,
+/// `fov_axis` smaller; a checkerboard floor in and out of focus) against its reference, seeds
+/// 1960–1964. Measured (2026-12-06): every strategy passes at stage 1.
+///
+/// What this test cannot see: defocus moves light by a few pixels, which 16 × 16 blocks average
+/// away. Neither half nor twice the aperture was detected (`-D aperture=0.06` and `0.24`, MIS
+/// 256 spp, seed 1970: worst |z| 2.06 and 3.15 of 3.76), and 4 × 4 blocks (seeds 2200–2204)
+/// are unusable here: blocks of sky only have zero variance in both images, and Mitsuba's
+/// constant emitter gives 0.3200044 for 0.32 (its RGB path), which the zero-variance rule calls
+/// a bias. The lens itself is tested by `renderer/src/camera_tests.rs` (every lens ray through
+/// its focus point, the spread of a defocused point, a χ² of the lens points).
+#[test]
+fn xml_thinlens_matches_its_mitsuba_reference() {
+    every_strategy("xml_thinlens", [256, 256, 256, 256, 256], 1960);
+}
+
+/// Power: `xml_thinlens.xml` with the field of view read on the x axis instead of the
+/// `smaller` (y) one (`-D fov_axis=x`: the importer bug of ignoring `fov_axis`, a view 25%
+/// narrower) fails, MIS 256 spp, seed 1971.
+#[test]
+fn xml_thinlens_fov_on_the_wrong_axis_is_detected() {
+    let m = import("xml_thinlens", &[("fov_axis", "x")]);
+    assert_detected("xml_thinlens", &m, 1971, "with fov_axis=x");
+}
+
+/// `xml_orthographic.xml` (Mitsuba's `orthographic`: a film sized by a non-uniform scale before
+/// the lookat, near_clip 0.5, the gaussian filter) against its reference, seeds 1980–1984.
+#[test]
+fn xml_orthographic_matches_its_mitsuba_reference() {
+    every_strategy("xml_orthographic", [256, 256, 256, 256, 256], 1980);
+}
+
+/// Power: `xml_orthographic.xml` with `-D sx=2.3` (a film 4.5% wider: what a film size off by
+/// a few pixels' worth would render) fails, MIS 256 spp, seed 1990.
+#[test]
+fn xml_orthographic_wider_film_is_detected() {
+    let m = import("xml_orthographic", &[("sx", "2.3")]);
+    assert_detected("xml_orthographic", &m, 1990, "with sx=2.3");
+}

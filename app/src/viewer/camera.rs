@@ -2,7 +2,7 @@
 //! zoom), and writing the camera back into the scene file.
 
 use glam::DVec3;
-use lumis::scene::CameraDesc;
+use lumis::scene::{CameraDesc, ProjectionDesc};
 use serde_json::{Value, json};
 use std::path::Path;
 
@@ -38,28 +38,39 @@ pub fn pan(cam: &mut CameraDesc, dx: f32, dy: f32, view_height: f32) {
     let forward = (cam.to - cam.from).normalize();
     let right = forward.cross(cam.up).normalize();
     let up = right.cross(forward);
-    let dist = (cam.to - cam.from).length();
-    let world_per_point =
-        2.0 * dist * (cam.vfov_deg.to_radians() * 0.5).tan() / view_height.max(1.0) as f64;
+    // The image's height in world units at the look-at point.
+    let height = match cam.projection {
+        ProjectionDesc::Orthographic { view_size } => view_size[1],
+        ProjectionDesc::Perspective { vfov_deg } | ProjectionDesc::ThinLens { vfov_deg, .. } => {
+            2.0 * (cam.to - cam.from).length() * (vfov_deg.to_radians() * 0.5).tan()
+        }
+    };
+    let world_per_point = height / view_height.max(1.0) as f64;
     let shift = (-(dx as f64) * right + dy as f64 * up) * world_per_point;
     cam.from += shift;
     cam.to += shift;
 }
 
 /// Moves the camera towards the look-at point (`steps > 0`) or away from it; each step is 10%.
+/// An orthographic camera's image does not change with distance: its film shrinks instead.
 pub fn zoom(cam: &mut CameraDesc, steps: f32) {
+    let factor = 0.9f64.powf(steps as f64).max(1e-3);
+    if let ProjectionDesc::Orthographic { view_size } = &mut cam.projection {
+        *view_size = view_size.map(|s| s * factor);
+        return;
+    }
     let offset = cam.from - cam.to;
-    let factor = 0.9f64.powf(steps as f64);
-    cam.from = cam.to + offset * factor.max(1e-3);
+    cam.from = cam.to + offset * factor;
 }
 
 fn vec3(v: DVec3) -> Value {
     json!([v.x, v.y, v.z])
 }
 
-/// Replaces the camera's view (`from`, `to`, `up`, `vfov_deg`) in the scene file `path`. Only the
-/// top-level `camera` object's text changes; everything else in the file (the rest of the scene,
-/// key order, formatting) stays as it is on disk.
+/// Replaces the camera's view (`from`, `to`, `up`) and projection (`vfov_deg`, a thin lens's
+/// aperture and focus, an orthographic film's size) in the scene file `path`. Only the top-level
+/// `camera` object's text changes; everything else in the file (the rest of the scene, key
+/// order, formatting) stays as it is on disk.
 pub fn save_camera(path: &Path, cam: &CameraDesc) -> Result<(), String> {
     let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
     let text = std::fs::read_to_string(path).map_err(|e| at(&e))?;
@@ -72,7 +83,12 @@ pub fn save_camera(path: &Path, cam: &CameraDesc) -> Result<(), String> {
     camera.insert("from".into(), vec3(cam.from));
     camera.insert("to".into(), vec3(cam.to));
     camera.insert("up".into(), vec3(cam.up));
-    camera.insert("vfov_deg".into(), json!(cam.vfov_deg));
+    let written = cam.to_json();
+    for key in ["vfov_deg", "aperture_radius", "focus_distance", "view_size"] {
+        if let Some(v) = written.get(key) {
+            camera.insert(key.into(), v.clone());
+        }
+    }
     let span = top_level_value_span(&text, "camera").ok_or_else(|| at(&"no camera object"))?;
     let new_camera = serde_json::to_string(&Value::Object(camera)).map_err(|e| at(&e))?;
     let out = format!("{}{new_camera}{}", &text[..span.start], &text[span.end..]);
@@ -142,7 +158,7 @@ mod tests {
             from: DVec3::new(0.0, 1.0, -5.0),
             to: DVec3::new(0.0, 1.0, 0.0),
             up: DVec3::Y,
-            vfov_deg: 40.0,
+            projection: ProjectionDesc::Perspective { vfov_deg: 40.0 },
             width: 64,
             height: 64,
             filter: Default::default(),

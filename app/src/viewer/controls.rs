@@ -92,6 +92,9 @@ impl ViewerApp {
                     ui.separator();
                     self.selection_controls(ui);
                     ui.separator();
+                    ui.heading("Camera");
+                    self.camera_controls(ui);
+                    ui.separator();
                     ui.heading("Background");
                     self.environment_controls(ui);
                 });

@@ -32,6 +32,7 @@ pub mod inspector;
 pub mod keys;
 pub mod layout;
 pub mod legend;
+pub mod lens;
 pub mod light_shape;
 pub mod menus;
 pub mod panes_controls;

@@ -53,15 +53,7 @@ pub fn camera_at(
             radius: radius / factor as f32,
         },
     };
-    Camera::new(
-        desc.from.as_vec3(),
-        desc.to.as_vec3(),
-        desc.up.normalize().as_vec3(),
-        desc.vfov_deg as f32,
-        width,
-        height,
-    )
-    .with_filter(filter)
+    lumis::scene::build::camera_of(desc, width, height).with_filter(filter)
 }
 
 /// A preview image: `width`×`height` linear pixels, row 0 at the top.
@@ -142,7 +134,7 @@ mod tests {
             from: glam::DVec3::new(0.0, 0.0, -3.0),
             to: glam::DVec3::ZERO,
             up: glam::DVec3::Y,
-            vfov_deg: 40.0,
+            projection: lumis::scene::ProjectionDesc::Perspective { vfov_deg: 40.0 },
             width: 512,
             height: 256,
             filter: Default::default(),

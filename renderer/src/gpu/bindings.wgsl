@@ -23,7 +23,8 @@ struct Params {
     samples_per_dispatch: u32,
     // Where the texture records start in `vertex_data` (`textures/mod.wgsl`).
     textures: u32,
-    // Camera: origin, forward, right, up; tan_x, tan_y in origin.w, forward.w.
+    // Camera (`camera.wgsl`): origin, forward, right, up; the film's half-extents in origin.w,
+    // forward.w; the thin lens's aperture radius and focus distance in right.w, up.w.
     cam_origin: vec4f,
     cam_forward: vec4f,
     cam_right: vec4f,
@@ -44,6 +45,9 @@ struct Params {
     light_bvh: u32,
     // 1: camera rays do not see emitters (Mitsuba's hide_emitters, `integrator/path.wgsl`).
     hide_emitters: u32,
+    // The camera's projection (CAMERA_*, `camera.wgsl`, which fails an unknown one); it took the
+    // slot that rounded the struct to 16 bytes.
+    camera: u32,
 }
 
 // The camera's pixel filter (`film_position` in `camera/filter.wgsl`; an unknown tag fails there).

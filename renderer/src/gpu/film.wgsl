@@ -71,7 +71,7 @@ fn render(@builtin(global_invocation_id) gid: vec3<u32>) {
     // `Camera::film_position`: the box filter's jitter over the pixel or the gaussian's film
     // position, from the camera's 2-D sample either way.
     let film = film_position(params_filter(), sampler_camera_2d(), gid.x, gid.y, params.width, params.height);
-    var x = radiance(camera_ray(film.x, film.y));
+    var x = radiance(camera_ray(film));
     if unknown_tag_seen {
         // A record or parameter with a tag no `switch` knows (`gpu/prelude.wgsl`): a NaN sample.
         x = vec3f(unknown_tag());

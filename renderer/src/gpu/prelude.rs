@@ -11,9 +11,9 @@
 //! WGSL twin: `gpu/prelude.wgsl`.
 
 use super::scene::{
-    BVH2_STACK_SIZE, CWBVH_STACK_SIZE, ChannelTag, DistributionTag, FilterTag, FresnelTag,
-    HeuristicTag, LightSamplingTag, LightSelectionTag, LightTag, MaterialTag, SamplerTag, ShapeTag,
-    StrategyTag, TextureTag, WrapTag, textures,
+    BVH2_STACK_SIZE, CWBVH_STACK_SIZE, CameraTag, ChannelTag, DistributionTag, FilterTag,
+    FresnelTag, HeuristicTag, LightSamplingTag, LightSelectionTag, LightTag, MaterialTag,
+    SamplerTag, ShapeTag, StrategyTag, TextureTag, WrapTag, textures,
 };
 use crate::camera::filter;
 use crate::geometry::{mesh_attributes, primitive, ray, wide_bvh};
@@ -195,6 +195,7 @@ pub fn constants() -> Vec<Constant> {
         u32c("DIM_BSDF_LOBE", dim::BSDF_LOBE),
         u32c("DIM_BSDF", dim::BSDF),
         u32c("DIM_RR", dim::RR),
+        u32c("DIM_LENS", dim::LENS),
         // Lights and their warps.
         f32c("SMALL_CONE_SIN2", sphere::SMALL_CONE_SIN2),
         f32c("MAX_EDGE_COS", spherical_rectangle::MAX_EDGE_COS),
@@ -290,6 +291,7 @@ pub fn constants() -> Vec<Constant> {
     c.extend(tags(FilterTag::ALL));
     c.extend(tags(SamplerTag::ALL));
     c.extend(tags(LightSelectionTag::ALL));
+    c.extend(tags(CameraTag::ALL));
     #[cfg(feature = "mutants")]
     c.extend(mutant_constants(crate::mutants::active()));
     c
@@ -512,5 +514,6 @@ mod tests {
         check(FilterTag::ALL);
         check(SamplerTag::ALL);
         check(LightSelectionTag::ALL);
+        check(CameraTag::ALL);
     }
 }

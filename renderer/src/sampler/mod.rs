@@ -22,6 +22,11 @@
 //! | 6 + 8b | BSDF lobe choice | [`Sampler::bsdf_lobe_1d`] |
 //! | 7 + 8b, 8 + 8b | BSDF direction | [`Sampler::bsdf_2d`] |
 //! | 9 + 8b | Russian roulette | [`Sampler::rr_1d`] |
+//! | 2³² − 2, 2³² − 1 | the thin lens's point on the lens | [`Sampler::lens_2d`] |
+//!
+//! The lens takes the last two dimensions rather than 2–3, which would have moved every bounce's
+//! dimensions and so changed every pinhole image; the bounce dimensions reach them only after
+//! 2²⁹ bounces (a dimension is a hash key, not a table index, so its size costs nothing).
 //!
 //! **Sample counts.** The ZSobol layout gives each pixel a block of 2^12 = 4096 indices
 //! ([`zsobol::EPOCH_LOG2`]), independent of the requested spp, so that sample `s` of pixel `p`
@@ -101,6 +106,8 @@ pub mod dim {
     pub const BSDF: u32 = 5;
     /// Offset of Russian roulette.
     pub const RR: u32 = 7;
+    /// The thin lens's point on the lens (2-D): the last two dimensions (see the table above).
+    pub const LENS: u32 = u32::MAX - 1;
 
     /// The dimension of `offset` at bounce `bounce` (wrapping after 2^29 bounces).
     #[inline]
@@ -162,6 +169,12 @@ impl Sampler {
     #[inline]
     pub fn camera_2d(&mut self) -> Vec2 {
         self.get_2d(dim::CAMERA)
+    }
+
+    /// The thin lens's 2-D sample (the point on the lens), drawn after the film position.
+    #[inline]
+    pub fn lens_2d(&mut self) -> Vec2 {
+        self.get_2d(dim::LENS)
     }
 
     /// The one-sample mixture's branch choice at bounce `bounce`.

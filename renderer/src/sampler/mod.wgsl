@@ -65,6 +65,11 @@ fn sampler_camera_2d() -> vec2f {
     return sampler_get_2d(DIM_CAMERA);
 }
 
+// `Sampler::lens_2d`: the thin lens's point on the lens.
+fn sampler_lens_2d() -> vec2f {
+    return sampler_get_2d(DIM_LENS);
+}
+
 // `Sampler::mixture_1d`: the one-sample mixture's branch.
 fn sampler_mixture_1d(bounce: u32) -> f32 {
     return sampler_get_1d(sampler_dim(bounce, DIM_MIXTURE));

@@ -2,7 +2,8 @@
 //! materials, and one light per emitting shape (per triangle for `triangles` meshes).
 
 use super::desc::{
-    BackgroundDesc, FresnelDesc, GeometryDesc, MaterialDesc, PlasticModel, SceneDesc,
+    BackgroundDesc, CameraDesc, FresnelDesc, GeometryDesc, MaterialDesc, PlasticModel,
+    ProjectionDesc, SceneDesc,
 };
 use super::error::SceneError;
 use super::parse_shapes::unit;
@@ -289,19 +290,7 @@ impl Scene {
             d
         };
         let cam = &desc.camera;
-        // The parser checked the view direction and `up` in f64. Rounded to f32, a `to` very close
-        // to a distant `from` could coincide with it, and a tiny `up` become zero: hand the camera
-        // a look-at point as far away as `from` is from the origin, and a unit `up`.
-        let reach = cam.from.abs().max_element().max(1.0);
-        let camera = Camera::new(
-            v(cam.from),
-            v(cam.from + unit(cam.to - cam.from) * reach),
-            v(unit(cam.up)),
-            cam.vfov_deg as f32,
-            cam.width,
-            cam.height,
-        )
-        .with_filter(cam.filter.filter());
+        let camera = camera_of(cam, cam.width, cam.height).with_filter(cam.filter.filter());
         let mut materials: Vec<Material> = desc
             .materials
             .iter()
@@ -613,6 +602,34 @@ impl Scene {
     /// Loads and builds a scene file; errors name the file.
     pub fn load(path: &std::path::Path) -> Result<Scene, SceneError> {
         Scene::from_desc(&super::parse::load_scene(path)?).map_err(|e| e.in_file(path))
+    }
+}
+
+/// The render-ready camera of `cam` on a film of `width × height` pixels (the scene's own size,
+/// or a viewer preview's), with the box filter. The parser checked the view direction and `up`
+/// in f64. Rounded to f32, a `to` very close to a distant `from` could coincide with it, and a
+/// tiny `up` become zero: the camera gets a look-at point as far away as `from` is from the
+/// origin, and a unit `up`.
+pub fn camera_of(cam: &CameraDesc, width: u32, height: u32) -> Camera {
+    let reach = cam.from.abs().max_element().max(1.0);
+    let (from, to, up) = (
+        v(cam.from),
+        v(cam.from + unit(cam.to - cam.from) * reach),
+        v(unit(cam.up)),
+    );
+    match cam.projection {
+        ProjectionDesc::Perspective { vfov_deg } => {
+            Camera::new(from, to, up, vfov_deg as f32, width, height)
+        }
+        ProjectionDesc::ThinLens {
+            vfov_deg,
+            aperture_radius,
+            focus_distance,
+        } => Camera::new(from, to, up, vfov_deg as f32, width, height)
+            .with_thin_lens(aperture_radius as f32, focus_distance as f32),
+        ProjectionDesc::Orthographic { view_size: [w, h] } => {
+            Camera::orthographic(from, to, up, w as f32, h as f32, width, height)
+        }
     }
 }
 

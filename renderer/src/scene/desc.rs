@@ -59,23 +59,86 @@ pub struct EnvmapDesc {
     pub rotation: Option<glam::DMat3>,
 }
 
-/// A pinhole camera looking from `from` towards `to`.
+/// A camera looking from `from` towards `to`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CameraDesc {
-    /// Eye position.
+    /// Eye position (the lens centre; an orthographic camera's film centre).
     pub from: DVec3,
     /// A point the camera looks at; never equal to `from`.
     pub to: DVec3,
     /// Up hint; never parallel to `to - from`.
     pub up: DVec3,
-    /// Vertical field of view in degrees, in (0, 180).
-    pub vfov_deg: f64,
+    /// The projection (`"type"`) and its parameters.
+    pub projection: ProjectionDesc,
     /// Image width in pixels.
     pub width: u32,
     /// Image height in pixels.
     pub height: u32,
     /// The pixel filter (`"filter"`, a lumis addition; default box).
     pub filter: FilterDesc,
+}
+
+/// The camera's projection (`camera.type`, scene format Version 3; Mitsuba's three sensors),
+/// rendered as [`crate::camera::Projection`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ProjectionDesc {
+    /// `"perspective"` (the default): a pinhole.
+    Perspective {
+        /// Vertical field of view in degrees, in (0, 180).
+        vfov_deg: f64,
+    },
+    /// `"thinlens"`: a pinhole's view through a thin lens (depth of field).
+    ThinLens {
+        /// Vertical field of view in degrees, in (0, 180).
+        vfov_deg: f64,
+        /// Lens radius in world units, ≥ 0 (0: the pinhole's image).
+        aperture_radius: f64,
+        /// Distance of the plane in focus along the view direction, > 0.
+        focus_distance: f64,
+    },
+    /// `"orthographic"`: parallel rays; the film spans `view_size` world units.
+    Orthographic {
+        /// Film width and height in world units, each > 0.
+        view_size: [f64; 2],
+    },
+}
+
+impl CameraDesc {
+    /// The vertical field of view in degrees; `None` for an orthographic camera.
+    pub fn vfov_deg(&self) -> Option<f64> {
+        match self.projection {
+            ProjectionDesc::Perspective { vfov_deg }
+            | ProjectionDesc::ThinLens { vfov_deg, .. } => Some(vfov_deg),
+            ProjectionDesc::Orthographic { .. } => None,
+        }
+    }
+
+    /// The file format's `camera` object.
+    pub fn to_json(&self) -> Value {
+        let mut v = json!({
+            "from": vec3(self.from), "to": vec3(self.to), "up": vec3(self.up),
+            "width": self.width, "height": self.height,
+            "filter": self.filter.to_json(),
+        });
+        match self.projection {
+            ProjectionDesc::Perspective { vfov_deg } => v["vfov_deg"] = json!(vfov_deg),
+            ProjectionDesc::ThinLens {
+                vfov_deg,
+                aperture_radius,
+                focus_distance,
+            } => {
+                v["type"] = json!("thinlens");
+                v["vfov_deg"] = json!(vfov_deg);
+                v["aperture_radius"] = json!(aperture_radius);
+                v["focus_distance"] = json!(focus_distance);
+            }
+            ProjectionDesc::Orthographic { view_size } => {
+                v["type"] = json!("orthographic");
+                v["view_size"] = json!(view_size);
+            }
+        }
+        v
+    }
 }
 
 /// The camera's pixel filter (`camera.filter`), rendered as [`crate::camera::PixelFilter`].
@@ -418,11 +481,7 @@ impl SceneDesc {
             .collect();
         let shapes: Vec<Value> = self.shapes.iter().map(|s| self.shape_json(s)).collect();
         json!({
-            "camera": {
-                "from": vec3(c.from), "to": vec3(c.to), "up": vec3(c.up),
-                "vfov_deg": c.vfov_deg, "width": c.width, "height": c.height,
-                "filter": c.filter.to_json(),
-            },
+            "camera": c.to_json(),
             "max_depth": self.max_depth,
             "hide_emitters": self.hide_emitters,
             "background": match &self.background {

@@ -31,7 +31,8 @@ mod tests;
 pub use build::Scene;
 pub use desc::{
     BackgroundDesc, CameraDesc, EnvmapDesc, FilterDesc, FresnelDesc, GeometryDesc, MaterialDesc,
-    MaterialTextures, NamedMaterial, PlasticModel, SceneDesc, ShapeDesc, TextureDesc,
+    MaterialTextures, NamedMaterial, PlasticModel, ProjectionDesc, SceneDesc, ShapeDesc,
+    TextureDesc,
 };
 pub use error::SceneError;
 pub use parse::{

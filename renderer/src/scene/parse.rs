@@ -4,7 +4,7 @@
 //! The JSON is first read into a `serde_json::Value` and then walked by hand rather than derived
 //! with serde, so that every error can name the JSON path of the problem.
 
-use super::desc::{BackgroundDesc, CameraDesc, FilterDesc, SceneDesc};
+use super::desc::{BackgroundDesc, CameraDesc, FilterDesc, ProjectionDesc, SceneDesc};
 use super::error::SceneError;
 use super::parse_background::parse_background;
 use super::parse_materials::parse_materials;
@@ -202,10 +202,35 @@ pub(crate) fn check_radiance(le: DVec3, path: &str) -> Result<DVec3, SceneError>
 }
 
 fn parse_camera(obj: &Obj) -> Result<CameraDesc, SceneError> {
-    obj.only_keys(
-        &["from", "to", "up", "vfov_deg", "width", "height", "filter"],
-        false,
-    )?;
+    const FRAME: [&str; 6] = ["type", "from", "to", "up", "width", "height"];
+    let own: &[&str] = match camera_type(obj)? {
+        "perspective" => &["vfov_deg"],
+        "thinlens" => &["vfov_deg", "aperture_radius", "focus_distance"],
+        "orthographic" => &["view_size"],
+        other => {
+            let hint = match other {
+                "pinhole" => " (a pinhole is `perspective`)",
+                "spherical" | "fisheye" | "radiancemeter" | "irradiancemeter" | "batch" => {
+                    " (lumis renders an image through a lens or a pinhole only)"
+                }
+                _ => "",
+            };
+            return Err(SceneError::new(
+                obj.at("type"),
+                format!(
+                    "unknown camera type `{other}`{hint}: expected perspective, thinlens or \
+                     orthographic"
+                ),
+            ));
+        }
+    };
+    let keys: Vec<&str> = FRAME
+        .iter()
+        .chain(own)
+        .chain(&["filter"])
+        .copied()
+        .collect();
+    obj.only_keys(&keys, false)?;
     let (from, to, up) = (obj.vec3("from")?, obj.vec3("to")?, obj.vec3("up")?);
 
     // The camera's position bounds every ray origin: beyond the supported scene size, f32 ray
@@ -242,13 +267,7 @@ fn parse_camera(obj: &Obj) -> Result<CameraDesc, SceneError> {
         ));
     }
 
-    let vfov_deg = obj.number("vfov_deg")?;
-    if !(vfov_deg > 0.0 && vfov_deg < 180.0) {
-        return Err(SceneError::new(
-            obj.at("vfov_deg"),
-            format!("field of view {vfov_deg}° is outside (0, 180)"),
-        ));
-    }
+    let projection = parse_projection(obj)?;
     let size = |key: &str| -> Result<u32, SceneError> {
         Ok(integer(obj.req(key)?, &obj.at(key), 1, MAX_IMAGE_SIZE as i64)? as u32)
     };
@@ -261,10 +280,81 @@ fn parse_camera(obj: &Obj) -> Result<CameraDesc, SceneError> {
         from,
         to,
         up,
-        vfov_deg,
+        projection,
         width,
         height,
         filter,
+    })
+}
+
+/// `camera.type`, default `perspective`.
+fn camera_type<'a>(obj: &Obj<'a>) -> Result<&'a str, SceneError> {
+    match obj.get("type") {
+        None => Ok("perspective"),
+        Some(_) => obj.string("type"),
+    }
+}
+
+/// The projection of `camera` (its `type` already known to be one of the three) with its keys.
+fn parse_projection(obj: &Obj) -> Result<ProjectionDesc, SceneError> {
+    let vfov = || -> Result<f64, SceneError> {
+        let vfov_deg = obj.number("vfov_deg")?;
+        if !(vfov_deg > 0.0 && vfov_deg < 180.0) {
+            return Err(SceneError::new(
+                obj.at("vfov_deg"),
+                format!("field of view {vfov_deg}° is outside (0, 180)"),
+            ));
+        }
+        Ok(vfov_deg)
+    };
+    // Beyond the supported scene size a lens or a film is not meaningful in f32 either.
+    let limit = crate::scene::build::MAX_SCENE_SIZE as f64;
+    let length = |key: &str, min_excl: Option<f64>| -> Result<f64, SceneError> {
+        let x = obj.number(key)?;
+        let ok = match min_excl {
+            Some(m) => x > m,
+            None => x >= 0.0,
+        } && x <= limit;
+        if !ok {
+            let range = if min_excl.is_some() { "(0" } else { "[0" };
+            return Err(SceneError::new(
+                obj.at(key),
+                format!("{key} {x} is outside {range}, {limit:e}]"),
+            ));
+        }
+        Ok(x)
+    };
+    Ok(match camera_type(obj)? {
+        "thinlens" => ProjectionDesc::ThinLens {
+            vfov_deg: vfov()?,
+            aperture_radius: length("aperture_radius", None)?,
+            focus_distance: length("focus_distance", Some(0.0))?,
+        },
+        "orthographic" => {
+            let size = array(obj.req("view_size")?, &obj.at("view_size"))?;
+            if size.len() != 2 {
+                return Err(SceneError::new(
+                    obj.at("view_size"),
+                    format!("expected [width, height], got {} numbers", size.len()),
+                ));
+            }
+            let mut view_size = [0.0; 2];
+            for (i, v) in size.iter().enumerate() {
+                let at = format!("{}[{i}]", obj.at("view_size"));
+                let x = v
+                    .as_f64()
+                    .filter(|x| *x > 0.0 && *x <= limit)
+                    .ok_or_else(|| {
+                        SceneError::new(
+                            &at,
+                            format!("the film's size {v} must be a number in (0, {limit:e}]"),
+                        )
+                    })?;
+                view_size[i] = x;
+            }
+            ProjectionDesc::Orthographic { view_size }
+        }
+        _ => ProjectionDesc::Perspective { vfov_deg: vfov()? },
     })
 }
 
@@ -372,6 +462,118 @@ mod tests {
         let mut s = base();
         s["background"] = json!([0.1, -0.5, 0]);
         expect_err(&s, "background[1]", "negative");
+    }
+
+    /// Scene format Version 3's camera types: each parses to its projection with its own keys
+    /// and writes back to the same description; a key of another type, a negative aperture, a
+    /// zero focus distance, a film size of the wrong length or not positive, and an unknown
+    /// type are each one error at their JSON path.
+    #[test]
+    fn camera_types_parse_round_trip_and_name_errors() {
+        let with = |extra: serde_json::Value, drop_fov: bool| {
+            let mut s = base();
+            let cam = s["camera"].as_object_mut().unwrap();
+            if drop_fov {
+                cam.remove("vfov_deg");
+            }
+            for (k, v) in extra.as_object().unwrap() {
+                cam.insert(k.clone(), v.clone());
+            }
+            s
+        };
+        let lens = with(
+            json!({"type": "thinlens", "aperture_radius": 0.2, "focus_distance": 3.5}),
+            false,
+        );
+        let ortho = with(json!({"type": "orthographic", "view_size": [4, 3]}), true);
+        let d = parse_scene_value(&lens).unwrap();
+        assert!(matches!(
+            d.camera.projection,
+            ProjectionDesc::ThinLens {
+                aperture_radius: 0.2,
+                focus_distance: 3.5,
+                ..
+            }
+        ));
+        let o = parse_scene_value(&ortho).unwrap();
+        assert_eq!(
+            o.camera.projection,
+            ProjectionDesc::Orthographic {
+                view_size: [4.0, 3.0]
+            }
+        );
+        assert_eq!(o.camera.vfov_deg(), None);
+        for desc in [&d, &o] {
+            let back = parse_scene_value(&desc.to_json()).unwrap();
+            assert_eq!(back.camera, desc.camera);
+        }
+        let plain = parse_scene_value(&with(json!({"type": "perspective"}), false)).unwrap();
+        assert_eq!(plain.camera, parse_scene_value(&base()).unwrap().camera);
+
+        for (extra, drop_fov, at, fragment) in [
+            (
+                json!({"type": "fisheye"}),
+                false,
+                "camera.type",
+                "unknown camera type `fisheye`",
+            ),
+            (
+                json!({"aperture_radius": 0.1}),
+                false,
+                "camera.aperture_radius",
+                "unknown key `aperture_radius`",
+            ),
+            (
+                json!({"type": "thinlens", "aperture_radius": -0.1, "focus_distance": 1}),
+                false,
+                "camera.aperture_radius",
+                "outside [0",
+            ),
+            (
+                json!({"type": "thinlens", "aperture_radius": 0.1, "focus_distance": 0}),
+                false,
+                "camera.focus_distance",
+                "outside (0",
+            ),
+            (
+                json!({"type": "thinlens", "aperture_radius": 0.1}),
+                false,
+                "camera.focus_distance",
+                "missing required key",
+            ),
+            (
+                json!({"type": "orthographic", "view_size": [1, 2]}),
+                false,
+                "camera.vfov_deg",
+                "unknown key `vfov_deg`",
+            ),
+            (
+                json!({"type": "orthographic", "view_size": [1]}),
+                true,
+                "camera.view_size",
+                "expected [width, height]",
+            ),
+            (
+                json!({"type": "orthographic", "view_size": [1, 0]}),
+                true,
+                "camera.view_size[1]",
+                "(0, ",
+            ),
+            (
+                json!({"type": "orthographic", "view_size": [1, "a"]}),
+                true,
+                "camera.view_size[1]",
+                "must be a number",
+            ),
+            (
+                json!({"type": "orthographic"}),
+                true,
+                "camera.view_size",
+                "missing required key",
+            ),
+        ] {
+            expect_err(&with(extra, drop_fov), at, fragment);
+        }
     }
 
     #[test]

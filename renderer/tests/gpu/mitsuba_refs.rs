@@ -95,3 +95,18 @@ fn gpu_xml_anisotropic_textured_matches_the_cpu_and_mitsuba() {
     let failures = check("xml_anisotropic_textured");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// `xml_thinlens.xml` (the thin lens: `camera.wgsl`'s lens ray and the sampler's lens
+/// dimensions, which the same-seed check pins to the CPU's).
+#[test]
+fn gpu_xml_thinlens_matches_the_cpu_and_mitsuba() {
+    let failures = check("xml_thinlens");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// `xml_orthographic.xml` (the orthographic camera's parallel rays).
+#[test]
+fn gpu_xml_orthographic_matches_the_cpu_and_mitsuba() {
+    let failures = check("xml_orthographic");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -274,9 +274,65 @@ fn refusals_name_file_line_and_element() {
             "{film}: {e}"
         );
     }
-    let thin = "<scene version=\"3.0.0\">\n<sensor type=\"thinlens\"/></scene>";
-    let e = import(&dir, thin, &[]).unwrap_err().to_string();
-    assert!(e.contains("scene.xml:2:") && e.contains("thin lens"), "{e}");
+    let tele = "<scene version=\"3.0.0\">\n<sensor type=\"telecentric\"/></scene>";
+    let e = import(&dir, tele, &[]).unwrap_err().to_string();
+    assert!(
+        e.contains("scene.xml:2:") && e.contains("telecentric"),
+        "{e}"
+    );
+    // The thin lens and the orthographic camera: their own bad input, at its line.
+    let film = "<film type=\"hdrfilm\"><rfilter type=\"box\"/></film>";
+    let camera = |ty: &str, body: &str| {
+        format!(
+            "<scene version=\"3.0.0\">\n<sensor type=\"{ty}\">\n{body}\n{film}</sensor>\n</scene>"
+        )
+    };
+    for (ty, body, line, fragment) in [
+        (
+            "thinlens",
+            "<float name=\"fov\" value=\"30\"/>",
+            2,
+            "needs `aperture_radius`",
+        ),
+        (
+            "thinlens",
+            "<float name=\"aperture_radius\" value=\"0.1\"/><transform name=\"to_world\"><scale value=\"2\"/></transform>",
+            3,
+            "scale factor",
+        ),
+        (
+            "orthographic",
+            "<transform name=\"to_world\"><matrix value=\"1 0.5 0 0 0 1 0 0 0 0 1 0 0 0 0 1\"/></transform>",
+            3,
+            "shears or flattens",
+        ),
+        (
+            "orthographic",
+            "<transform name=\"to_world\"><scale x=\"-1\"/></transform>",
+            3,
+            "mirrors the image",
+        ),
+        (
+            "orthographic",
+            "<float name=\"near_clip\" value=\"0\"/>",
+            3,
+            "near_clip must be > 0",
+        ),
+        (
+            "orthographic",
+            "<float name=\"fov\" value=\"30\"/>",
+            3,
+            "fov",
+        ),
+    ] {
+        let e = import(&dir, &camera(ty, body), &[])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(&format!("scene.xml:{line}:")) && e.contains(fragment),
+            "{ty} {body}: {e}"
+        );
+    }
     // Document-level problems.
     let e = import(
         &dir,

@@ -26,8 +26,8 @@ pub use bvh::{BVH2_STACK_SIZE, CWBVH_STACK_SIZE};
 pub use lights::{GpuLight, LightTag};
 pub use materials::{DistributionTag, FresnelTag, GpuMaterial, MaterialTag};
 pub use params::{
-    FilterTag, GpuParams, HeuristicTag, LightSamplingTag, LightSelectionTag, PARAMS_STRIDE,
-    SamplerTag, StrategyTag,
+    CameraTag, FilterTag, GpuParams, HeuristicTag, LightSamplingTag, LightSelectionTag,
+    PARAMS_STRIDE, SamplerTag, StrategyTag,
 };
 pub use shapes::{GpuPrim, ShapeTag};
 pub use textures::{ChannelTag, TextureTag, WrapTag};

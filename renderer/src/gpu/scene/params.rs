@@ -2,7 +2,7 @@
 //! WGSL twin: `gpu/bindings.wgsl` (the uniform's layout).
 
 use super::{GpuScene, v4};
-use crate::camera::PixelFilter;
+use crate::camera::{PixelFilter, Projection};
 use crate::geometry::primitive::NONE;
 use crate::gpu::prelude::gpu_tags;
 use crate::integrator::{Heuristic, Settings, Strategy};
@@ -46,13 +46,13 @@ pub struct GpuParams {
     pub samples_per_dispatch: u32,
     /// Where the texture records start in the vertex data (`gpu/scene/textures.rs`).
     pub textures: u32,
-    /// Camera origin; w = tan of the half horizontal field of view.
+    /// Camera origin; w = the film's horizontal half-extent ([`crate::camera::Camera::basis`]).
     pub cam_origin: [f32; 4],
-    /// Camera forward axis; w = tan of the half vertical field of view.
+    /// Camera forward axis; w = the film's vertical half-extent.
     pub cam_forward: [f32; 4],
-    /// Camera right axis.
+    /// Camera right axis; w = the thin lens's aperture radius (0 for other projections).
     pub cam_right: [f32; 4],
-    /// Camera up axis.
+    /// Camera up axis; w = the thin lens's focus distance (0 for other projections).
     pub cam_up: [f32; 4],
     /// Where the mesh attribute arrays start in the vertex data (`gpu/scene/attributes.rs`).
     pub attr: [u32; 4],
@@ -73,8 +73,9 @@ pub struct GpuParams {
     pub light_bvh: u32,
     /// 1 when camera rays do not see emitters ([`crate::scene::Scene::hide_emitters`]).
     pub hide_emitters: u32,
-    /// Rounds the struct to the 16 bytes WGSL rounds `Params` to.
-    pub _pad: [u32; 1],
+    /// The camera's projection ([`CameraTag`]); it took the slot that rounded the struct to 16
+    /// bytes, so the size is unchanged.
+    pub camera: u32,
 }
 
 /// Uniform slots are this far apart (the largest `min_uniform_buffer_offset_alignment` wgpu
@@ -206,12 +207,39 @@ impl FilterTag {
     }
 }
 
+gpu_tags! {
+    /// [`GpuParams::camera`], in the variant order of [`Projection`].
+    pub enum CameraTag {
+        /// [`Projection::Perspective`].
+        Perspective => "CAMERA_PERSPECTIVE",
+        /// [`Projection::ThinLens`].
+        ThinLens => "CAMERA_THIN_LENS",
+        /// [`Projection::Orthographic`].
+        Orthographic => "CAMERA_ORTHOGRAPHIC",
+    }
+}
+
+impl CameraTag {
+    /// The tag of `p` and its (aperture radius, focus distance), 0 for what has no lens.
+    pub fn of(p: Projection) -> (CameraTag, f32, f32) {
+        match p {
+            Projection::Perspective => (CameraTag::Perspective, 0.0, 0.0),
+            Projection::ThinLens {
+                aperture_radius,
+                focus_distance,
+            } => (CameraTag::ThinLens, aperture_radius, focus_distance),
+            Projection::Orthographic => (CameraTag::Orthographic, 0.0, 0.0),
+        }
+    }
+}
+
 impl GpuScene {
     /// The uniform for sample `sample` of a render with `settings` and `seed`.
     pub fn params(&self, settings: &Settings, seed: u32, sample: u32) -> GpuParams {
         let scene = self.scene();
         let cam = &scene.camera;
-        let (forward, right, up, tan_x, tan_y) = cam.basis();
+        let (forward, right, up, half_x, half_y) = cam.basis();
+        let (camera, aperture_radius, focus_distance) = CameraTag::of(cam.projection);
         // The heuristic matters only to MIS; the others send the default's tag.
         let balance = HeuristicTag::Balance;
         let (strategy, heuristic, mix_weight) = match settings.strategy {
@@ -239,10 +267,10 @@ impl GpuScene {
             mix_weight,
             samples_per_dispatch: 1,
             textures: self.textures,
-            cam_origin: v4(cam.origin, tan_x),
-            cam_forward: v4(forward, tan_y),
-            cam_right: v4(right, 0.0),
-            cam_up: v4(up, 0.0),
+            cam_origin: v4(cam.origin, half_x),
+            cam_forward: v4(forward, half_y),
+            cam_right: v4(right, aperture_radius),
+            cam_up: v4(up, focus_distance),
             attr: self.attr,
             pixel_filter: filter.gpu_tag(),
             filter_stddev,
@@ -251,7 +279,7 @@ impl GpuScene {
             light_selection: LightSelectionTag::of(settings.light_selection).gpu_tag(),
             light_bvh: self.light_bvh,
             hide_emitters: u32::from(scene.hide_emitters),
-            _pad: [0; 1],
+            camera: camera.gpu_tag(),
         }
     }
 }
@@ -315,6 +343,7 @@ mod tests {
             ("light_selection", offset_of!(GpuParams, light_selection)),
             ("light_bvh", offset_of!(GpuParams, light_bvh)),
             ("hide_emitters", offset_of!(GpuParams, hide_emitters)),
+            ("camera", offset_of!(GpuParams, camera)),
         ];
         let wgsl: Vec<(&str, usize)> = members
             .iter()

@@ -13,7 +13,7 @@
 use super::export_bsdf::{Bsdfs, color_value};
 use super::export_shape::shape;
 use crate::integrator::Settings;
-use crate::scene::desc::{BackgroundDesc, FilterDesc, SceneDesc};
+use crate::scene::desc::{BackgroundDesc, FilterDesc, ProjectionDesc, SceneDesc};
 use crate::scene::error::SceneError;
 use crate::scene::mesh::MeshData;
 use crate::scene::mesh::ply::{Encoding, write as write_ply};
@@ -150,20 +150,64 @@ fn integrator(x: &mut Xml, desc: &SceneDesc, options: &ExportOptions) {
     x.close("integrator");
 }
 
-/// The perspective sensor: lumis' camera is Mitsuba's `lookat` frame with the vertical field
-/// of view (`fov_axis` y), an `hdrfilm` of the image size with the camera's pixel filter, and
-/// an independent sampler. Mitsuba's gaussian has radius 4σ, so another radius is refused.
+/// Where the exported orthographic camera's rays start, ahead of its lookat origin (Mitsuba's
+/// default; any positive value would do).
+const ORTHOGRAPHIC_NEAR_CLIP: f64 = 1e-2;
+
+/// The sensor: lumis' camera is Mitsuba's `lookat` frame; a perspective or thin-lens camera
+/// with the vertical field of view (`fov_axis` y), an orthographic one with the film's size as
+/// a `scale` before the `lookat` and its near plane at Mitsuba's default `near_clip` behind
+/// `from`; an `hdrfilm` of the image size with the camera's pixel filter, and an independent
+/// sampler. Mitsuba's gaussian has radius 4σ, so another radius is refused.
 fn sensor(x: &mut Xml, desc: &SceneDesc, options: &ExportOptions) -> Result<(), SceneError> {
     let c = &desc.camera;
-    x.open("sensor", &[("type", "perspective")]);
-    x.leaf("float", &[("name", "fov"), ("value", &num(c.vfov_deg))]);
-    x.leaf("string", &[("name", "fov_axis"), ("value", "y")]);
+    let (mut from, mut to) = (c.from, c.to);
+    match c.projection {
+        ProjectionDesc::Perspective { vfov_deg } => {
+            x.open("sensor", &[("type", "perspective")]);
+            x.leaf("float", &[("name", "fov"), ("value", &num(vfov_deg))]);
+            x.leaf("string", &[("name", "fov_axis"), ("value", "y")]);
+        }
+        ProjectionDesc::ThinLens {
+            vfov_deg,
+            aperture_radius,
+            focus_distance,
+        } => {
+            x.open("sensor", &[("type", "thinlens")]);
+            x.leaf("float", &[("name", "fov"), ("value", &num(vfov_deg))]);
+            x.leaf("string", &[("name", "fov_axis"), ("value", "y")]);
+            let leaf =
+                |x: &mut Xml, name, v| x.leaf("float", &[("name", name), ("value", &num(v))]);
+            leaf(x, "aperture_radius", aperture_radius);
+            leaf(x, "focus_distance", focus_distance);
+        }
+        ProjectionDesc::Orthographic { .. } => {
+            x.open("sensor", &[("type", "orthographic")]);
+            let back = (c.to - c.from).normalize() * ORTHOGRAPHIC_NEAR_CLIP;
+            (from, to) = (c.from - back, c.to - back);
+            x.leaf(
+                "float",
+                &[
+                    ("name", "near_clip"),
+                    ("value", &num(ORTHOGRAPHIC_NEAR_CLIP)),
+                ],
+            );
+        }
+    }
     x.open("transform", &[("name", "to_world")]);
+    if let ProjectionDesc::Orthographic { view_size: [w, h] } = c.projection {
+        // Mitsuba's film spans [−1, 1] × [−1/aspect, 1/aspect] before `to_world`.
+        let aspect = c.width as f64 / c.height as f64;
+        x.leaf(
+            "scale",
+            &[("x", &num(0.5 * w)), ("y", &num(0.5 * h * aspect))],
+        );
+    }
     x.leaf(
         "lookat",
         &[
-            ("origin", &vec3(c.from)),
-            ("target", &vec3(c.to)),
+            ("origin", &vec3(from)),
+            ("target", &vec3(to)),
             ("up", &vec3(c.up)),
         ],
     );

@@ -1,14 +1,17 @@
-//! `<sensor type="perspective">` with its `hdrfilm`, `rfilter` and `sampler`: lumis' camera and
-//! the sample count.
+//! `<sensor>` (`perspective`, `thinlens`, `orthographic`) with its `hdrfilm`, `rfilter` and
+//! `sampler`: lumis' camera and the sample count.
 //!
-//! Mitsuba's perspective camera looks along its `to_world`'s +z, with +y up and +x to the left
-//! (`look_at`), which is lumis' camera with `from` = the origin, `to` = origin + z and `up` = y,
-//! exactly when `to_world` is a rotation and translation (Mitsuba refuses scale factors; a
-//! mirroring one is refused here, lumis' image axis being `cross(forward, up)`). The field of
-//! view follows Mitsuba's `parse_fov` (`fov` on `fov_axis` x, y, diagonal, smaller or larger,
-//! or a 35 mm `focal_length`, default 50 mm) and becomes lumis' vertical one.
+//! Mitsuba's perspective and thin-lens cameras look along their `to_world`'s +z, with +y up and
+//! +x to the left (`look_at`), which is lumis' camera with `from` = the origin, `to` = origin + z
+//! and `up` = y, exactly when `to_world` is a rotation and translation (Mitsuba refuses scale
+//! factors; a mirroring one is refused here, lumis' image axis being `cross(forward, up)`). The
+//! field of view follows Mitsuba's `parse_fov` (`fov` on `fov_axis` x, y, diagonal, smaller or
+//! larger, or a 35 mm `focal_length`, default 50 mm) and becomes lumis' vertical one. A thin
+//! lens keeps `aperture_radius` and `focus_distance` (default: the far clip plane, as Mitsuba).
+//! The orthographic camera's `to_world` may scale: that is how Mitsuba sizes its film.
 
 use super::plugin::Plugin;
+use super::xml::Pos;
 use super::{Ctx, target};
 use crate::scene::error::SceneError;
 use glam::{DMat3, DVec3};
@@ -22,16 +25,18 @@ pub struct SensorOut {
     pub spp: u32,
 }
 
-/// A `<sensor>`.
+/// A `<sensor>`: `perspective`, `thinlens` or `orthographic`.
 pub fn sensor(ctx: &mut Ctx, sensor: &Plugin) -> Result<SensorOut, SceneError> {
-    if sensor.ty != "perspective" {
+    if !matches!(sensor.ty, "perspective" | "thinlens" | "orthographic") {
         let why = match sensor.ty {
-            "thinlens" => " (a thin lens has depth of field; lumis' camera is a pinhole)",
-            "orthographic" | "telecentric" => " (lumis' camera is a perspective pinhole)",
+            "telecentric" => " (a telecentric lens; lumis has orthographic, its pinhole limit)",
+            "radiancemeter" | "irradiancemeter" | "distant" | "batch" => {
+                " (lumis renders one image)"
+            }
             _ => "",
         };
         return Err(sensor.error(format!(
-            "sensor type `{}` is not supported{why}; use `perspective`",
+            "sensor type `{}` is not supported{why}; use perspective, thinlens or orthographic",
             sensor.ty
         )));
     }
@@ -46,62 +51,42 @@ pub fn sensor(ctx: &mut Ctx, sensor: &Plugin) -> Result<SensorOut, SceneError> {
     };
     let (width, height, filter) = film_size(ctx, &film)?;
     let aspect = width as f64 / height as f64;
-    let x_fov = x_fov(sensor, aspect)?;
-    let vfov = 2.0
-        * ((0.5 * x_fov.to_radians()).tan() / aspect)
-            .atan()
-            .to_degrees();
-
     let (to_world, tpos) = match sensor.transform("to_world")? {
         Some((m, p)) => (m, p.el.pos.clone()),
         None => (glam::DMat4::IDENTITY, sensor.pos().clone()),
     };
-    let r = DMat3::from_mat4(to_world);
-    let rrt = r * r.transpose();
-    let off = (rrt - DMat3::IDENTITY).to_cols_array();
-    if off.iter().any(|x| x.abs() > 1e-3) {
-        return Err(tpos.error(
-            "the camera's to_world has a scale factor, which Mitsuba does not allow either",
-        ));
-    }
-    if r.determinant() < 0.0 {
-        return Err(tpos.error(
-            "the camera's to_world mirrors the image (negative determinant, e.g. a scale by \
-             -1): lumis' image always runs along cross(forward, up)",
-        ));
-    }
-    let from = to_world.w_axis.truncate();
-    let forward = r.z_axis;
-    let up = r.y_axis;
-    for key in ["principal_point_offset_x", "principal_point_offset_y"] {
-        if sensor.float(key, 0.0)? != 0.0 {
-            return Err(sensor.error(format!("`{key}` other than 0 is not supported")));
-        }
-    }
-    // A pinhole's image does not depend on them (clip planes far outside the scene assumed).
-    sensor.ignore(&[
-        "near_clip",
-        "far_clip",
-        "focus_distance",
-        "shutter_open",
-        "shutter_close",
-    ]);
+    let mut camera = if sensor.ty == "orthographic" {
+        orthographic(ctx, sensor, &to_world, &tpos, aspect)?
+    } else {
+        projective(ctx, sensor, &to_world, &tpos, aspect)?
+    };
+    camera["width"] = json!(width);
+    camera["height"] = json!(height);
+    camera["filter"] = filter;
+    // Far clip planes beyond the scene, as assumed throughout (docs/mitsuba.md).
+    sensor.ignore(&["far_clip", "shutter_open", "shutter_close"]);
     let spp = match sensor.object("sampler")? {
         Some(p) => sampler(&ctx.plugin(target(p))?)?,
         None => 4,
     };
-    sensor.finish(
-        "to_world, fov, fov_axis, focal_length, film, sampler; near_clip, far_clip, \
-         focus_distance, shutter_open and shutter_close are ignored",
-    )?;
+    sensor.finish(match sensor.ty {
+        "orthographic" => {
+            "to_world, near_clip, film, sampler; far_clip, shutter_open and shutter_close are \
+             ignored"
+        }
+        "thinlens" => {
+            "to_world, fov, fov_axis, focal_length, aperture_radius, focus_distance, film, \
+             sampler; near_clip, far_clip, shutter_open and shutter_close are ignored"
+        }
+        _ => {
+            "to_world, fov, fov_axis, focal_length, film, sampler; near_clip, far_clip, \
+             focus_distance, shutter_open and shutter_close are ignored"
+        }
+    })?;
     ctx.origin("camera", sensor.pos());
-    ctx.origin("camera.from", &tpos);
-    ctx.origin("camera.to", &tpos);
-    ctx.origin("camera.up", &tpos);
-    ctx.origin(
-        "camera.vfov_deg",
-        sensor.get("fov").map_or(sensor.pos(), |p| p.pos()),
-    );
+    for key in ["camera.from", "camera.to", "camera.up"] {
+        ctx.origin(key, &tpos);
+    }
     ctx.origin(
         "camera.width",
         film.get("width").map_or(film.pos(), |p| p.pos()),
@@ -110,15 +95,124 @@ pub fn sensor(ctx: &mut Ctx, sensor: &Plugin) -> Result<SensorOut, SceneError> {
         "camera.height",
         film.get("height").map_or(film.pos(), |p| p.pos()),
     );
+    Ok(SensorOut { camera, spp })
+}
+
+/// The frame of a `to_world` that is a rotation and translation (Mitsuba refuses scale factors
+/// for its perspective and thin-lens cameras; a mirroring one is refused here, lumis' image axis
+/// being `cross(forward, up)`): `(from, forward, up)`.
+fn rigid_frame(to_world: &glam::DMat4, tpos: &Pos) -> Result<(DVec3, DVec3, DVec3), SceneError> {
+    let r = DMat3::from_mat4(*to_world);
+    let rrt = r * r.transpose();
+    let off = (rrt - DMat3::IDENTITY).to_cols_array();
+    if off.iter().any(|x| x.abs() > 1e-3) {
+        return Err(tpos.error(
+            "the camera's to_world has a scale factor, which Mitsuba does not allow either",
+        ));
+    }
+    if r.determinant() < 0.0 {
+        return Err(tpos.error(MIRRORED));
+    }
+    Ok((to_world.w_axis.truncate(), r.z_axis, r.y_axis))
+}
+
+const MIRRORED: &str = "the camera's to_world mirrors the image (negative determinant, e.g. a \
+                        scale by -1): lumis' image always runs along cross(forward, up)";
+
+/// A `perspective` or `thinlens` sensor's camera (without its film).
+fn projective(
+    ctx: &mut Ctx,
+    sensor: &Plugin,
+    to_world: &glam::DMat4,
+    tpos: &Pos,
+    aspect: f64,
+) -> Result<Value, SceneError> {
+    let x_fov = x_fov(sensor, aspect)?;
+    let vfov = 2.0
+        * ((0.5 * x_fov.to_radians()).tan() / aspect)
+            .atan()
+            .to_degrees();
+    let (from, forward, up) = rigid_frame(to_world, tpos)?;
     let v = |d: DVec3| json!([d.x, d.y, d.z]);
-    Ok(SensorOut {
-        camera: json!({
-            "from": v(from), "to": v(from + forward), "up": v(up),
-            "vfov_deg": vfov, "width": width, "height": height,
-            "filter": filter,
-        }),
-        spp,
-    })
+    let mut camera =
+        json!({"from": v(from), "to": v(from + forward), "up": v(up), "vfov_deg": vfov});
+    ctx.origin(
+        "camera.vfov_deg",
+        sensor.get("fov").map_or(sensor.pos(), |p| p.pos()),
+    );
+    if sensor.ty == "thinlens" {
+        // Mitsuba requires the aperture; its focus distance defaults to the far clip plane.
+        let aperture = sensor.get("aperture_radius").ok_or_else(|| {
+            sensor.error("a thinlens needs `aperture_radius` (Mitsuba requires it too)")
+        })?;
+        let radius = sensor.float("aperture_radius", 0.0)?;
+        let far = sensor.float("far_clip", 1e4)?;
+        let focus = sensor.float("focus_distance", far)?;
+        camera["type"] = json!("thinlens");
+        camera["aperture_radius"] = json!(radius);
+        camera["focus_distance"] = json!(focus);
+        ctx.origin("camera.aperture_radius", aperture.pos());
+        ctx.origin(
+            "camera.focus_distance",
+            sensor
+                .get("focus_distance")
+                .map_or(sensor.pos(), |p| p.pos()),
+        );
+        sensor.ignore(&["near_clip"]);
+    } else {
+        for key in ["principal_point_offset_x", "principal_point_offset_y"] {
+            if sensor.float(key, 0.0)? != 0.0 {
+                return Err(sensor.error(format!("`{key}` other than 0 is not supported")));
+            }
+        }
+        // A pinhole's image does not depend on them (clip planes outside the scene assumed).
+        sensor.ignore(&["near_clip", "focus_distance"]);
+    }
+    Ok(camera)
+}
+
+/// An `orthographic` sensor's camera (without its film). Mitsuba's film spans [−1, 1] ×
+/// [−1/aspect, 1/aspect] in camera space, mapped by `to_world` (any affine map, usually a
+/// `scale` before the `lookat`); rays start on the near plane z = `near_clip`. lumis takes
+/// `to_world`s whose axes stay perpendicular (no shear) and that do not mirror: the film's
+/// world-space size is then the scaled axes' lengths, and `from` the near plane's centre.
+fn orthographic(
+    ctx: &mut Ctx,
+    sensor: &Plugin,
+    to_world: &glam::DMat4,
+    tpos: &Pos,
+    aspect: f64,
+) -> Result<Value, SceneError> {
+    let m = DMat3::from_mat4(*to_world);
+    let (x, y, z) = (m.x_axis, m.y_axis, m.z_axis);
+    let sheared = [(x, y), (y, z), (x, z)]
+        .iter()
+        .any(|(a, b)| a.dot(*b).abs() > 1e-6 * a.length() * b.length());
+    if sheared || m.determinant() == 0.0 || !m.determinant().is_finite() {
+        return Err(tpos.error(
+            "the orthographic camera's to_world shears or flattens its axes: lumis takes a \
+             scale, rotation and translation",
+        ));
+    }
+    if m.determinant() < 0.0 {
+        return Err(tpos.error(MIRRORED));
+    }
+    let near = sensor.float("near_clip", 1e-2)?;
+    if near.is_nan() || near <= 0.0 {
+        return Err(sensor.get("near_clip").map_or_else(
+            || sensor.error("near_clip"),
+            |p| p.error("near_clip must be > 0"),
+        ));
+    }
+    let from = to_world.transform_point3(DVec3::new(0.0, 0.0, near));
+    let v = |d: DVec3| json!([d.x, d.y, d.z]);
+    let view = [2.0 * x.length(), 2.0 * y.length() / aspect];
+    ctx.origin("camera.view_size", tpos);
+    Ok(json!({
+        "type": "orthographic",
+        "from": v(from), "to": v(from + z.normalize()), "up": v(y.normalize()),
+        "view_size": view,
+    }))
 }
 
 /// Mitsuba's horizontal field of view in degrees (`parse_fov`).
