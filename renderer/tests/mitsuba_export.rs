@@ -349,6 +349,18 @@ fn a_gaussian_filter_round_trips_and_another_radius_is_refused() {
     assert!(err.to_string().contains("camera.filter.radius"), "{err}");
 }
 
+/// A tent goes out as Mitsuba's `tent` with its radius and comes back the same, rendering the
+/// same image bit for bit.
+#[test]
+fn a_tent_filter_round_trips() {
+    let mut desc = kitchen_sink();
+    desc.camera.filter = lumis::scene::FilterDesc::Tent { radius: 1.75 };
+    assert_round_trip(&desc, "tent_filter");
+    let dir = Dir::new("tent_filter_back");
+    let (_, back) = round_trip(&desc, &dir, "tent_filter_back");
+    assert_eq!(back.desc.camera.filter, desc.camera.filter);
+}
+
 /// The block z-test at family-wise α = 0.01 (seeds 1 and 2, 64 spp each, 8×8 blocks): the
 /// exported `analytic_polygon`, whose emitting polygon becomes a triangle mesh, renders like
 /// the JSON with its polygon light. Detects a wrong triangulation or winding of the PLY.

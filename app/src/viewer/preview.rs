@@ -52,6 +52,9 @@ pub fn camera_at(
             stddev: stddev / factor as f32,
             radius: radius / factor as f32,
         },
+        PixelFilter::Tent { radius } => PixelFilter::Tent {
+            radius: radius / factor as f32,
+        },
     };
     lumis::scene::build::camera_of(desc, width, height).with_filter(filter)
 }

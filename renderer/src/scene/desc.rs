@@ -155,6 +155,12 @@ pub enum FilterDesc {
         /// Support half-width in pixels.
         radius: f64,
     },
+    /// `{"type": "tent", "radius"}`: Mitsuba's tent, `max(0, 1 − |x|/radius)`. Validated:
+    /// `0 < radius ≤` [`crate::camera::filter::MAX_FILTER_RADIUS`].
+    Tent {
+        /// Support half-width in pixels (default 1, Mitsuba's).
+        radius: f64,
+    },
 }
 
 impl FilterDesc {
@@ -164,6 +170,9 @@ impl FilterDesc {
             FilterDesc::Box => crate::camera::PixelFilter::Box,
             FilterDesc::Gaussian { stddev, radius } => crate::camera::PixelFilter::Gaussian {
                 stddev: stddev as f32,
+                radius: radius as f32,
+            },
+            FilterDesc::Tent { radius } => crate::camera::PixelFilter::Tent {
                 radius: radius as f32,
             },
         }
@@ -176,6 +185,7 @@ impl FilterDesc {
             FilterDesc::Gaussian { stddev, radius } => {
                 json!({"type": "gaussian", "stddev": stddev, "radius": radius})
             }
+            FilterDesc::Tent { radius } => json!({"type": "tent", "radius": radius}),
         }
     }
 }

@@ -358,8 +358,9 @@ fn parse_projection(obj: &Obj) -> Result<ProjectionDesc, SceneError> {
     })
 }
 
-/// `camera.filter` (a lumis addition): `{"type": "box"}` or
-/// `{"type": "gaussian", "stddev": σ, "radius": r}` (defaults 0.5 and 4σ, Mitsuba's).
+/// `camera.filter` (a lumis addition): `{"type": "box"}`,
+/// `{"type": "gaussian", "stddev": σ, "radius": r}` (defaults 0.5 and 4σ, Mitsuba's) or
+/// `{"type": "tent", "radius": r}` (default 1, Mitsuba's).
 fn parse_filter(obj: &Obj) -> Result<FilterDesc, SceneError> {
     match obj.string("type")? {
         "box" => {
@@ -388,9 +389,21 @@ fn parse_filter(obj: &Obj) -> Result<FilterDesc, SceneError> {
             }
             Ok(FilterDesc::Gaussian { stddev, radius })
         }
+        "tent" => {
+            obj.only_keys(&["type", "radius"], false)?;
+            let max = crate::camera::filter::MAX_FILTER_RADIUS as f64;
+            let radius = obj.opt_number("radius")?.unwrap_or(1.0);
+            if !(radius > 0.0 && radius <= max) {
+                return Err(SceneError::new(
+                    obj.at("radius"),
+                    format!("radius {radius} must be in (0, {max}] pixels"),
+                ));
+            }
+            Ok(FilterDesc::Tent { radius })
+        }
         other => Err(SceneError::new(
             obj.at("type"),
-            format!("unknown filter type `{other}` (expected `box` or `gaussian`)"),
+            format!("unknown filter type `{other}` (expected `box`, `gaussian` or `tent`)"),
         )),
     }
 }

@@ -194,15 +194,18 @@ gpu_tags! {
         Box => "FILTER_BOX",
         /// [`PixelFilter::Gaussian`].
         Gaussian => "FILTER_GAUSSIAN",
+        /// [`PixelFilter::Tent`].
+        Tent => "FILTER_TENT",
     }
 }
 
 impl FilterTag {
-    /// The tag of `f` and its (σ, radius): the box's σ is 0 (unused).
+    /// The tag of `f` and its (σ, radius): the box's and the tent's σ is 0 (unused).
     pub fn of(f: PixelFilter) -> (FilterTag, f32, f32) {
         match f {
             PixelFilter::Box => (FilterTag::Box, 0.0, f.radius()),
             PixelFilter::Gaussian { stddev, radius } => (FilterTag::Gaussian, stddev, radius),
+            PixelFilter::Tent { radius } => (FilterTag::Tent, 0.0, radius),
         }
     }
 }

@@ -246,6 +246,11 @@ fn sensor(x: &mut Xml, desc: &SceneDesc, options: &ExportOptions) -> Result<(), 
             x.leaf("float", &[("name", "stddev"), ("value", &num(stddev))]);
             x.close("rfilter");
         }
+        FilterDesc::Tent { radius } => {
+            x.open("rfilter", &[("type", "tent")]);
+            x.leaf("float", &[("name", "radius"), ("value", &num(radius))]);
+            x.close("rfilter");
+        }
     }
     x.close("film");
     x.close("sensor");

@@ -281,9 +281,10 @@ fn x_fov(sensor: &Plugin, aspect: f64) -> Result<f64, SceneError> {
     Ok(x)
 }
 
-/// An `hdrfilm`'s size and lumis' `camera.filter` for its `rfilter`: `box`, or `gaussian`
-/// (also when there is none, Mitsuba's default) with Mitsuba's stddev (default 0.5) and its fixed
-/// radius 4·stddev. lumis samples the film like Mitsuba's default `sample_border = false`.
+/// An `hdrfilm`'s size and lumis' `camera.filter` for its `rfilter`: `box`, `gaussian` (also
+/// when there is none, Mitsuba's default) with Mitsuba's stddev (default 0.5) and its fixed
+/// radius 4·stddev, or `tent` with its radius (default 1). lumis samples the film like
+/// Mitsuba's default `sample_border = false`.
 fn film_size(ctx: &mut Ctx, film: &Plugin) -> Result<(i64, i64, Value), SceneError> {
     if film.ty != "hdrfilm" {
         return Err(film.error(format!(
@@ -332,10 +333,29 @@ fn film_size(ctx: &mut Ctx, film: &Plugin) -> Result<(i64, i64, Value), SceneErr
                     f.finish("stddev")?;
                     json!({"type": "gaussian", "stddev": stddev, "radius": 4.0 * stddev})
                 }
+                "tent" => {
+                    let radius = f.float("radius", 1.0)?;
+                    let max = crate::camera::filter::MAX_FILTER_RADIUS as f64;
+                    if !(radius > 0.0 && radius <= max) {
+                        return Err(f.get("radius").map_or_else(
+                            || f.error("radius"),
+                            |p| p.error(format!("radius {radius} must be in (0, {max}]")),
+                        ));
+                    }
+                    f.finish("radius")?;
+                    json!({"type": "tent", "radius": radius})
+                }
                 other => {
+                    let why = match other {
+                        "lanczos" | "mitchell" | "catmullrom" => {
+                            " (its negative lobes need signed sample weights, which lumis' film \
+                             does not carry yet)"
+                        }
+                        _ => "",
+                    };
                     return Err(f.error(format!(
-                        "reconstruction filter `{other}` is not supported: lumis has `box` and \
-                         `gaussian`"
+                        "reconstruction filter `{other}` is not supported{why}: lumis has \
+                         `box`, `gaussian` and `tent`"
                     )));
                 }
             };
