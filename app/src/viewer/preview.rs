@@ -138,6 +138,7 @@ mod tests {
             to: glam::DVec3::ZERO,
             up: glam::DVec3::Y,
             projection: lumis::scene::ProjectionDesc::Perspective { vfov_deg: 40.0 },
+            principal_point_offset: [0.0; 2],
             width: 512,
             height: 256,
             filter: Default::default(),

@@ -70,6 +70,9 @@ pub struct CameraDesc {
     pub up: DVec3,
     /// The projection (`"type"`) and its parameters.
     pub projection: ProjectionDesc,
+    /// Mitsuba's principal point offset in film widths and heights (`principal_point_offset`,
+    /// default `[0, 0]`).
+    pub principal_point_offset: [f64; 2],
     /// Image width in pixels.
     pub width: u32,
     /// Image height in pixels.
@@ -120,6 +123,9 @@ impl CameraDesc {
             "width": self.width, "height": self.height,
             "filter": self.filter.to_json(),
         });
+        if self.principal_point_offset != [0.0; 2] {
+            v["principal_point_offset"] = json!(self.principal_point_offset);
+        }
         match self.projection {
             ProjectionDesc::Perspective { vfov_deg } => v["vfov_deg"] = json!(vfov_deg),
             ProjectionDesc::ThinLens {

@@ -160,10 +160,19 @@ fn projective(
         );
         sensor.ignore(&["near_clip"]);
     } else {
-        for key in ["principal_point_offset_x", "principal_point_offset_y"] {
-            if sensor.float(key, 0.0)? != 0.0 {
-                return Err(sensor.error(format!("`{key}` other than 0 is not supported")));
-            }
+        // Mitsuba's perspective camera only (its thinlens and orthographic do not read them).
+        let offset = [
+            sensor.float("principal_point_offset_x", 0.0)?,
+            sensor.float("principal_point_offset_y", 0.0)?,
+        ];
+        if offset != [0.0; 2] {
+            camera["principal_point_offset"] = json!(offset);
+            let p = sensor.get("principal_point_offset_x");
+            let p = p.or_else(|| sensor.get("principal_point_offset_y"));
+            ctx.origin(
+                "camera.principal_point_offset",
+                p.map_or(sensor.pos(), |p| p.pos()),
+            );
         }
         // A pinhole's image does not depend on them (clip planes outside the scene assumed).
         sensor.ignore(&["near_clip", "focus_distance"]);
