@@ -57,6 +57,9 @@ pub struct Camera {
     half_y: f32,
     /// How film positions become rays.
     pub projection: Projection,
+    /// Mitsuba's principal point offset in pixels: the film position `(x, y)` is projected as
+    /// `(x + shift.x, y + shift.y)` of the centred camera (0 by default).
+    shift: Vec2,
     /// Image width in pixels.
     pub width: u32,
     /// Image height in pixels.
@@ -112,10 +115,24 @@ impl Camera {
             half_x,
             half_y,
             projection: Projection::Perspective,
+            shift: Vec2::ZERO,
             width,
             height,
             filter: PixelFilter::Box,
         }
+    }
+
+    /// This camera with its principal point moved by `(ox, oy)` film widths and heights
+    /// (Mitsuba's `principal_point_offset_x/y`: the film position `(x, y)` sees what the centred
+    /// camera sees at `(x + ox·width, y + oy·height)`).
+    pub fn with_principal_point_offset(mut self, ox: f32, oy: f32) -> Camera {
+        self.shift = Vec2::new(ox * self.width as f32, oy * self.height as f32);
+        self
+    }
+
+    /// The principal point offset in pixels (for the GPU).
+    pub fn shift(&self) -> Vec2 {
+        self.shift
     }
 
     /// This perspective camera as a thin lens of radius `aperture_radius` focused at
@@ -164,6 +181,8 @@ impl Camera {
     /// plane coordinates in [−1, 1] (+y up).
     #[inline]
     fn screen(&self, x: f32, y: f32) -> (f32, f32) {
+        // Adding a zero shift is exact: a centred camera's rays keep their bits.
+        let (x, y) = (x + self.shift.x, y + self.shift.y);
         (
             2.0 * x / self.width as f32 - 1.0,
             1.0 - 2.0 * y / self.height as f32,
@@ -220,8 +239,8 @@ impl Camera {
         let sx = v.dot(self.right) / (depth * self.half_x);
         let sy = v.dot(self.up) / (depth * self.half_y);
         Some((
-            (sx + 1.0) * 0.5 * self.width as f32,
-            (1.0 - sy) * 0.5 * self.height as f32,
+            (sx + 1.0) * 0.5 * self.width as f32 - self.shift.x,
+            (1.0 - sy) * 0.5 * self.height as f32 - self.shift.y,
         ))
     }
 }

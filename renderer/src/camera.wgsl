@@ -6,8 +6,10 @@
 // `Camera::sample_ray` from the film position `film` (pixels): the thin lens draws its lens
 // point after the film position, the other projections draw nothing.
 fn camera_ray(film: vec2f) -> Ray {
-    let sx = 2.0 * film.x / f32(params.width) - 1.0;
-    let sy = 1.0 - 2.0 * film.y / f32(params.height);
+    // The principal point offset in pixels (`Camera::screen`; adding 0 is exact).
+    let p = film + params.cam_shift.xy;
+    let sx = 2.0 * p.x / f32(params.width) - 1.0;
+    let sy = 1.0 - 2.0 * p.y / f32(params.height);
     let along_x = (sx * params.cam_origin.w) * params.cam_right.xyz;
     let along_y = (sy * params.cam_forward.w) * params.cam_up.xyz;
     switch params.camera {

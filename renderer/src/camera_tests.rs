@@ -209,3 +209,39 @@ fn only_the_thin_lens_draws_the_lens() {
     assert_eq!(next(&ortho), fresh);
     assert_ne!(next(&lens), fresh);
 }
+
+/// A principal point offset `(ox, oy)` makes the film position `(x, y)` see what the centred
+/// camera sees at `(x + ox·width, y + oy·height)`, for every projection, and `project` inverts
+/// it. Catches the offset applied with the wrong sign or in the wrong unit (pixels for film
+/// fractions).
+#[test]
+fn principal_point_offset_shifts_the_film() {
+    let (from, to, up) = view();
+    for centred in [
+        Camera::new(from, to, up, 50.0, 64, 48),
+        Camera::new(from, to, up, 50.0, 64, 48).with_thin_lens(0.2, 3.0),
+        Camera::orthographic(from, to, up, 2.0, 1.5, 64, 48),
+    ] {
+        let shifted = centred.with_principal_point_offset(0.25, -0.125);
+        let (a, b) = (
+            shifted.ray(10.5, 20.25),
+            centred.ray(10.5 + 16.0, 20.25 - 6.0),
+        );
+        assert!((a.o - b.o).length() < 1e-5 && (a.d - b.d).length() < 1e-6);
+        let u = Vec2::new(0.3, 0.8);
+        let (a, b) = (
+            shifted.lens_ray(3.0, 7.0, u),
+            centred.lens_ray(19.0, 1.0, u),
+        );
+        assert!((a.o - b.o).length() < 1e-5 && (a.d - b.d).length() < 1e-6);
+        let (x, y) = shifted.project(a.o + a.d * 4.0).unwrap();
+        if centred.projection
+            != (Projection::ThinLens {
+                aperture_radius: 0.2,
+                focus_distance: 3.0,
+            })
+        {
+            assert!((x - 3.0).abs() < 1e-3 && (y - 7.0).abs() < 1e-3, "{x}, {y}");
+        }
+    }
+}

@@ -175,6 +175,7 @@ fn assert_same_view(desc: &SceneDesc, back: &SceneDesc, name: &str) {
         "{name}: {a:?} vs {b:?}"
     );
     assert_eq!((a.width, a.height), (b.width, b.height), "{name}");
+    assert_eq!(a.principal_point_offset, b.principal_point_offset, "{name}");
 }
 
 fn scenes_dir() -> PathBuf {
@@ -227,7 +228,8 @@ fn an_envmap_rotation_round_trips() {
 
 /// A thin lens and an orthographic camera go out as Mitsuba's `thinlens` and `orthographic`
 /// (the film's size as a scale, the near plane behind `from`) and come back as the same view,
-/// rendering the same image bit for bit. Catches a film size off by the aspect (the importer
+/// rendering the same image bit for bit; so does a perspective camera's principal point
+/// offset, which the other two cannot take. Catches a film size off by the aspect (the importer
 /// divides the height by it) and a near plane not undone.
 #[test]
 fn thin_lens_and_orthographic_cameras_round_trip() {
@@ -252,7 +254,18 @@ fn thin_lens_and_orthographic_cameras_round_trip() {
         let mut desc = base.clone();
         desc.camera.projection = projection;
         assert_round_trip(&desc, &format!("camera_{name}"));
+        // Mitsuba's principal point offset belongs to its perspective camera only.
+        desc.camera.principal_point_offset = [0.1, 0.0];
+        let dir = Dir::new(&format!("camera_{name}_offset"));
+        let err = write_export(&desc, &dir.0.join("s.xml"), &ExportOptions::default()).unwrap_err();
+        assert!(
+            err.to_string().contains("camera.principal_point_offset"),
+            "{err}"
+        );
     }
+    let mut desc = base.clone();
+    desc.camera.principal_point_offset = [0.2, -0.15];
+    assert_round_trip(&desc, "camera_principal_point");
 }
 
 /// A scene with every material kind, both texture kinds in colour and scalar slots (uv scale
@@ -347,6 +360,18 @@ fn a_gaussian_filter_round_trips_and_another_radius_is_refused() {
     let dir = Dir::new("gaussian_radius");
     let err = write_export(&desc, &dir.0.join("s.xml"), &ExportOptions::default()).unwrap_err();
     assert!(err.to_string().contains("camera.filter.radius"), "{err}");
+}
+
+/// A tent goes out as Mitsuba's `tent` with its radius and comes back the same, rendering the
+/// same image bit for bit.
+#[test]
+fn a_tent_filter_round_trips() {
+    let mut desc = kitchen_sink();
+    desc.camera.filter = lumis::scene::FilterDesc::Tent { radius: 1.75 };
+    assert_round_trip(&desc, "tent_filter");
+    let dir = Dir::new("tent_filter_back");
+    let (_, back) = round_trip(&desc, &dir, "tent_filter_back");
+    assert_eq!(back.desc.camera.filter, desc.camera.filter);
 }
 
 /// The block z-test at family-wise α = 0.01 (seeds 1 and 2, 64 spp each, 8×8 blocks): the

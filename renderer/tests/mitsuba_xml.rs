@@ -920,6 +920,41 @@ fn imported_gaussian_filter_renders_to_the_mitsuba_reference() {
     );
 }
 
+/// The imported tent_edges.xml (Mitsuba's `tent`, radius 1.5 px, sample_border false: the
+/// edges of gaussian_edges.xml) against its Mitsuba 3.9.1 reference: MIS, 4096 spp, seed 2150,
+/// as the gaussian's test; the same scene with a box filter must fail it.
+#[test]
+fn imported_tent_filter_renders_to_the_mitsuba_reference() {
+    let data = common::data_dir();
+    let m = mitsuba::load(&data.join("mitsuba/tent_edges.xml"), &[]).unwrap();
+    assert_eq!(
+        m.desc.camera.filter,
+        lumis::scene::FilterDesc::Tent { radius: 1.5 }
+    );
+    let settings = lumis::integrator::Settings {
+        strategy: lumis::integrator::Strategy::Mis {
+            heuristic: lumis::integrator::Heuristic::Power,
+        },
+        rr_depth: m.rr_depth.unwrap_or(5),
+        ..Default::default()
+    };
+    let reference = common::reference("tent_edges.exr");
+    let var = common::reference("tent_edges.var.exr");
+    let run = |what: &str, desc: &lumis::scene::SceneDesc| {
+        let scene = std::sync::Arc::new(lumis::scene::Scene::from_desc(desc).unwrap());
+        decide_against(what, 2150, 4096, &reference, Some(&var), 16, |seed, n| {
+            common::render(&scene, settings, n, seed)
+        })
+    };
+    run("imported tent_edges.xml", &m.desc).unwrap_or_else(|msg| panic!("{msg}"));
+    let mut boxed = m.desc.clone();
+    boxed.camera.filter = lumis::scene::FilterDesc::Box;
+    assert!(
+        run("box-filtered tent_edges", &boxed).is_err(),
+        "a box filter must fail against the tent reference"
+    );
+}
+
 /// The thin lens keeps its aperture and focus distance (default: the far clip plane, as
 /// Mitsuba); the orthographic camera's film is its scaled axes' lengths (the height over the
 /// aspect), its `from` the near plane's centre, and its view the lookat's.

@@ -312,3 +312,21 @@ fn xml_orthographic_wider_film_is_detected() {
     let m = import("xml_orthographic", &[("sx", "2.3")]);
     assert_detected("xml_orthographic", &m, 1990, "with sx=2.3");
 }
+
+/// `xml_principal_point.xml` (Mitsuba's perspective camera with `principal_point_offset_x` 0.15
+/// and `principal_point_offset_y` 0.1) against its reference, seeds 2160–2164. The file's first
+/// version (`oy` −0.1) moved sky-only blocks into the image and failed every strategy there
+/// (zero variance on both sides, Mitsuba's constant emitter 1.4e-5 off: see
+/// [`xml_thinlens_matches_its_mitsuba_reference`]); the seeds are the ones fixed before that run.
+#[test]
+fn xml_principal_point_matches_its_mitsuba_reference() {
+    every_strategy("xml_principal_point", [256, 256, 256, 256, 256], 2160);
+}
+
+/// Power: `xml_principal_point.xml` with `-D ox=-0.15` (the horizontal offset with the wrong
+/// sign) fails, MIS 256 spp, seed 2170.
+#[test]
+fn xml_principal_point_wrong_sign_is_detected() {
+    let m = import("xml_principal_point", &[("ox", "-0.15")]);
+    assert_detected("xml_principal_point", &m, 2170, "with ox=-0.15");
+}

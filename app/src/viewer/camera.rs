@@ -159,6 +159,7 @@ mod tests {
             to: DVec3::new(0.0, 1.0, 0.0),
             up: DVec3::Y,
             projection: ProjectionDesc::Perspective { vfov_deg: 40.0 },
+            principal_point_offset: [0.0; 2],
             width: 64,
             height: 64,
             filter: Default::default(),

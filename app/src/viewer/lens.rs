@@ -135,6 +135,7 @@ mod tests {
             to: DVec3::ZERO,
             up: DVec3::Y,
             projection: ProjectionDesc::Perspective { vfov_deg: 45.0 },
+            principal_point_offset: [0.0; 2],
             width: 200,
             height: 100,
             filter: Default::default(),

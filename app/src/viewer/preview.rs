@@ -52,6 +52,9 @@ pub fn camera_at(
             stddev: stddev / factor as f32,
             radius: radius / factor as f32,
         },
+        PixelFilter::Tent { radius } => PixelFilter::Tent {
+            radius: radius / factor as f32,
+        },
     };
     lumis::scene::build::camera_of(desc, width, height).with_filter(filter)
 }
@@ -135,6 +138,7 @@ mod tests {
             to: glam::DVec3::ZERO,
             up: glam::DVec3::Y,
             projection: lumis::scene::ProjectionDesc::Perspective { vfov_deg: 40.0 },
+            principal_point_offset: [0.0; 2],
             width: 512,
             height: 256,
             filter: Default::default(),

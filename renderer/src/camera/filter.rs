@@ -7,6 +7,8 @@
 //!   `f(x) = max(0, exp(−x²/(2σ²)) − exp(−r²/(2σ²)))` per axis, separable (`f(x)·f(y)`), as
 //!   Mitsuba's `ImageBlock::put` weights a splat (`src/rfilters/gaussian.cpp`: its CPU variants
 //!   evaluate a Remez fit of the same function, equal within ~1e-7). Mitsuba fixes `r = 4σ`.
+//! * [`PixelFilter::Tent`]: Mitsuba 3's `tent` rfilter, `f(x) = max(0, 1 − |x|/r)` per axis,
+//!   separable (`src/rfilters/tent.cpp`; its radius defaults to 1 pixel).
 //!
 //! **Film edges** follow Mitsuba's `hdrfilm` with `sample_border = false` (its default): Mitsuba
 //! places samples only on the film and divides each pixel's weighted sum by its summed weights,
@@ -23,7 +25,7 @@ use crate::erf::erfc;
 use glam::Vec2;
 
 /// A pixel filter. Parameters are validated by the scene parser: `stddev > 0`,
-/// `stddev ≤ radius ≤` [`MAX_FILTER_RADIUS`].
+/// `stddev ≤ radius ≤` [`MAX_FILTER_RADIUS`]; a tent's `0 < radius ≤` [`MAX_FILTER_RADIUS`].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum PixelFilter {
     /// Uniform over the pixel (radius ½).
@@ -34,6 +36,11 @@ pub enum PixelFilter {
         /// Standard deviation σ in pixels.
         stddev: f32,
         /// Support half-width in pixels (Mitsuba: 4σ).
+        radius: f32,
+    },
+    /// Mitsuba's tent: `1 − |x|/radius`, clamped at 0.
+    Tent {
+        /// Support half-width in pixels (Mitsuba's default 1).
         radius: f32,
     },
 }
@@ -54,7 +61,7 @@ impl PixelFilter {
     pub fn radius(&self) -> f32 {
         match *self {
             PixelFilter::Box => 0.5,
-            PixelFilter::Gaussian { radius, .. } => radius,
+            PixelFilter::Gaussian { radius, .. } | PixelFilter::Tent { radius } => radius,
         }
     }
 
@@ -72,6 +79,7 @@ impl PixelFilter {
                 let k = -0.5 / (stddev * stddev);
                 ((k * x * x).exp() - (k * radius * radius).exp()).max(0.0)
             }
+            PixelFilter::Tent { radius } => (1.0 - x.abs() / radius).max(0.0),
         }
     }
 
@@ -85,6 +93,14 @@ impl PixelFilter {
                 let scale = stddev * (std::f32::consts::FRAC_PI_2).sqrt();
                 let floor = (-0.5 * radius * radius / (stddev * stddev)).exp();
                 scale * (erfc(-radius * s) - erfc(x * s)) - floor * (x + radius)
+            }
+            // The rising half's triangle (x ≤ 0), or all of it less the falling half's rest.
+            PixelFilter::Tent { radius } => {
+                if x <= 0.0 {
+                    (x + radius) * (x + radius) / (2.0 * radius)
+                } else {
+                    radius - (radius - x) * (radius - x) / (2.0 * radius)
+                }
             }
         }
     }
@@ -106,7 +122,9 @@ impl PixelFilter {
         }
         match self {
             PixelFilter::Box => 1.0 / (hi - lo),
-            PixelFilter::Gaussian { .. } => self.eval(x) / (self.integral(hi) - self.integral(lo)),
+            PixelFilter::Gaussian { .. } | PixelFilter::Tent { .. } => {
+                self.eval(x) / (self.integral(hi) - self.integral(lo))
+            }
         }
     }
 
@@ -157,7 +175,7 @@ impl PixelFilter {
     pub fn film_position(&self, u: Vec2, px: u32, py: u32, width: u32, height: u32) -> Vec2 {
         match self {
             PixelFilter::Box => Vec2::new(px as f32 + u.x, py as f32 + u.y),
-            PixelFilter::Gaussian { .. } => {
+            PixelFilter::Gaussian { .. } | PixelFilter::Tent { .. } => {
                 let axis = |u: f32, p: u32, n: u32| {
                     let c = p as f32 + 0.5;
                     c + self.sample_1d(u, -c, n as f32 - c)

@@ -1,13 +1,14 @@
 // The pixel filter, the twin of `camera/filter.rs`: camera samples are placed on the film with
 // density ∝ the filter (filter importance sampling, every sample weight 1). The box filter is the
-// original jitter over the pixel, bit for bit; the gaussian (Mitsuba's windowed one) draws each
+// original jitter over the pixel, bit for bit; the gaussian (Mitsuba's windowed one) and the tent
+// (Mitsuba's) draw each
 // axis's offset from the filter restricted to the film, by inverting its CDF with Newton steps
 // inside a bisection bracket: at most FILTER_MAX_STEPS, stopping at FILTER_TOLERANCE (the Rust
 // constants, through the prelude). The render kernel reads the filter from `Params`
 // (`params_filter`; tags FILTER_*, written by the uniform's encoder, gpu/scene/params.rs).
 
-// `PixelFilter`: its tag (FILTER_*) and the gaussian's σ and radius in pixels (the box ignores
-// them).
+// `PixelFilter`: its tag (FILTER_*) and the gaussian's σ and the gaussian's or tent's radius in
+// pixels (the box ignores them, the tent σ).
 struct PixelFilter {
     tag: u32,
     stddev: f32,
@@ -21,6 +22,9 @@ fn filter_radius(f: PixelFilter) -> f32 {
             return 0.5;
         }
         case FILTER_GAUSSIAN: {
+            return f.radius;
+        }
+        case FILTER_TENT: {
             return f.radius;
         }
         default: {
@@ -38,6 +42,9 @@ fn filter_eval(f: PixelFilter, x: f32) -> f32 {
         case FILTER_GAUSSIAN: {
             let k = -0.5 / (f.stddev * f.stddev);
             return max(exp(k * x * x) - exp(k * f.radius * f.radius), 0.0);
+        }
+        case FILTER_TENT: {
+            return max(1.0 - abs(x) / f.radius, 0.0);
         }
         default: {
             return unknown_tag();
@@ -57,6 +64,13 @@ fn filter_integral(f: PixelFilter, x: f32) -> f32 {
             let scale = f.stddev * SQRT_FRAC_PI_2;
             let window = exp(-0.5 * f.radius * f.radius / (f.stddev * f.stddev));
             return scale * (erfc(-f.radius * s) - erfc(x * s)) - window * (x + f.radius);
+        }
+        case FILTER_TENT: {
+            let r = f.radius;
+            if x <= 0.0 {
+                return (x + r) * (x + r) / (2.0 * r);
+            }
+            return r - (r - x) * (r - x) / (2.0 * r);
         }
         default: {
             return unknown_tag();
@@ -122,13 +136,19 @@ fn filter_film_axis(f: PixelFilter, u: f32, p: u32, n: u32) -> f32 {
 }
 
 // The film position (pixels) of a camera sample of pixel (px, py) of a width × height film from
-// the uniforms u (`film_position`); the box gives (px + u.x, py + u.y) exactly.
+// the uniforms u (`film_position`); the box gives (px + u.x, py + u.y) exactly. The gaussian and
+// the tent have a case each here and in `filter_radius` rather than one shared case: shared,
+// lavapipe compiled the gaussian's path differently, and the GPU images of a gaussian-filtered
+// scene (xml_meshes.xml) changed in their last bits.
 fn film_position(f: PixelFilter, u: vec2f, px: u32, py: u32, width: u32, height: u32) -> vec2f {
     switch f.tag {
         case FILTER_BOX: {
             return vec2f(f32(px) + u.x, f32(py) + u.y);
         }
         case FILTER_GAUSSIAN: {
+            return vec2f(filter_film_axis(f, u.x, px, width), filter_film_axis(f, u.y, py, height));
+        }
+        case FILTER_TENT: {
             return vec2f(filter_film_axis(f, u.x, px, width), filter_film_axis(f, u.y, py, height));
         }
         default: {

@@ -29,6 +29,8 @@ struct Params {
     cam_forward: vec4f,
     cam_right: vec4f,
     cam_up: vec4f,
+    // The principal point offset in pixels in xy (`Camera::shift`).
+    cam_shift: vec4f,
     // Where the mesh attribute arrays start in `vertex_data` (triangles, meshes, normals, uvs).
     attr: vec4<u32>,
     // The camera's pixel filter (FILTER_*) and the gaussian's σ and radius in pixels

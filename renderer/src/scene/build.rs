@@ -605,7 +605,8 @@ impl Scene {
     }
 }
 
-/// The render-ready camera of `cam` on a film of `width × height` pixels (the scene's own size,
+/// The render-ready camera of `cam` on a film of `width × height` pixels (its principal point
+/// offset in film fractions, so the same on any film) (the scene's own size,
 /// or a viewer preview's), with the box filter. The parser checked the view direction and `up`
 /// in f64. Rounded to f32, a `to` very close to a distant `from` could coincide with it, and a
 /// tiny `up` become zero: the camera gets a look-at point as far away as `from` is from the
@@ -631,6 +632,10 @@ pub fn camera_of(cam: &CameraDesc, width: u32, height: u32) -> Camera {
             Camera::orthographic(from, to, up, w as f32, h as f32, width, height)
         }
     }
+    .with_principal_point_offset(
+        cam.principal_point_offset[0] as f32,
+        cam.principal_point_offset[1] as f32,
+    )
 }
 
 #[cfg(test)]

@@ -70,6 +70,9 @@ pub struct CameraDesc {
     pub up: DVec3,
     /// The projection (`"type"`) and its parameters.
     pub projection: ProjectionDesc,
+    /// Mitsuba's principal point offset in film widths and heights (`principal_point_offset`,
+    /// default `[0, 0]`).
+    pub principal_point_offset: [f64; 2],
     /// Image width in pixels.
     pub width: u32,
     /// Image height in pixels.
@@ -120,6 +123,9 @@ impl CameraDesc {
             "width": self.width, "height": self.height,
             "filter": self.filter.to_json(),
         });
+        if self.principal_point_offset != [0.0; 2] {
+            v["principal_point_offset"] = json!(self.principal_point_offset);
+        }
         match self.projection {
             ProjectionDesc::Perspective { vfov_deg } => v["vfov_deg"] = json!(vfov_deg),
             ProjectionDesc::ThinLens {
@@ -155,6 +161,12 @@ pub enum FilterDesc {
         /// Support half-width in pixels.
         radius: f64,
     },
+    /// `{"type": "tent", "radius"}`: Mitsuba's tent, `max(0, 1 − |x|/radius)`. Validated:
+    /// `0 < radius ≤` [`crate::camera::filter::MAX_FILTER_RADIUS`].
+    Tent {
+        /// Support half-width in pixels (default 1, Mitsuba's).
+        radius: f64,
+    },
 }
 
 impl FilterDesc {
@@ -164,6 +176,9 @@ impl FilterDesc {
             FilterDesc::Box => crate::camera::PixelFilter::Box,
             FilterDesc::Gaussian { stddev, radius } => crate::camera::PixelFilter::Gaussian {
                 stddev: stddev as f32,
+                radius: radius as f32,
+            },
+            FilterDesc::Tent { radius } => crate::camera::PixelFilter::Tent {
                 radius: radius as f32,
             },
         }
@@ -176,6 +191,7 @@ impl FilterDesc {
             FilterDesc::Gaussian { stddev, radius } => {
                 json!({"type": "gaussian", "stddev": stddev, "radius": radius})
             }
+            FilterDesc::Tent { radius } => json!({"type": "tent", "radius": radius}),
         }
     }
 }

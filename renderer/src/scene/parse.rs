@@ -202,7 +202,15 @@ pub(crate) fn check_radiance(le: DVec3, path: &str) -> Result<DVec3, SceneError>
 }
 
 fn parse_camera(obj: &Obj) -> Result<CameraDesc, SceneError> {
-    const FRAME: [&str; 6] = ["type", "from", "to", "up", "width", "height"];
+    const FRAME: [&str; 7] = [
+        "type",
+        "from",
+        "to",
+        "up",
+        "width",
+        "height",
+        "principal_point_offset",
+    ];
     let own: &[&str] = match camera_type(obj)? {
         "perspective" => &["vfov_deg"],
         "thinlens" => &["vfov_deg", "aperture_radius", "focus_distance"],
@@ -268,6 +276,27 @@ fn parse_camera(obj: &Obj) -> Result<CameraDesc, SceneError> {
     }
 
     let projection = parse_projection(obj)?;
+    let mut principal_point_offset = [0.0; 2];
+    if let Some(v) = obj.get("principal_point_offset") {
+        let at = obj.at("principal_point_offset");
+        let o = array(v, &at)?;
+        if o.len() != 2 {
+            return Err(SceneError::new(
+                at,
+                "expected [x, y] (fractions of the film)",
+            ));
+        }
+        for (i, v) in o.iter().enumerate() {
+            // Beyond ten films away the view has left the film entirely many times over.
+            principal_point_offset[i] =
+                v.as_f64().filter(|x| x.abs() <= 10.0).ok_or_else(|| {
+                    SceneError::new(
+                        format!("{at}[{i}]"),
+                        format!("{v} must be a number in [-10, 10]"),
+                    )
+                })?;
+        }
+    }
     let size = |key: &str| -> Result<u32, SceneError> {
         Ok(integer(obj.req(key)?, &obj.at(key), 1, MAX_IMAGE_SIZE as i64)? as u32)
     };
@@ -281,6 +310,7 @@ fn parse_camera(obj: &Obj) -> Result<CameraDesc, SceneError> {
         to,
         up,
         projection,
+        principal_point_offset,
         width,
         height,
         filter,
@@ -358,8 +388,9 @@ fn parse_projection(obj: &Obj) -> Result<ProjectionDesc, SceneError> {
     })
 }
 
-/// `camera.filter` (a lumis addition): `{"type": "box"}` or
-/// `{"type": "gaussian", "stddev": σ, "radius": r}` (defaults 0.5 and 4σ, Mitsuba's).
+/// `camera.filter` (a lumis addition): `{"type": "box"}`,
+/// `{"type": "gaussian", "stddev": σ, "radius": r}` (defaults 0.5 and 4σ, Mitsuba's) or
+/// `{"type": "tent", "radius": r}` (default 1, Mitsuba's).
 fn parse_filter(obj: &Obj) -> Result<FilterDesc, SceneError> {
     match obj.string("type")? {
         "box" => {
@@ -388,9 +419,21 @@ fn parse_filter(obj: &Obj) -> Result<FilterDesc, SceneError> {
             }
             Ok(FilterDesc::Gaussian { stddev, radius })
         }
+        "tent" => {
+            obj.only_keys(&["type", "radius"], false)?;
+            let max = crate::camera::filter::MAX_FILTER_RADIUS as f64;
+            let radius = obj.opt_number("radius")?.unwrap_or(1.0);
+            if !(radius > 0.0 && radius <= max) {
+                return Err(SceneError::new(
+                    obj.at("radius"),
+                    format!("radius {radius} must be in (0, {max}] pixels"),
+                ));
+            }
+            Ok(FilterDesc::Tent { radius })
+        }
         other => Err(SceneError::new(
             obj.at("type"),
-            format!("unknown filter type `{other}` (expected `box` or `gaussian`)"),
+            format!("unknown filter type `{other}` (expected `box`, `gaussian` or `tent`)"),
         )),
     }
 }
@@ -507,6 +550,11 @@ mod tests {
             let back = parse_scene_value(&desc.to_json()).unwrap();
             assert_eq!(back.camera, desc.camera);
         }
+        // The principal point offset, for any type.
+        let shifted = with(json!({"principal_point_offset": [0.25, -0.5]}), false);
+        let p = parse_scene_value(&shifted).unwrap();
+        assert_eq!(p.camera.principal_point_offset, [0.25, -0.5]);
+        assert_eq!(parse_scene_value(&p.to_json()).unwrap().camera, p.camera);
         let plain = parse_scene_value(&with(json!({"type": "perspective"}), false)).unwrap();
         assert_eq!(plain.camera, parse_scene_value(&base()).unwrap().camera);
 
@@ -570,6 +618,18 @@ mod tests {
                 true,
                 "camera.view_size",
                 "missing required key",
+            ),
+            (
+                json!({"principal_point_offset": [0.1]}),
+                false,
+                "camera.principal_point_offset",
+                "expected [x, y]",
+            ),
+            (
+                json!({"principal_point_offset": [0.1, 11]}),
+                false,
+                "camera.principal_point_offset[1]",
+                "[-10, 10]",
             ),
         ] {
             expect_err(&with(extra, drop_fov), at, fragment);

@@ -558,8 +558,26 @@ fn camera_filter_parses_round_trips_and_names_errors() {
     );
     let back = parse_scene(&d.to_json().to_string()).unwrap();
     assert_eq!(back.camera.filter, d.camera.filter);
+    // The tent: Mitsuba's default radius 1, and round trip.
+    let t = parse_scene(&with(r#", "filter": {"type": "tent"}"#)).unwrap();
+    assert_eq!(t.camera.filter, super::FilterDesc::Tent { radius: 1.0 });
+    let t = parse_scene(&with(r#", "filter": {"type": "tent", "radius": 2.5}"#)).unwrap();
+    let back = parse_scene(&t.to_json().to_string()).unwrap();
+    assert_eq!(back.camera.filter, super::FilterDesc::Tent { radius: 2.5 });
     for (f, path) in [
-        (r#", "filter": {"type": "tent"}"#, "camera.filter.type"),
+        (r#", "filter": {"type": "lanczos"}"#, "camera.filter.type"),
+        (
+            r#", "filter": {"type": "tent", "radius": 0}"#,
+            "camera.filter.radius",
+        ),
+        (
+            r#", "filter": {"type": "tent", "radius": 17}"#,
+            "camera.filter.radius",
+        ),
+        (
+            r#", "filter": {"type": "tent", "stddev": 1}"#,
+            "camera.filter.stddev",
+        ),
         (
             r#", "filter": {"type": "gaussian", "stddev": 0}"#,
             "camera.filter.stddev",

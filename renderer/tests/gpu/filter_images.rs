@@ -1,4 +1,4 @@
-//! The GPU's gaussian pixel filter in whole images (issue 18; `camera/filter.wgsl` function by function
+//! The GPU's gaussian and tent pixel filters in whole images (issue 18; `camera/filter.wgsl` function by function
 //! in `renderer/tests/gpu/parity_filter.rs`): the imported `gaussian_edges.xml` (Mitsuba's default
 //! gaussian, σ = 0.5 px, r = 2 px, sample_border false: sharp tilted edges, one leaving the film)
 //! rendered on the GPU agrees with its Mitsuba 3.9.1 reference by the block z-test of the CPU's
@@ -24,17 +24,11 @@ use std::sync::Arc;
 /// only 7 blocks at |z| 4.98, too close to the critical value to keep.
 const SPP: u32 = 1024;
 
-/// The imported scene and the CPU test's settings (MIS with the power heuristic, the file's
-/// Russian roulette depth).
-fn imported() -> (SceneDesc, Settings) {
-    let m = mitsuba::load(&data_dir().join("mitsuba/gaussian_edges.xml"), &[]).unwrap();
-    assert_eq!(
-        m.desc.camera.filter,
-        FilterDesc::Gaussian {
-            stddev: 0.5,
-            radius: 2.0
-        }
-    );
+/// The imported `tests/data/mitsuba/NAME.xml` and the CPU test's settings (MIS with the power
+/// heuristic, the file's Russian roulette depth), checking that it has `filter`.
+fn imported_as(name: &str, filter: FilterDesc) -> (SceneDesc, Settings) {
+    let m = mitsuba::load(&data_dir().join(format!("mitsuba/{name}.xml")), &[]).unwrap();
+    assert_eq!(m.desc.camera.filter, filter);
     let settings = Settings {
         strategy: Strategy::Mis {
             heuristic: Heuristic::Power,
@@ -45,15 +39,26 @@ fn imported() -> (SceneDesc, Settings) {
     (m.desc, settings)
 }
 
+/// `gaussian_edges.xml`: Mitsuba's default gaussian.
+fn imported() -> (SceneDesc, Settings) {
+    imported_as(
+        "gaussian_edges",
+        FilterDesc::Gaussian {
+            stddev: 0.5,
+            radius: 2.0,
+        },
+    )
+}
+
 fn build(desc: &SceneDesc) -> Arc<Scene> {
     Arc::new(Scene::from_desc(desc).unwrap_or_else(|e| panic!("{e}")))
 }
 
 /// The CPU test's z-test: 16×16 blocks × 3 channels, family-wise `alpha` (Šidák), the film's
 /// per-pixel variance of the mean plus the reference's variance image.
-fn against_reference(film: &Film, alpha: f64) -> BlockTest {
-    let img = reference("gaussian_edges.exr");
-    let var = variance_image(&reference("gaussian_edges.var.exr"));
+fn against_reference(name: &str, film: &Film, alpha: f64) -> BlockTest {
+    let img = reference(&format!("{name}.exr"));
+    let var = variance_image(&reference(&format!("{name}.var.exr")));
     assert_eq!((film.width, film.height), (img.width, img.height));
     let (mean, film_var) = (film.mean(), film.variance_of_mean());
     block_z_test(
@@ -91,7 +96,7 @@ fn gpu_gaussian_filter_renders_to_the_mitsuba_reference() {
         decide(what, 1818, SPP, |seed, n, alpha| {
             let film = gpu_render(&scene, settings, n, seed).expect("a GPU");
             assert_eq!(film.nonfinite, 0, "{what}: non-finite samples");
-            against_reference(&film, alpha)
+            against_reference("gaussian_edges", &film, alpha)
         })
     };
     decision("gpu gaussian_edges.xml", &desc).unwrap_or_else(|msg| panic!("{msg}"));
@@ -136,4 +141,30 @@ fn gaussian_same_seed_gives_the_cpu_image() {
         g.len()
     );
     assert!(e < 1e-5, "relMSE against the CPU {e:e}");
+}
+
+/// `tent_edges.xml` (gaussian_edges.xml's scene under Mitsuba's `tent`, radius 1.5 px) on the
+/// GPU against its Mitsuba 3.9.1 reference, as [`gpu_gaussian_filter_renders_to_the_mitsuba_reference`]
+/// (MIS, [`SPP`] spp, seed 2151), and the box filter must fail it.
+#[test]
+fn gpu_tent_filter_renders_to_the_mitsuba_reference() {
+    if gpu_common::context().is_none() {
+        return;
+    }
+    let (desc, settings) = imported_as("tent_edges", FilterDesc::Tent { radius: 1.5 });
+    let decision = |what: &str, desc: &SceneDesc| {
+        let scene = build(desc);
+        decide(what, 2151, SPP, |seed, n, alpha| {
+            let film = gpu_render(&scene, settings, n, seed).expect("a GPU");
+            assert_eq!(film.nonfinite, 0, "{what}: non-finite samples");
+            against_reference("tent_edges", &film, alpha)
+        })
+    };
+    decision("gpu tent_edges.xml", &desc).unwrap_or_else(|msg| panic!("{msg}"));
+    let mut boxed = desc.clone();
+    boxed.camera.filter = FilterDesc::Box;
+    assert!(
+        decision("gpu box-filtered tent_edges", &boxed).is_err(),
+        "a box filter must fail against the tent reference"
+    );
 }

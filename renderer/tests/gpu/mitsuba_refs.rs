@@ -110,3 +110,10 @@ fn gpu_xml_orthographic_matches_the_cpu_and_mitsuba() {
     let failures = check("xml_orthographic");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// `xml_principal_point.xml` (a principal point offset: `camera.wgsl`'s film shift).
+#[test]
+fn gpu_xml_principal_point_matches_the_cpu_and_mitsuba() {
+    let failures = check("xml_principal_point");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

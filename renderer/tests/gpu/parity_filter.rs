@@ -36,7 +36,10 @@ fn cases() -> Vec<(PixelFilter, Vec<(u32, u32)>)> {
         (gaussian(0.3, 1.2), films.clone()),
         (gaussian(1.0, 1.5), films.clone()),
         (gaussian(4.0, 16.0), films.clone()),
-        (gaussian(16.0, 16.0), films),
+        (gaussian(16.0, 16.0), films.clone()),
+        (PixelFilter::Tent { radius: 1.0 }, films.clone()),
+        (PixelFilter::Tent { radius: 0.4 }, films.clone()),
+        (PixelFilter::Tent { radius: 16.0 }, films),
         (PixelFilter::Box, vec![(64, 48), (1, 1)]),
     ]
 }
@@ -91,6 +94,8 @@ fn magnitude(f: PixelFilter) -> f32 {
             let floor = (-0.5 * radius * radius / (stddev * stddev)).exp();
             2.0 * stddev * std::f32::consts::FRAC_PI_2.sqrt() + 2.0 * radius * floor
         }
+        // Its integral's terms reach the whole mass r.
+        PixelFilter::Tent { radius } => radius,
     }
 }
 
@@ -104,6 +109,16 @@ fn mass(f: PixelFilter, a: f32, b: f32) -> f32 {
             let floor = (-0.5 * radius * radius / (stddev * stddev)).exp();
             scale * (erfc(a * s) - erfc(b * s)) - floor * (b - a)
         }
+        PixelFilter::Tent { radius } => {
+            let up = |x: f32| {
+                if x <= 0.0 {
+                    (x + radius) * (x + radius) / (2.0 * radius)
+                } else {
+                    radius - (radius - x) * (radius - x) / (2.0 * radius)
+                }
+            };
+            up(b) - up(a)
+        }
     }
 }
 
@@ -116,8 +131,9 @@ fn mass(f: PixelFilter, a: f32, b: f32) -> f32 {
 /// stopping tolerance of the root, possibly one step apart. The box filter's is exact (one
 /// addition of the same floats): its position must be bit-identical.
 fn position_tolerance(f: PixelFilter, offset: f32, lo: f32, hi: f32, p: f32) -> f32 {
-    let PixelFilter::Gaussian { radius, .. } = f else {
-        return 0.0;
+    let radius = match f {
+        PixelFilter::Gaussian { radius, .. } | PixelFilter::Tent { radius } => radius,
+        PixelFilter::Box => return 0.0,
     };
     let m = magnitude(f);
     let density = f.eval(offset).max(1e-30);

@@ -235,10 +235,16 @@ fn refusals_name_file_line_and_element() {
     };
     let film_cases = [
         (
-            r#"<film type="hdrfilm"><rfilter type="tent"/></film>"#,
+            r#"<film type="hdrfilm"><rfilter type="mitchell"/></film>"#,
             4,
             "scene/sensor/film/rfilter",
-            "lumis has `box` and `gaussian`",
+            "negative lobes",
+        ),
+        (
+            r#"<film type="hdrfilm"><rfilter type="tent"><float name="radius" value="-1"/></rfilter></film>"#,
+            4,
+            "scene/sensor/film/rfilter/float",
+            "radius -1 must be in (0, 16]",
         ),
         ("", 2, "scene/sensor", "the sensor has no <film>"),
         (

@@ -54,6 +54,8 @@ pub struct GpuParams {
     pub cam_right: [f32; 4],
     /// Camera up axis; w = the thin lens's focus distance (0 for other projections).
     pub cam_up: [f32; 4],
+    /// The principal point offset in pixels in x, y ([`crate::camera::Camera::shift`]).
+    pub cam_shift: [f32; 4],
     /// Where the mesh attribute arrays start in the vertex data (`gpu/scene/attributes.rs`).
     pub attr: [u32; 4],
     /// The camera's pixel filter ([`FilterTag`]).
@@ -194,15 +196,18 @@ gpu_tags! {
         Box => "FILTER_BOX",
         /// [`PixelFilter::Gaussian`].
         Gaussian => "FILTER_GAUSSIAN",
+        /// [`PixelFilter::Tent`].
+        Tent => "FILTER_TENT",
     }
 }
 
 impl FilterTag {
-    /// The tag of `f` and its (σ, radius): the box's σ is 0 (unused).
+    /// The tag of `f` and its (σ, radius): the box's and the tent's σ is 0 (unused).
     pub fn of(f: PixelFilter) -> (FilterTag, f32, f32) {
         match f {
             PixelFilter::Box => (FilterTag::Box, 0.0, f.radius()),
             PixelFilter::Gaussian { stddev, radius } => (FilterTag::Gaussian, stddev, radius),
+            PixelFilter::Tent { radius } => (FilterTag::Tent, 0.0, radius),
         }
     }
 }
@@ -271,6 +276,10 @@ impl GpuScene {
             cam_forward: v4(forward, half_y),
             cam_right: v4(right, aperture_radius),
             cam_up: v4(up, focus_distance),
+            cam_shift: {
+                let s = cam.shift();
+                [s.x, s.y, 0.0, 0.0]
+            },
             attr: self.attr,
             pixel_filter: filter.gpu_tag(),
             filter_stddev,
@@ -335,6 +344,7 @@ mod tests {
             ("cam_forward", offset_of!(GpuParams, cam_forward)),
             ("cam_right", offset_of!(GpuParams, cam_right)),
             ("cam_up", offset_of!(GpuParams, cam_up)),
+            ("cam_shift", offset_of!(GpuParams, cam_shift)),
             ("attr", offset_of!(GpuParams, attr)),
             ("pixel_filter", offset_of!(GpuParams, pixel_filter)),
             ("filter_stddev", offset_of!(GpuParams, filter_stddev)),

@@ -162,11 +162,30 @@ const ORTHOGRAPHIC_NEAR_CLIP: f64 = 1e-2;
 fn sensor(x: &mut Xml, desc: &SceneDesc, options: &ExportOptions) -> Result<(), SceneError> {
     let c = &desc.camera;
     let (mut from, mut to) = (c.from, c.to);
+    if c.principal_point_offset != [0.0; 2]
+        && !matches!(c.projection, ProjectionDesc::Perspective { .. })
+    {
+        return Err(SceneError::new(
+            "camera.principal_point_offset",
+            "Mitsuba's thinlens and orthographic sensors have no principal point offset",
+        ));
+    }
     match c.projection {
         ProjectionDesc::Perspective { vfov_deg } => {
             x.open("sensor", &[("type", "perspective")]);
             x.leaf("float", &[("name", "fov"), ("value", &num(vfov_deg))]);
             x.leaf("string", &[("name", "fov_axis"), ("value", "y")]);
+            let [ox, oy] = c.principal_point_offset;
+            if [ox, oy] != [0.0; 2] {
+                x.leaf(
+                    "float",
+                    &[("name", "principal_point_offset_x"), ("value", &num(ox))],
+                );
+                x.leaf(
+                    "float",
+                    &[("name", "principal_point_offset_y"), ("value", &num(oy))],
+                );
+            }
         }
         ProjectionDesc::ThinLens {
             vfov_deg,
@@ -244,6 +263,11 @@ fn sensor(x: &mut Xml, desc: &SceneDesc, options: &ExportOptions) -> Result<(), 
             }
             x.open("rfilter", &[("type", "gaussian")]);
             x.leaf("float", &[("name", "stddev"), ("value", &num(stddev))]);
+            x.close("rfilter");
+        }
+        FilterDesc::Tent { radius } => {
+            x.open("rfilter", &[("type", "tent")]);
+            x.leaf("float", &[("name", "radius"), ("value", &num(radius))]);
             x.close("rfilter");
         }
     }

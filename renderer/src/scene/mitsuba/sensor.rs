@@ -160,10 +160,19 @@ fn projective(
         );
         sensor.ignore(&["near_clip"]);
     } else {
-        for key in ["principal_point_offset_x", "principal_point_offset_y"] {
-            if sensor.float(key, 0.0)? != 0.0 {
-                return Err(sensor.error(format!("`{key}` other than 0 is not supported")));
-            }
+        // Mitsuba's perspective camera only (its thinlens and orthographic do not read them).
+        let offset = [
+            sensor.float("principal_point_offset_x", 0.0)?,
+            sensor.float("principal_point_offset_y", 0.0)?,
+        ];
+        if offset != [0.0; 2] {
+            camera["principal_point_offset"] = json!(offset);
+            let p = sensor.get("principal_point_offset_x");
+            let p = p.or_else(|| sensor.get("principal_point_offset_y"));
+            ctx.origin(
+                "camera.principal_point_offset",
+                p.map_or(sensor.pos(), |p| p.pos()),
+            );
         }
         // A pinhole's image does not depend on them (clip planes outside the scene assumed).
         sensor.ignore(&["near_clip", "focus_distance"]);
@@ -281,9 +290,10 @@ fn x_fov(sensor: &Plugin, aspect: f64) -> Result<f64, SceneError> {
     Ok(x)
 }
 
-/// An `hdrfilm`'s size and lumis' `camera.filter` for its `rfilter`: `box`, or `gaussian`
-/// (also when there is none, Mitsuba's default) with Mitsuba's stddev (default 0.5) and its fixed
-/// radius 4·stddev. lumis samples the film like Mitsuba's default `sample_border = false`.
+/// An `hdrfilm`'s size and lumis' `camera.filter` for its `rfilter`: `box`, `gaussian` (also
+/// when there is none, Mitsuba's default) with Mitsuba's stddev (default 0.5) and its fixed
+/// radius 4·stddev, or `tent` with its radius (default 1). lumis samples the film like
+/// Mitsuba's default `sample_border = false`.
 fn film_size(ctx: &mut Ctx, film: &Plugin) -> Result<(i64, i64, Value), SceneError> {
     if film.ty != "hdrfilm" {
         return Err(film.error(format!(
@@ -332,10 +342,29 @@ fn film_size(ctx: &mut Ctx, film: &Plugin) -> Result<(i64, i64, Value), SceneErr
                     f.finish("stddev")?;
                     json!({"type": "gaussian", "stddev": stddev, "radius": 4.0 * stddev})
                 }
+                "tent" => {
+                    let radius = f.float("radius", 1.0)?;
+                    let max = crate::camera::filter::MAX_FILTER_RADIUS as f64;
+                    if !(radius > 0.0 && radius <= max) {
+                        return Err(f.get("radius").map_or_else(
+                            || f.error("radius"),
+                            |p| p.error(format!("radius {radius} must be in (0, {max}]")),
+                        ));
+                    }
+                    f.finish("radius")?;
+                    json!({"type": "tent", "radius": radius})
+                }
                 other => {
+                    let why = match other {
+                        "lanczos" | "mitchell" | "catmullrom" => {
+                            " (its negative lobes need signed sample weights, which lumis' film \
+                             does not carry yet)"
+                        }
+                        _ => "",
+                    };
                     return Err(f.error(format!(
-                        "reconstruction filter `{other}` is not supported: lumis has `box` and \
-                         `gaussian`"
+                        "reconstruction filter `{other}` is not supported{why}: lumis has \
+                         `box`, `gaussian` and `tent`"
                     )));
                 }
             };
