@@ -879,22 +879,14 @@ fn mesh_files_obj_ply_and_serialized() {
     );
 }
 
-/// The imported gaussian_edges.xml (no <rfilter>: Mitsuba's default gaussian, stddev 0.5,
-/// radius 2, sample_border false) against its Mitsuba 3.9.1 reference
-/// (tools/make_filter_reference.sh): MIS, 4096 spp, seed 1818, block z-test over 16×16 blocks ×
-/// 3 channels at family-wise α = 0.01 (Šidák). The same scene with a box filter fails it (second
-/// half of the test): the tilted, high-contrast edges differ by far more than the noise.
-#[test]
-fn imported_gaussian_filter_renders_to_the_mitsuba_reference() {
+/// The z-test of `tests/data/mitsuba/NAME.xml` (whose film filter must be `filter`) against its
+/// Mitsuba 3.9.1 reference `refs/NAME.exr`: MIS, 4096 spp, `seed`, block z-test over 16×16
+/// blocks × 3 channels at family-wise α = 0.01 (Šidák), one decision of the suite's protocol;
+/// and the same scene with a box filter must fail it.
+fn filter_matches_its_reference(name: &str, filter: lumis::scene::FilterDesc, seed: u32) {
     let data = common::data_dir();
-    let m = mitsuba::load(&data.join("mitsuba/gaussian_edges.xml"), &[]).unwrap();
-    assert_eq!(
-        m.desc.camera.filter,
-        lumis::scene::FilterDesc::Gaussian {
-            stddev: 0.5,
-            radius: 2.0
-        }
-    );
+    let m = mitsuba::load(&data.join(format!("mitsuba/{name}.xml")), &[]).unwrap();
+    assert_eq!(m.desc.camera.filter, filter);
     let settings = lumis::integrator::Settings {
         strategy: lumis::integrator::Strategy::Mis {
             heuristic: lumis::integrator::Heuristic::Power,
@@ -902,57 +894,44 @@ fn imported_gaussian_filter_renders_to_the_mitsuba_reference() {
         rr_depth: m.rr_depth.unwrap_or(5),
         ..Default::default()
     };
-    let reference = common::reference("gaussian_edges.exr");
-    let var = common::reference("gaussian_edges.var.exr");
+    let reference = common::reference(&format!("{name}.exr"));
+    let var = common::reference(&format!("{name}.var.exr"));
     // One decision of the suite's protocol each, the box filter's too.
     let run = |what: &str, desc: &lumis::scene::SceneDesc| {
         let scene = std::sync::Arc::new(lumis::scene::Scene::from_desc(desc).unwrap());
-        decide_against(what, 1818, 4096, &reference, Some(&var), 16, |seed, n| {
+        decide_against(what, seed, 4096, &reference, Some(&var), 16, |seed, n| {
             common::render(&scene, settings, n, seed)
         })
     };
-    run("imported gaussian_edges.xml", &m.desc).unwrap_or_else(|msg| panic!("{msg}"));
+    run(&format!("imported {name}.xml"), &m.desc).unwrap_or_else(|msg| panic!("{msg}"));
     let mut boxed = m.desc.clone();
     boxed.camera.filter = lumis::scene::FilterDesc::Box;
     assert!(
-        run("box-filtered gaussian_edges", &boxed).is_err(),
-        "a box filter must fail against the gaussian reference"
+        run(&format!("box-filtered {name}"), &boxed).is_err(),
+        "a box filter must fail against the {name} reference"
     );
 }
 
+/// The imported gaussian_edges.xml (no <rfilter>: Mitsuba's default gaussian, stddev 0.5,
+/// radius 2, sample_border false) against its Mitsuba 3.9.1 reference
+/// (tools/make_filter_reference.sh), seed 1818. The same scene with a box filter fails it: the
+/// tilted, high-contrast edges differ by far more than the noise.
+#[test]
+fn imported_gaussian_filter_renders_to_the_mitsuba_reference() {
+    let gaussian = lumis::scene::FilterDesc::Gaussian {
+        stddev: 0.5,
+        radius: 2.0,
+    };
+    filter_matches_its_reference("gaussian_edges", gaussian, 1818);
+}
+
 /// The imported tent_edges.xml (Mitsuba's `tent`, radius 1.5 px, sample_border false: the
-/// edges of gaussian_edges.xml) against its Mitsuba 3.9.1 reference: MIS, 4096 spp, seed 2150,
-/// as the gaussian's test; the same scene with a box filter must fail it.
+/// edges of gaussian_edges.xml) against its Mitsuba 3.9.1 reference, seed 2150; the box filter
+/// fails it.
 #[test]
 fn imported_tent_filter_renders_to_the_mitsuba_reference() {
-    let data = common::data_dir();
-    let m = mitsuba::load(&data.join("mitsuba/tent_edges.xml"), &[]).unwrap();
-    assert_eq!(
-        m.desc.camera.filter,
-        lumis::scene::FilterDesc::Tent { radius: 1.5 }
-    );
-    let settings = lumis::integrator::Settings {
-        strategy: lumis::integrator::Strategy::Mis {
-            heuristic: lumis::integrator::Heuristic::Power,
-        },
-        rr_depth: m.rr_depth.unwrap_or(5),
-        ..Default::default()
-    };
-    let reference = common::reference("tent_edges.exr");
-    let var = common::reference("tent_edges.var.exr");
-    let run = |what: &str, desc: &lumis::scene::SceneDesc| {
-        let scene = std::sync::Arc::new(lumis::scene::Scene::from_desc(desc).unwrap());
-        decide_against(what, 2150, 4096, &reference, Some(&var), 16, |seed, n| {
-            common::render(&scene, settings, n, seed)
-        })
-    };
-    run("imported tent_edges.xml", &m.desc).unwrap_or_else(|msg| panic!("{msg}"));
-    let mut boxed = m.desc.clone();
-    boxed.camera.filter = lumis::scene::FilterDesc::Box;
-    assert!(
-        run("box-filtered tent_edges", &boxed).is_err(),
-        "a box filter must fail against the tent reference"
-    );
+    let tent = lumis::scene::FilterDesc::Tent { radius: 1.5 };
+    filter_matches_its_reference("tent_edges", tent, 2150);
 }
 
 /// The thin lens keeps its aperture and focus distance (default: the far clip plane, as
