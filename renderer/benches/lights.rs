@@ -68,14 +68,8 @@ fn inputs(scene: &Scene) -> Vec<Input> {
 
 /// The scene's first light of each shape.
 fn lights(scene: &Scene) -> Vec<(&'static str, &Light)> {
-    let kind = |l: &Light| match l {
-        Light::Triangle(_) => Some("triangle"),
-        Light::Polygon(_) => Some("polygon"),
-        Light::Quad(_) => Some("quad"),
-        Light::Disk(_) => Some("disk"),
-        Light::Sphere(_) => Some("sphere"),
-        Light::Background(_) | Light::Envmap(_) => None,
-    };
+    // Area lights only: the others are not shapes.
+    let kind = |l: &Light| (!l.is_infinite() && !l.is_delta()).then(|| l.kind_name());
     let mut out: Vec<(&'static str, &Light)> = Vec::new();
     for l in &scene.lights {
         if let Some(k) = kind(l)

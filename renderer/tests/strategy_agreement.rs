@@ -52,15 +52,7 @@ fn plastic_scene_strategies_agree() {
     let kinds: std::collections::BTreeSet<&str> = scene
         .lights
         .iter()
-        .map(|l| match l {
-            lumis::lights::Light::Triangle(_) => "triangle",
-            lumis::lights::Light::Polygon(_) => "polygon",
-            lumis::lights::Light::Quad(_) => "quad",
-            lumis::lights::Light::Disk(_) => "disk",
-            lumis::lights::Light::Sphere(_) => "sphere",
-            lumis::lights::Light::Background(_) => "background",
-            lumis::lights::Light::Envmap(_) => "envmap",
-        })
+        .map(common::emitters::kind)
         .collect();
     assert_eq!(
         kinds.into_iter().collect::<Vec<_>>(),

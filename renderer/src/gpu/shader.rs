@@ -81,6 +81,10 @@ const MODULES: &[Module] = &[
     module!("lights/sphere.wgsl"),
     module!("lights/background.wgsl"),
     module!("lights/envmap.wgsl"),
+    module!("lights/point.wgsl"),
+    module!("lights/spot.wgsl"),
+    module!("lights/directional.wgsl"),
+    module!("lights/projector.wgsl"),
     module!("geometry/ray.wgsl"),
     module!("geometry/triangle.wgsl"),
     module!("geometry/disk.wgsl"),
@@ -122,6 +126,14 @@ pub struct Features {
     pub has_disk_light: bool,
     /// Emitting spheres.
     pub has_sphere_light: bool,
+    /// Point lights.
+    pub has_point_light: bool,
+    /// Spot lights.
+    pub has_spot_light: bool,
+    /// Directional lights.
+    pub has_directional_light: bool,
+    /// Projectors.
+    pub has_projector_light: bool,
     /// A BVH (more than [`crate::geometry::Accel::LINEAR_LIMIT`] primitives).
     pub use_bvh: bool,
     /// With [`Features::use_bvh`]: traverse a BVH2 (`gpu/bvh2.wgsl`, built at upload) instead of the
@@ -176,6 +188,10 @@ impl Features {
             has_quad_light: true,
             has_disk_light: true,
             has_sphere_light: true,
+            has_point_light: true,
+            has_spot_light: true,
+            has_directional_light: true,
+            has_projector_light: true,
             use_bvh: true,
             bvh2: false,
             has_ggx: true,
@@ -226,6 +242,10 @@ impl Features {
                     Light::Disk(_) => f.has_disk_light = true,
                     Light::Sphere(_) => f.has_sphere_light = true,
                     Light::Background(_) | Light::Envmap(_) => f.has_background = true,
+                    Light::Point(_) => f.has_point_light = true,
+                    Light::Spot(_) => f.has_spot_light = true,
+                    Light::Directional(_) => f.has_directional_light = true,
+                    Light::Projector(_) => f.has_projector_light = true,
                 }
             }
         }
@@ -273,8 +293,16 @@ impl Features {
         f
     }
 
+    /// Whether the scene has a delta light (point, spot, directional, projector).
+    pub fn has_delta_light(&self) -> bool {
+        self.has_point_light
+            || self.has_spot_light
+            || self.has_directional_light
+            || self.has_projector_light
+    }
+
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 27] {
+    fn defines(&self) -> [(&'static str, bool); 32] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -290,6 +318,18 @@ impl Features {
             ("HAS_QUAD_LIGHT", self.has_lights && self.has_quad_light),
             ("HAS_DISK_LIGHT", self.has_lights && self.has_disk_light),
             ("HAS_SPHERE_LIGHT", self.has_lights && self.has_sphere_light),
+            ("HAS_POINT_LIGHT", self.has_lights && self.has_point_light),
+            ("HAS_SPOT_LIGHT", self.has_lights && self.has_spot_light),
+            (
+                "HAS_DIRECTIONAL_LIGHT",
+                self.has_lights && self.has_directional_light,
+            ),
+            (
+                "HAS_PROJECTOR_LIGHT",
+                self.has_lights && self.has_projector_light,
+            ),
+            // Next-event estimation's delta branch (`delta_light` in `integrator/path.wgsl`).
+            ("HAS_DELTA_LIGHT", self.has_lights && self.has_delta_light()),
             ("USE_BVH", self.use_bvh),
             ("USE_CWBVH", self.use_bvh && !self.bvh2),
             ("USE_BVH2", self.use_bvh && self.bvh2),
@@ -344,6 +384,10 @@ impl Features {
                 lights && self.has_disk_light
             }
             "lights/sphere.wgsl" => lights && self.has_sphere_light,
+            "lights/point.wgsl" => lights && self.has_delta_light(),
+            "lights/spot.wgsl" => lights && self.has_spot_light,
+            "lights/directional.wgsl" => lights && self.has_directional_light,
+            "lights/projector.wgsl" => lights && self.has_projector_light,
             "lights/background.wgsl" => lights && self.has_background,
             "lights/envmap.wgsl" => self.has_envmap,
             "materials/fresnel.wgsl" => {

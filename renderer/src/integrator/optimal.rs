@@ -35,6 +35,9 @@
 //!   texel, a pdf that overflows), its direction is below the horizon or on different sides of
 //!   the geometric and shading normals (`docs/shading-normals.md`: the BSDF side ends such paths
 //!   by the same rule), or the shadow ray is blocked (BSDF sampling reaches only visible points);
+//!   light sampling picks a delta light (point, spot, directional, projector: no BSDF sample
+//!   finds one; such a sample adds its contribution `h` to `b_L`, as a delta lobe's does to
+//!   `b_B`);
 //! - BSDF sampling fails (`None`, below the horizon: the failure mass is part of B's outcome
 //!   space, so `∫ p_B` over valid directions plus it is exactly 1), returns a **delta** lobe
 //!   (a smooth coat, mirror or glass: an atom light sampling never produces), its direction
@@ -158,10 +161,19 @@ impl Moments {
         }
     }
 
-    /// A pure light sample (its contribution is always zero).
+    /// A pure light sample of contribution zero (a failure, a blocked or rejected direction).
     #[inline]
     pub fn add_pure_light(&mut self) {
         self.m[0] += 1.0;
+    }
+
+    /// A pure light sample with contribution `h`: a delta light's.
+    #[inline]
+    pub fn add_delta_light(&mut self, h: Vec3) {
+        self.m[0] += 1.0;
+        for c in 0..3 {
+            self.b_light[c] += h[c] as f64;
+        }
     }
 
     /// A pure BSDF sample with contribution `h` (a delta lobe's emission; zero otherwise).
@@ -254,6 +266,18 @@ impl OptimalSample {
     #[inline]
     pub fn pure_light(&mut self) -> Vec3 {
         self.moments.add_pure_light();
+        if crate::mutants::optimal_pure_zero() {
+            return Vec3::ZERO;
+        }
+        -self.alpha.light
+    }
+
+    /// A delta light's sample of contribution `h`: pure (no BSDF sample finds a delta light),
+    /// recorded as such with its contribution (as a delta lobe's in [`Self::pure_bsdf`]);
+    /// returns `−α_L`.
+    #[inline]
+    pub fn delta_light(&mut self, h: Vec3) -> Vec3 {
+        self.moments.add_delta_light(h);
         if crate::mutants::optimal_pure_zero() {
             return Vec3::ZERO;
         }

@@ -52,6 +52,20 @@ fn opt_pure_light() -> vec3f {
     return -opt_alpha_l;
 }
 
+// #if HAS_DELTA_LIGHT
+// `OptimalSample::delta_light`: a delta light's sample of contribution h (pure); returns −α_L.
+fn opt_delta_light(h: vec3f) -> vec3f {
+    opt_m.x += 1.0;
+    opt_bl += h;
+// #if MUTANTS
+    if MUTANT_OPTIMAL_PURE_ZERO == 1u {
+        return vec3f(0.0);
+    }
+// #endif
+    return -opt_alpha_l;
+}
+// #endif
+
 // `OptimalSample::pure_bsdf`: a pure BSDF sample of contribution h; returns −α_B.
 fn opt_pure_bsdf(h: vec3f) -> vec3f {
     opt_m.z += 1.0;

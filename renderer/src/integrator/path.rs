@@ -66,6 +66,9 @@ enum NeeOutcome {
     Pure,
     /// A visible point on an emitter, with the balance weights `(r_L, r_B)` there.
     Combined { rl: f32, rb: f32 },
+    /// A delta light's sample, pure as well (BSDF sampling never finds a delta light), of
+    /// contribution `h` (zero where blocked).
+    Delta { h: Vec3 },
 }
 
 /// The BSDF sample of `mis-optimal`'s first vertex, whose control variate term waits for the
@@ -346,6 +349,7 @@ fn trace<const TRANSMISSION: bool>(
             if let (true, Some(opt)) = (cv, optimal.as_deref_mut()) {
                 let term = match outcome {
                     NeeOutcome::Pure => opt.pure_light(),
+                    NeeOutcome::Delta { h } => opt.delta_light(h),
                     NeeOutcome::Combined { rl, rb } => opt.combined(c, rl, rb),
                 };
                 let cv = beta * (opt.constant() + term);
@@ -577,6 +581,10 @@ fn direct_light<const TRANSMISSION: bool>(
         return PURE;
     }
     let f = material.eval_specialised::<TRANSMISSION>(wo, wi);
+    if scene.lights[index].is_delta() {
+        let h = delta_light(scene, hit, n, &ls, f, pmf, weight);
+        return (h, NeeOutcome::Delta { h });
+    }
     let p_bsdf_cv = if cv {
         material.pdf_specialised::<TRANSMISSION>(wo, wi)
     } else {
@@ -618,6 +626,38 @@ fn direct_light<const TRANSMISSION: bool>(
         _ => NeeOutcome::Pure,
     };
     (contribution, outcome)
+}
+
+/// Next-event estimation's contribution from a delta light's sample `ls` (the light selected with
+/// probability `pmf`) at a vertex whose BSDF value (cosine included) towards it is `f`: no other
+/// technique produces this sample, so its MIS weight is 1 in every strategy, and under the
+/// one-sample mixture it is divided by the light branch's probability as well (the BSDF branch
+/// never finds it). Zero where the shadow ray is blocked.
+fn delta_light(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    n: Vec3,
+    ls: &crate::lights::LightSample,
+    f: Vec3,
+    pmf: f32,
+    weight: NeeWeight,
+) -> Vec3 {
+    if f == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    let shadow = if ls.infinite {
+        spawn_ray(hit.p, hit.p_error, n, ls.wi)
+    } else {
+        spawn_ray_to(hit.p, hit.p_error, n, ls.p, ls.p_error, ls.n)
+    };
+    if scene.accel.occluded(&shadow) {
+        return Vec3::ZERO;
+    }
+    let branch = match weight {
+        NeeWeight::Mixture(w) => w,
+        NeeWeight::One | NeeWeight::Mis(_) => 1.0,
+    };
+    f * ls.le / (pmf * branch)
 }
 
 #[cfg(test)]

@@ -112,6 +112,11 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
     }
 // #endif
     let f = material_eval(m, wo, wi);
+// #if HAS_DELTA_LIGHT
+    if light_is_delta(light) {
+        return delta_light(hit, n, ls, f, choice.pmf, mixture_w);
+    }
+// #endif
     var p_bsdf_cv = 0.0;
     if cv {
         p_bsdf_cv = material_pdf(m, wo, wi);
@@ -150,6 +155,32 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
     }
     return NeeResult(c, false, 0.0, 0.0);
 }
+
+// #if HAS_DELTA_LIGHT
+// `delta_light`: a delta light's sample ls (selected with probability pmf) at a vertex whose
+// BSDF value towards it is f: MIS weight 1, divided by the light branch's probability under the
+// mixture (mixture_w ≥ 0); zero where blocked. Pure for mis-optimal, marked by rl = −1 (its
+// contribution goes to the moments, `opt_delta_light`).
+fn delta_light(hit: SurfaceHit, n: vec3f, ls: LightSample, f: vec3f, pmf: f32, mixture_w: f32) -> NeeResult {
+    if all(f == vec3f(0.0)) {
+        return NeeResult(vec3f(0.0), false, -1.0, 0.0);
+    }
+    var shadow: Ray;
+    if ls.infinite {
+        shadow = spawn_ray(hit.p, hit.p_error, n, ls.wi);
+    } else {
+        shadow = spawn_ray_to(hit.p, hit.p_error, n, ls.p, ls.p_error, ls.n);
+    }
+    if scene_occluded(shadow) {
+        return NeeResult(vec3f(0.0), false, -1.0, 0.0);
+    }
+    var branch = 1.0;
+    if mixture_w >= 0.0 {
+        branch = mixture_w;
+    }
+    return NeeResult(f * ls.le / (pmf * branch), false, -1.0, 0.0);
+}
+// #endif
 
 // mis-optimal: resolves the first vertex's pending BSDF sample (`resolve_bsdf`; throughput
 // `beta` at the vertex, sample weight `weight`, pdf `pdf`, `delta`) once its `ray` found `hit`:
@@ -414,7 +445,15 @@ fn radiance(camera_ray: Ray) -> vec3f {
                 if nee.combined {
                     term = opt_combined(nee.c, nee.rl, nee.rb);
                 } else {
+// #if HAS_DELTA_LIGHT
+                    if nee.rl < 0.0 {
+                        term = opt_delta_light(nee.c);
+                    } else {
+                        term = opt_pure_light();
+                    }
+// #else
                     term = opt_pure_light();
+// #endif
                 }
                 l += beta * (opt_constant() + term);
             }

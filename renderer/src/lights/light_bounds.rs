@@ -9,6 +9,10 @@ use crate::math::safe_sqrt;
 use glam::Vec3;
 use std::f32::consts::{FRAC_PI_2, PI};
 
+/// How much the emission cone of a spot or projector is widened in the bounds (in its cosine):
+/// any wider cone keeps selection unbiased, a narrower one would not.
+const DELTA_CONE_SLACK: f32 = 1e-4;
+
 /// Bounds of one emitter or of a set of them.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightBounds {
@@ -30,7 +34,8 @@ pub struct LightBounds {
 }
 
 impl LightBounds {
-    /// The bounds of `light`; `None` for the lights at infinity (sampled apart) and for lights
+    /// The bounds of `light` (a point light's box is its point); `None` for the lights at
+    /// infinity, directional ones included (sampled apart), and for lights
     /// without positive finite power (never selected, as with power selection).
     pub fn of(light: &Light) -> Option<LightBounds> {
         let phi = light.power();
@@ -67,7 +72,21 @@ impl LightBounds {
                 // Normals in every direction (θo = π), each emitting into its hemisphere.
                 (l.sphere.center - r, l.sphere.center + r, Vec3::Z, -1.0, 0.0)
             }
-            Light::Background(_) | Light::Envmap(_) => return None,
+            // A point emits in every direction: its "normals" fill the sphere.
+            Light::Point(l) => (l.position, l.position, Vec3::Z, -1.0, 0.0),
+            // Spot and projector: one normal (the axis), emitting within the cutoff or the
+            // frustum's corner of it. The cone is widened by DELTA_CONE_SLACK so that rounding
+            // never gives a zero importance where the light's own test lets light through.
+            Light::Spot(l) => {
+                let cos_e = (l.cos_cutoff - DELTA_CONE_SLACK).max(-1.0);
+                (l.position, l.position, l.frame.n, 1.0, cos_e)
+            }
+            Light::Projector(l) => {
+                let cos_corner = 1.0 / (1.0 + l.tan_half.length_squared()).sqrt();
+                let cos_e = (cos_corner - DELTA_CONE_SLACK).max(-1.0);
+                (l.position, l.position, l.frame.n, 1.0, cos_e)
+            }
+            Light::Background(_) | Light::Envmap(_) | Light::Directional(_) => return None,
         };
         let finite = lo.is_finite() && hi.is_finite() && w.is_finite();
         finite.then_some(LightBounds {

@@ -1,5 +1,6 @@
 //! Lights: every emitting shape is a one-sided area light; a constant background and an
-//! environment map are lights at infinity. Each light samples a point (by area, or by solid angle where that is better) and reports
+//! environment map are lights at infinity; point, spot, directional lights and projectors are
+//! deltas (Mitsuba's; [`Light::is_delta`]), which only light sampling finds. Each light samples a point (by area, or by solid angle where that is better) and reports
 //! the solid-angle pdf of any direction, so every strategy and MIS can weigh the same events.
 //!
 //! Textured emission: an area light whose shape's `emission` is a texture holds the index of
@@ -14,28 +15,36 @@
 //! WGSL twin: `lights/mod.wgsl`.
 
 pub mod background;
+pub mod directional;
 pub mod disk;
 pub mod envmap;
 pub mod light_bounds;
 pub mod light_bvh;
 pub mod light_sampler;
 pub mod light_selection;
+pub mod point;
 pub mod polygon;
 pub mod projected;
+pub mod projector;
 pub mod quad;
 pub mod sphere;
+pub mod spot;
 pub mod triangle;
 
 pub use background::BackgroundLight;
+pub use directional::DirectionalLight;
 pub use disk::DiskLight;
 pub use envmap::EnvmapLight;
 pub use light_bounds::LightBounds;
 pub use light_bvh::LightBvh;
 pub use light_sampler::LightSampler;
 pub use light_selection::LightSelection;
+pub use point::PointLight;
 pub use polygon::PolygonLight;
+pub use projector::ProjectorLight;
 pub use quad::QuadLight;
 pub use sphere::SphereLight;
+pub use spot::SpotLight;
 pub use triangle::TriangleLight;
 
 use crate::geometry::primitive::NONE;
@@ -242,6 +251,14 @@ pub enum Light {
     Background(BackgroundLight),
     /// An environment map.
     Envmap(EnvmapLight),
+    /// A point light (a delta in position: [`Light::is_delta`]).
+    Point(PointLight),
+    /// A spot light (a delta in position).
+    Spot(SpotLight),
+    /// A directional light (a delta in direction, at infinity).
+    Directional(DirectionalLight),
+    /// A projector (a delta in position).
+    Projector(ProjectorLight),
 }
 
 impl Light {
@@ -258,6 +275,10 @@ impl Light {
             Light::Sphere(l) => l.sample(p, u, method),
             Light::Background(l) => l.sample(u),
             Light::Envmap(l) => l.sample(u, method),
+            Light::Point(l) => l.sample(p),
+            Light::Spot(l) => l.sample(p),
+            Light::Directional(l) => l.sample(),
+            Light::Projector(l) => l.sample(p),
         }?;
         let s = LightSample {
             pdf: s.pdf * crate::mutants::light_pdf(self.kind_tag()),
@@ -291,12 +312,17 @@ impl Light {
             Light::Quad(l) => l.texture,
             Light::Disk(l) => l.texture,
             Light::Sphere(l) => l.texture,
-            Light::Background(_) | Light::Envmap(_) => NONE,
+            Light::Spot(l) => l.texture,
+            Light::Projector(l) => l.texture,
+            Light::Background(_) | Light::Envmap(_) | Light::Point(_) | Light::Directional(_) => {
+                NONE
+            }
         }
     }
 
-    /// Makes an area light emit emission texture `texture` ([`Light::texture`]); `false` (and
-    /// no change) for the infinite lights, which have no texture coordinates.
+    /// Makes an area light emit emission texture `texture` ([`Light::texture`]), or a spot or
+    /// projector project it; `false` (and no change) for the other lights, which have no texture
+    /// coordinates.
     pub fn set_texture(&mut self, texture: u32) -> bool {
         let slot = match self {
             Light::Triangle(l) => &mut l.texture,
@@ -304,16 +330,53 @@ impl Light {
             Light::Quad(l) => &mut l.texture,
             Light::Disk(l) => &mut l.texture,
             Light::Sphere(l) => &mut l.texture,
-            Light::Background(_) | Light::Envmap(_) => return false,
+            Light::Spot(l) => &mut l.texture,
+            Light::Projector(l) => &mut l.texture,
+            Light::Background(_) | Light::Envmap(_) | Light::Point(_) | Light::Directional(_) => {
+                return false;
+            }
         };
         *slot = texture;
         true
     }
 
-    /// Whether the light is at infinity (a background or environment map): its samples are
-    /// directions, not points.
+    /// Whether the light is at infinity (a background, an environment map, a directional
+    /// light): its samples are directions, not points.
     pub fn is_infinite(&self) -> bool {
-        matches!(self, Light::Background(_) | Light::Envmap(_))
+        matches!(
+            self,
+            Light::Background(_) | Light::Envmap(_) | Light::Directional(_)
+        )
+    }
+
+    /// Whether the light is a delta in position or direction (point, spot, directional,
+    /// projector): light sampling finds it with "pdf" 1 and no other technique can (no ray hits
+    /// it, [`Light::pdf`] is zero), so its samples take MIS weight 1, and BSDF sampling alone
+    /// never sees it. Mitsuba's `EmitterFlags::Delta`.
+    #[inline(always)]
+    pub fn is_delta(&self) -> bool {
+        matches!(
+            self,
+            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Projector(_)
+        )
+    }
+
+    /// The kind's name in the scene format (`triangle`, …, `point`, `spot`, `directional`,
+    /// `projector`; `background` and `envmap` for the two at infinity), for messages and counts.
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Light::Triangle(_) => "triangle",
+            Light::Polygon(_) => "polygon",
+            Light::Quad(_) => "quad",
+            Light::Disk(_) => "disk",
+            Light::Sphere(_) => "sphere",
+            Light::Background(_) => "background",
+            Light::Envmap(_) => "envmap",
+            Light::Point(_) => "point",
+            Light::Spot(_) => "spot",
+            Light::Directional(_) => "directional",
+            Light::Projector(_) => "projector",
+        }
     }
 
     /// This light's kind tag, for [`crate::mutants`].
@@ -340,6 +403,8 @@ impl Light {
             Light::Sphere(l) => l.pdf(p, y, ny, method),
             Light::Background(_) => crate::sampling::uniform_sphere_pdf(),
             Light::Envmap(l) => l.pdf(wi, method),
+            // No direction finds a delta light except the one its sample takes.
+            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Projector(_) => 0.0,
         }
     }
 
@@ -356,6 +421,10 @@ impl Light {
             Light::Sphere(l) => area_power(l.sphere.area(), l.le),
             Light::Background(l) => l.power(),
             Light::Envmap(l) => l.power(),
+            Light::Point(l) => l.power(),
+            Light::Spot(l) => l.power(),
+            Light::Directional(l) => l.power(),
+            Light::Projector(l) => l.power(),
         }
     }
 
@@ -372,6 +441,9 @@ impl Light {
             Light::Sphere(l) => l.le,
             Light::Background(l) => return l.le,
             Light::Envmap(l) => return l.eval(w_in),
+            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Projector(_) => {
+                return Vec3::ZERO;
+            }
         };
         if n.dot(w_in) < 0.0 { le } else { Vec3::ZERO }
     }

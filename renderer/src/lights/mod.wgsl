@@ -1,6 +1,8 @@
 // Lights, the twin of `lights/mod.rs` and `lights/light_sampler.rs`: one record per light, a
 // `switch` in the variant order of `Light` (Triangle, Polygon, Quad, Disk, Sphere, Background,
-// Envmap), power-proportional selection from a CDF in `tables`.
+// Envmap, Point, Spot, Directional, Projector), power-proportional selection from a CDF in
+// `tables`. The delta lights' records are described in their own files (`lights/point.wgsl`,
+// `spot.wgsl`, `directional.wgsl`, `projector.wgsl`).
 //
 // Record layout (see `gpu/scene/lights.rs`): h = (kind, first triangle, triangle count,
 // texture), le = (radiance, area). An area light's h.w is the id of its emission texture
@@ -166,6 +168,26 @@ fn light_sample(l: Light, p: vec3f, ns: vec3f, u: vec2f, method: u32) -> LightSa
             s = envmap_light_sample(l, u, method);
         }
 // #endif
+// #if HAS_POINT_LIGHT
+        case LIGHT_POINT: {
+            s = point_light_sample(l, p);
+        }
+// #endif
+// #if HAS_SPOT_LIGHT
+        case LIGHT_SPOT: {
+            s = spot_light_sample(l, p);
+        }
+// #endif
+// #if HAS_DIRECTIONAL_LIGHT
+        case LIGHT_DIRECTIONAL: {
+            s = directional_light_sample(l);
+        }
+// #endif
+// #if HAS_PROJECTOR_LIGHT
+        case LIGHT_PROJECTOR: {
+            s = projector_light_sample(l, p);
+        }
+// #endif
         default: {
             s.pdf = unknown_tag();
         }
@@ -223,6 +245,12 @@ fn light_pdf_unmutated(l: Light, p: vec3f, ns: vec3f, wi: vec3f, y: vec3f, ny: v
 // #if HAS_ENVMAP
         case LIGHT_ENVMAP: {
             return envmap_light_pdf(l, wi, method);
+        }
+// #endif
+// #if HAS_DELTA_LIGHT
+        // No direction finds a delta light but the one its sample takes.
+        case LIGHT_POINT, LIGHT_SPOT, LIGHT_DIRECTIONAL, LIGHT_PROJECTOR: {
+            return 0.0;
         }
 // #endif
         default: {
@@ -302,6 +330,12 @@ fn light_uv(l: Light, s: LightSample) -> vec2f {
             return sphere_uv(l.a.xyz, l.a.w, s.p);
         }
 // #endif
+// #if HAS_DELTA_LIGHT
+        // A spot's or projector's sample carries its texture coordinates.
+        case LIGHT_SPOT, LIGHT_PROJECTOR: {
+            return s.b;
+        }
+// #endif
         default: {
             return vec2f(unknown_tag());
         }
@@ -317,6 +351,12 @@ fn light_sample_textured(l: Light, s: LightSample) -> LightSample {
     }
     var out = s;
     out.le = texture_eval(t, light_uv(l, s));
+// #if HAS_DELTA_LIGHT
+    // A delta light's radiance is its intensity and falloff, modulated by the texture.
+    if light_is_delta(l) {
+        out.le *= s.le;
+    }
+// #endif
     if !any(out.le > vec3f(0.0)) {
         return no_light_sample();
     }

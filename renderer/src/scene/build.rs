@@ -1,9 +1,10 @@
 //! Turns a validated [`SceneDesc`] into the render-ready [`Scene`]: f32 primitives in a BVH,
-//! materials, and one light per emitting shape (per triangle for `triangles` meshes).
+//! materials, one light per emitting shape (per triangle for `triangles` meshes) and per light of
+//! `lights`.
 
 use super::desc::{
-    BackgroundDesc, CameraDesc, FresnelDesc, GeometryDesc, MaterialDesc, PlasticModel,
-    ProjectionDesc, SceneDesc,
+    BackgroundDesc, CameraDesc, FresnelDesc, GeometryDesc, LightDesc, LookAt, MaterialDesc,
+    PlasticModel, ProjectionDesc, SceneDesc, TextureDesc,
 };
 use super::error::SceneError;
 use super::parse_shapes::unit;
@@ -17,14 +18,16 @@ use crate::geometry::sphere::Sphere;
 use crate::geometry::{Accel, polygon};
 use crate::lights::light_sampler::selection_radiance;
 use crate::lights::{
-    BackgroundLight, DiskLight, EmissionTexture, EnvmapLight, Light, LightBvh, LightSampler,
-    PolygonLight, QuadLight, SphereLight, TriangleLight,
+    BackgroundLight, DirectionalLight, DiskLight, EmissionTexture, EnvmapLight, Light, LightBvh,
+    LightSampler, PointLight, PolygonLight, ProjectorLight, QuadLight, SphereLight, SpotLight,
+    TriangleLight,
 };
 use crate::materials::textured::MaterialTextures;
 use crate::materials::{
     Conductor, ConductorFresnel, Dielectric, Diffuse, Distribution, Material, Microfacet, Mix,
     Plastic,
 };
+use crate::math::Frame;
 use crate::textures::Texture;
 use glam::{DVec3, Vec2, Vec3};
 
@@ -210,6 +213,110 @@ pub fn box_faces(min: DVec3, max: DVec3, rot_deg: f64, translate: DVec3) -> [[DV
         faces[2 * axis + 1] = [rot(min) + translate, rot(ev), rot(eu)];
     }
     faces
+}
+
+/// The light of `lights[index]`, `None` where it emits nothing (a black intensity, as a black
+/// emitter is no light); a texture joins `emission_textures`.
+fn delta_light(
+    desc: &LightDesc,
+    scene_radius: f32,
+    emission_textures: &mut Vec<EmissionTexture>,
+    index: usize,
+) -> Option<Light> {
+    let frame = |f: &LookAt| {
+        let (s, t, n) = f.axes();
+        Frame {
+            s: v(s),
+            t: v(t),
+            n: v(n),
+        }
+    };
+    let black = |c: Vec3| !c.cmpgt(Vec3::ZERO).any();
+    let mut texture_index = |t: &Option<TextureDesc>| match t {
+        None => (NONE, Vec3::ONE),
+        Some(t) => {
+            emission_textures.push(EmissionTexture {
+                texture: t.texture.clone(),
+                shape: format!("lights[{index}]"),
+            });
+            (
+                emission_textures.len() as u32 - 1,
+                selection_radiance(&t.texture),
+            )
+        }
+    };
+    match desc {
+        LightDesc::Point {
+            position,
+            intensity,
+        } => (!black(v(*intensity))).then(|| {
+            Light::Point(PointLight {
+                position: v(*position),
+                intensity: v(*intensity),
+            })
+        }),
+        LightDesc::Spot {
+            frame: f,
+            intensity,
+            cutoff_angle_deg,
+            beam_width_deg,
+            texture,
+        } => {
+            let tex_black = texture.as_ref().is_some_and(|t| black(t.texture.max()));
+            if black(v(*intensity)) || tex_black {
+                return None;
+            }
+            let mut l = SpotLight::new(
+                v(f.from),
+                frame(f),
+                v(*intensity),
+                cutoff_angle_deg.to_radians() as f32,
+                beam_width_deg.to_radians() as f32,
+            );
+            (l.texture, l.selection) = texture_index(texture);
+            Some(Light::Spot(l))
+        }
+        LightDesc::Directional {
+            direction,
+            irradiance,
+        } => (!black(v(*irradiance))).then(|| {
+            Light::Directional(DirectionalLight {
+                direction: v(*direction),
+                irradiance: v(*irradiance),
+                scene_radius,
+            })
+        }),
+        LightDesc::Projector {
+            frame: f,
+            fov_x_deg,
+            irradiance,
+            texture,
+            scale,
+        } => {
+            let (w, h) = texture.as_ref().map_or((1, 1), |t| t.texture.resolution());
+            let tan_x = (0.5 * fov_x_deg.to_radians()).tan();
+            // Mitsuba's perspective projection: the image's aspect sets the vertical extent.
+            let tan_y = tan_x * h as f64 / w as f64;
+            let k = std::f64::consts::PI * scale;
+            let intensity = match texture {
+                Some(_) => Vec3::splat(k as f32),
+                None => v(*irradiance * k),
+            };
+            let tex_black = texture.as_ref().is_some_and(|t| black(t.texture.max()));
+            if black(intensity) || tex_black {
+                return None;
+            }
+            let (texture, selection) = texture_index(texture);
+            Some(Light::Projector(ProjectorLight {
+                position: v(f.from),
+                frame: frame(f),
+                tan_half: glam::Vec2::new(tan_x as f32, tan_y as f32),
+                intensity,
+                selection,
+                texture,
+            }))
+        }
+    }
 }
 
 /// A quad's two primitives. [`QuadLight::triangle_point`] finds a textured quad light's sampled
@@ -551,6 +658,11 @@ impl Scene {
         } else {
             1.0
         };
+        for (i, l) in desc.lights.iter().enumerate() {
+            if let Some(light) = delta_light(l, scene_radius, &mut emission_textures, i) {
+                lights.push(light);
+            }
+        }
         let background = match &desc.background {
             BackgroundDesc::Constant(c) => {
                 let le = v(*c);

@@ -28,6 +28,9 @@ pub struct SceneDesc {
     pub materials: Vec<NamedMaterial>,
     /// All shapes, in file order.
     pub shapes: Vec<ShapeDesc>,
+    /// The lights that are neither shapes nor the background (point, spot, directional,
+    /// projector: scene format Version 3's `lights`), in file order.
+    pub lights: Vec<LightDesc>,
     /// Things that were accepted but look wrong (e.g. dropped degenerate triangles).
     pub warnings: Vec<String>,
 }
@@ -397,6 +400,75 @@ pub enum FresnelDesc {
     Reflectance(DVec3),
 }
 
+/// A light of `lights`: Mitsuba 3.9.1's delta emitters (`renderer/src/lights/point.rs`,
+/// `spot.rs`, `directional.rs`, `projector.rs` say what each emits).
+#[derive(Clone, Debug, PartialEq)]
+pub enum LightDesc {
+    /// A point light.
+    Point {
+        /// Where it is.
+        position: DVec3,
+        /// Radiant intensity per channel, in [0, 1e30].
+        intensity: DVec3,
+    },
+    /// A spot light at `from` aimed at `to`.
+    Spot {
+        /// Its frame, Mitsuba's `look_at(from, to, up)`.
+        frame: LookAt,
+        /// Radiant intensity on the axis per channel, in [0, 1e30].
+        intensity: DVec3,
+        /// Cutoff angle in degrees, in (0, 180] (below 90 with a texture).
+        cutoff_angle_deg: f64,
+        /// Beam width in degrees, in [0, `cutoff_angle_deg`].
+        beam_width_deg: f64,
+        /// A texture projected through the cone (texels ≥ 0).
+        texture: Option<TextureDesc>,
+    },
+    /// A directional light.
+    Directional {
+        /// The unit direction the light travels in.
+        direction: DVec3,
+        /// Irradiance per channel on a surface facing it, in [0, 1e30].
+        irradiance: DVec3,
+    },
+    /// A projector at `from` aimed at `to`.
+    Projector {
+        /// Its frame, Mitsuba's `look_at(from, to, up)`.
+        frame: LookAt,
+        /// Horizontal field of view in degrees, in (0, 180); the vertical one follows from the
+        /// image's aspect (1 for a constant).
+        fov_x_deg: f64,
+        /// The projected irradiance where constant (the texture's mean where textured).
+        irradiance: DVec3,
+        /// The projected image.
+        texture: Option<TextureDesc>,
+        /// Multiplier, in [0, 1e30].
+        scale: f64,
+    },
+}
+
+/// A frame given as Mitsuba's `look_at`: at `from`, its axis (+z) towards `to`, +x along
+/// `up × axis` (to the left, looking along the axis), +y completing it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LookAt {
+    /// The origin.
+    pub from: DVec3,
+    /// A point on the axis.
+    pub to: DVec3,
+    /// Up (not parallel to the axis).
+    pub up: DVec3,
+}
+
+impl LookAt {
+    /// The frame's axes `(x, y, z)`, unit and orthogonal (Mitsuba's `look_at`).
+    pub fn axes(&self) -> (DVec3, DVec3, DVec3) {
+        let dir = (self.to - self.from).normalize();
+        let left = self.up.normalize().cross(dir).normalize();
+        let up = dir.cross(left);
+        (left, up, dir)
+    }
+}
+
 /// One shape of the scene with its material and emission.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShapeDesc {
@@ -516,6 +588,7 @@ impl SceneDesc {
             },
             "materials": materials,
             "shapes": shapes,
+            "lights": self.lights.iter().map(LightDesc::to_json).collect::<Vec<_>>(),
         })
     }
 
@@ -709,4 +782,59 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
 
 fn vec3(v: DVec3) -> Value {
     json!([v.x, v.y, v.z])
+}
+
+impl LightDesc {
+    /// The light in the scene format.
+    pub fn to_json(&self) -> Value {
+        let frame = |f: &LookAt| (vec3(f.from), vec3(f.to), vec3(f.up));
+        match self {
+            LightDesc::Point {
+                position,
+                intensity,
+            } => {
+                json!({"type": "point", "position": vec3(*position), "intensity": vec3(*intensity)})
+            }
+            LightDesc::Spot {
+                frame: f,
+                intensity,
+                cutoff_angle_deg,
+                beam_width_deg,
+                texture,
+            } => {
+                let (from, to, up) = frame(f);
+                let mut v = json!({
+                    "type": "spot", "from": from, "to": to, "up": up,
+                    "intensity": vec3(*intensity),
+                    "cutoff_angle_deg": cutoff_angle_deg, "beam_width_deg": beam_width_deg,
+                });
+                if let Some(t) = texture {
+                    v["texture"] = t.to_json();
+                }
+                v
+            }
+            LightDesc::Directional {
+                direction,
+                irradiance,
+            } => json!({
+                "type": "directional", "direction": vec3(*direction),
+                "irradiance": vec3(*irradiance),
+            }),
+            LightDesc::Projector {
+                frame: f,
+                fov_x_deg,
+                irradiance,
+                texture,
+                scale,
+            } => {
+                let (from, to, up) = frame(f);
+                json!({
+                    "type": "projector", "from": from, "to": to, "up": up,
+                    "fov_deg": fov_x_deg,
+                    "irradiance": texture.as_ref().map_or_else(|| vec3(*irradiance), TextureDesc::to_json),
+                    "scale": scale,
+                })
+            }
+        }
+    }
 }

@@ -142,6 +142,7 @@ pub(crate) fn parse_scene_value_preloaded(
             "background",
             "materials",
             "shapes",
+            "lights",
         ],
         true,
     )?;
@@ -179,6 +180,10 @@ pub(crate) fn parse_scene_value_preloaded(
         &mut textures,
         &mut warnings,
     )?;
+    let lights = match root.get("lights") {
+        Some(v) => super::parse_lights::parse_lights(array(v, "lights")?, &mut textures)?,
+        None => Vec::new(),
+    };
     Ok(SceneDesc {
         camera,
         max_depth,
@@ -186,6 +191,7 @@ pub(crate) fn parse_scene_value_preloaded(
         background,
         materials,
         shapes,
+        lights,
         warnings,
     })
 }
@@ -448,8 +454,8 @@ mod tests {
     fn root_rules() {
         expect_err(&json!([1, 2]), "", "must be a JSON object");
         let mut s = base();
-        s["lights"] = json!([]);
-        expect_err(&s, "lights", "unknown key `lights`");
+        s["emitters"] = json!([]);
+        expect_err(&s, "emitters", "unknown key `emitters`");
         let mut s = base();
         s["comment"] = json!("fine");
         s["name"] = json!("fine too");

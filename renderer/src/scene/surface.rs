@@ -89,7 +89,11 @@ impl Scene {
             }
             Light::Disk(d) => SurfacePoint::Disk(&d.disk, s.p),
             Light::Sphere(l) => SurfacePoint::Sphere(&l.sphere, s.p),
-            Light::Background(_) | Light::Envmap(_) => return None,
+            // A spot's or projector's sample carries its texture coordinates.
+            Light::Spot(_) | Light::Projector(_) => return Some(s.b),
+            Light::Background(_) | Light::Envmap(_) | Light::Point(_) | Light::Directional(_) => {
+                return None;
+            }
         };
         Some(self.uv_at(point))
     }
@@ -125,7 +129,10 @@ impl Scene {
         let texture = light.texture();
         if texture != NONE {
             let uv = self.light_uv(light, &s)?;
-            s.le = self.emission_textures[texture as usize].texture.eval(uv);
+            let t = self.emission_textures[texture as usize].texture.eval(uv);
+            // A delta light's radiance is its intensity and falloff, modulated by the texture;
+            // an area light's is the texture.
+            s.le = if light.is_delta() { s.le * t } else { t };
             if !s.le.cmpgt(Vec3::ZERO).any() {
                 return None;
             }

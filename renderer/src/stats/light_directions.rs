@@ -55,6 +55,10 @@ impl LightDirections {
             }
             Light::Sphere(l) => Err((l.sphere.center, l.sphere.radius)),
             Light::Background(_) | Light::Envmap(_) => Ok(Vec::new()),
+            // A delta light has no density to test: its "sample" is one direction, pdf 1.
+            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Projector(_) => {
+                Ok(Vec::new())
+            }
         }
     }
 }

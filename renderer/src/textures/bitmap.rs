@@ -133,6 +133,11 @@ impl BitmapTexture {
         }
     }
 
+    /// Its size in texels, `(width, height)`.
+    pub fn size(&self) -> (u32, u32) {
+        (self.image.width, self.image.height)
+    }
+
     /// The same texture, recording where its texels came from.
     pub fn with_source(mut self, file: PathBuf, raw: bool) -> BitmapTexture {
         self.file = file;

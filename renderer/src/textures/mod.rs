@@ -56,6 +56,15 @@ pub enum Texture {
 }
 
 impl Texture {
+    /// Its resolution in texels, Mitsuba's `Texture::resolution`: a bitmap's size, `(1, 1)` for
+    /// the others (a projector's aspect ratio).
+    pub fn resolution(&self) -> (u32, u32) {
+        match self {
+            Texture::Bitmap(b) => b.size(),
+            Texture::Constant(_) | Texture::Checkerboard(_) => (1, 1),
+        }
+    }
+
     /// The linear RGB value at `uv`.
     #[inline]
     pub fn eval(&self, uv: Vec2) -> Vec3 {

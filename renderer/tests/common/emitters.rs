@@ -148,13 +148,5 @@ pub fn pentagon() -> Vec<String> {
 
 /// The light kind's name, for messages and counts.
 pub fn kind(light: &Light) -> &'static str {
-    match light {
-        Light::Triangle(_) => "triangle",
-        Light::Polygon(_) => "polygon",
-        Light::Quad(_) => "quad",
-        Light::Disk(_) => "disk",
-        Light::Sphere(_) => "sphere",
-        Light::Background(_) => "background",
-        Light::Envmap(_) => "envmap",
-    }
+    light.kind_name()
 }

@@ -42,6 +42,14 @@ gpu_tags! {
         Background => "LIGHT_BACKGROUND",
         /// [`Light::Envmap`].
         Envmap => "LIGHT_ENVMAP",
+        /// [`Light::Point`].
+        Point => "LIGHT_POINT",
+        /// [`Light::Spot`].
+        Spot => "LIGHT_SPOT",
+        /// [`Light::Directional`].
+        Directional => "LIGHT_DIRECTIONAL",
+        /// [`Light::Projector`].
+        Projector => "LIGHT_PROJECTOR",
     }
 }
 
@@ -56,6 +64,10 @@ impl LightTag {
             Light::Sphere(_) => LightTag::Sphere,
             Light::Background(_) => LightTag::Background,
             Light::Envmap(_) => LightTag::Envmap,
+            Light::Point(_) => LightTag::Point,
+            Light::Spot(_) => LightTag::Spot,
+            Light::Directional(_) => LightTag::Directional,
+            Light::Projector(_) => LightTag::Projector,
         }
     }
 }
@@ -160,6 +172,28 @@ pub(super) fn encode(
                     g.a = v4(r.x_axis, 0.0);
                     g.b = v4(r.y_axis, 0.0);
                     g.c = v4(r.z_axis, 0.0);
+                }
+                Light::Point(l) => {
+                    g.a = v4(l.position, 0.0);
+                    g.le = v4(l.intensity, 0.0);
+                }
+                Light::Spot(l) => {
+                    g.a = v4(l.position, l.cutoff);
+                    g.b = v4(l.frame.s, l.cos_cutoff);
+                    g.c = v4(l.frame.t, l.cos_beam);
+                    g.d = v4(l.frame.n, l.inv_transition);
+                    g.le = v4(l.intensity, l.uv_factor);
+                }
+                Light::Directional(l) => {
+                    g.a = v4(l.direction, 0.0);
+                    g.le = v4(l.irradiance, 0.0);
+                }
+                Light::Projector(l) => {
+                    g.a = v4(l.position, l.tan_half.x);
+                    g.b = v4(l.frame.s, l.tan_half.y);
+                    g.c = v4(l.frame.t, 0.0);
+                    g.d = v4(l.frame.n, 0.0);
+                    g.le = v4(l.intensity, 0.0);
                 }
             }
             g

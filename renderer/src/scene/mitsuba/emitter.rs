@@ -18,14 +18,16 @@ use serde_json::{Value as Json, json};
 /// Emitter types Mitsuba has and lumis does not, with the reason.
 fn unsupported(ty: &str) -> String {
     let why = match ty {
-        "point" | "spot" | "projector" => {
-            " (lumis has no point lights: use a small emitting sphere)"
+        "point" | "spot" | "projector" | "directional" => {
+            " (a delta light: it is a light of the scene, not of a shape)"
         }
-        "directional" | "directionalarea" => " (lumis has no directional lights)",
+        "directionalarea" => " (lumis has no directional area lights)",
         "sunsky" | "sky" | "sun" => " (lumis' environment is a constant or an EXR or HDR map)",
         _ => "",
     };
-    format!("emitter type `{ty}` is not supported{why}; lumis maps area, constant and envmap")
+    format!(
+        "emitter type `{ty}` is not supported{why}; lumis maps area, constant, envmap, point, spot, directional and projector"
+    )
 }
 
 /// The `radiance` of an `area` emitter inside a shape (a colour or a texture).

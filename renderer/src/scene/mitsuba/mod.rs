@@ -11,6 +11,7 @@
 
 mod bsdf;
 mod cie;
+mod delta_emitter;
 mod emitter;
 pub mod export;
 mod export_bsdf;
@@ -128,6 +129,7 @@ pub fn load_params(path: &Path, params: &Params) -> Result<Imported, SceneError>
     let cam = sensor::sensor(&mut ctx, &sensor_plugin)?;
 
     let mut background = None;
+    let mut lights = Vec::new();
     let mut declared_areas = Vec::new();
     for e in scene.objects("emitter") {
         let plugin = ctx.plugin(target(e))?;
@@ -135,6 +137,11 @@ pub fn load_params(path: &Path, params: &Params) -> Result<Imported, SceneError>
         // that no shape takes).
         if plugin.ty == "area" {
             declared_areas.push(plugin.el);
+            continue;
+        }
+        if delta_emitter::is_delta(plugin.ty) {
+            let json_path = format!("lights[{}]", lights.len());
+            lights.push(delta_emitter::light(&mut ctx, &plugin, &json_path)?);
             continue;
         }
         let this = emitter::background(&mut ctx, &plugin)?;
@@ -180,6 +187,9 @@ pub fn load_params(path: &Path, params: &Params) -> Result<Imported, SceneError>
         "materials": Json::Object(ctx.materials.clone()),
         "shapes": shapes,
     });
+    if !lights.is_empty() {
+        json["lights"] = Json::Array(lights);
+    }
     if let Some(bg) = background {
         json["background"] = bg;
     }

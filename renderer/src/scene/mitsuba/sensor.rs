@@ -226,29 +226,46 @@ fn orthographic(
 
 /// Mitsuba's horizontal field of view in degrees (`parse_fov`).
 fn x_fov(sensor: &Plugin, aspect: f64) -> Result<f64, SceneError> {
-    if sensor.has("fov") && sensor.has("focal_length") {
-        return Err(sensor.error("give either `fov` or `focal_length`, not both"));
+    let (fov, axis, pos) = fov_and_axis(sensor)?;
+    let x =
+        crate::scene::parse_lights::horizontal_fov_deg(fov, &axis, aspect).ok_or_else(|| {
+            sensor.get("fov_axis").map_or_else(
+                || sensor.error("bad fov_axis"),
+                |p| {
+                    p.error(format!(
+                        "fov_axis `{axis}` must be x, y, diagonal, smaller or larger"
+                    ))
+                },
+            )
+        })?;
+    if !(x > 0.0 && x < 180.0) {
+        return Err(pos.error(format!(
+            "the horizontal field of view {x}° is outside (0, 180)"
+        )));
     }
-    let (fov, axis, pos) = match sensor.get("fov") {
+    Ok(x)
+}
+
+/// The field of view in degrees of a sensor or projector and the axis it is measured on
+/// (lower case), as Mitsuba's `parse_fov` reads them: `fov` on `fov_axis` (default x), or
+/// `focal_length` (default 50 mm, on a 36 × 24 mm film's diagonal); with where it was given.
+pub(super) fn fov_and_axis(plugin: &Plugin) -> Result<(f64, String, Pos), SceneError> {
+    if plugin.has("fov") && plugin.has("focal_length") {
+        return Err(plugin.error("give either `fov` or `focal_length`, not both"));
+    }
+    Ok(match plugin.get("fov") {
         Some(p) => {
-            let fov = sensor.float("fov", 0.0)?;
-            let axis = match sensor.string("fov_axis")? {
+            let fov = plugin.float("fov", 0.0)?;
+            let axis = match plugin.string("fov_axis")? {
                 Some((s, _)) => s.to_ascii_lowercase(),
                 None => "x".to_owned(),
-            };
-            let axis = match axis.as_str() {
-                "smaller" if aspect > 1.0 => "y".to_owned(),
-                "smaller" => "x".to_owned(),
-                "larger" if aspect > 1.0 => "x".to_owned(),
-                "larger" => "y".to_owned(),
-                _ => axis,
             };
             (fov, axis, p.pos().clone())
         }
         None => {
-            let (text, pos) = match sensor.string("focal_length")? {
+            let (text, pos) = match plugin.string("focal_length")? {
                 Some((s, p)) => (s.to_owned(), p.pos().clone()),
-                None => ("50mm".to_owned(), sensor.pos().clone()),
+                None => ("50mm".to_owned(), plugin.pos().clone()),
             };
             let mm: f64 = text
                 .strip_suffix("mm")
@@ -262,32 +279,7 @@ fn x_fov(sensor: &Plugin, aspect: f64) -> Result<f64, SceneError> {
             let fov = 2.0 * (diagonal / (2.0 * mm)).atan().to_degrees();
             (fov, "diagonal".to_owned(), pos)
         }
-    };
-    let half = |deg: f64| (0.5 * deg.to_radians()).tan();
-    let x = match axis.as_str() {
-        "x" => fov,
-        "y" => 2.0 * (half(fov) * aspect).atan().to_degrees(),
-        "diagonal" => {
-            let width = 2.0 * half(fov) / (1.0 + 1.0 / (aspect * aspect)).sqrt();
-            2.0 * (0.5 * width).atan().to_degrees()
-        }
-        other => {
-            return Err(sensor.get("fov_axis").map_or_else(
-                || sensor.error("bad fov_axis"),
-                |p| {
-                    p.error(format!(
-                        "fov_axis `{other}` must be x, y, diagonal, smaller or larger"
-                    ))
-                },
-            ));
-        }
-    };
-    if !(x > 0.0 && x < 180.0) {
-        return Err(pos.error(format!(
-            "the horizontal field of view {x}° is outside (0, 180)"
-        )));
-    }
-    Ok(x)
+    })
 }
 
 /// An `hdrfilm`'s size and lumis' `camera.filter` for its `rfilter`: `box`, `gaussian` (also
