@@ -14,6 +14,7 @@ use lumis::image_io::Image;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::metrics::{relmse, rmse};
 use lumis::scene::Scene;
+use lumis_app::delta_lights::{self, missed_delta_lights};
 use lumis_app::image_size::ImageSize;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -138,6 +139,7 @@ pub fn bench(args: &BenchArgs) -> anyhow::Result<()> {
     lumis_app::scene_file::set_defines(&args.scene, args.define.clone(), None);
     let (scene, rr_depth) = load_scene(&args.scene, &args.film.size)?;
     let scene = Arc::new(scene);
+    bsdf_only_note(&settings, &scene);
     if let Some(rr) = rr_depth {
         settings.iter_mut().for_each(|s| s.rr_depth = rr);
     }
@@ -292,6 +294,27 @@ fn schedule(args: &BenchArgs, source: ErrorSource) -> anyhow::Result<Schedule> {
         );
     }
     Ok(Schedule::List(list.clone()))
+}
+
+/// Says on stderr, in one line, when a benchmarked strategy samples BSDFs only and so never
+/// finds the scene's delta lights: its curve then measures an image without their light.
+fn bsdf_only_note(settings: &[Settings], scene: &Scene) {
+    let mut missed = Vec::new();
+    let mut names = Vec::new();
+    for s in settings {
+        let these = missed_delta_lights(s.strategy, scene);
+        if !these.is_empty() {
+            missed = these;
+            names.push(s.strategy.name());
+        }
+    }
+    let curves = match names.as_slice() {
+        [one] => format!("the {one} curve"),
+        many => format!("the {} curves", many.join(" and ")),
+    };
+    if let Some(note) = delta_lights::note(&missed, &curves) {
+        eprintln!("{note}");
+    }
 }
 
 /// Loads the scene at the image size asked for (a smaller image benchmarks faster), and the

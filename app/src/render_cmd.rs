@@ -7,6 +7,7 @@ use lumis::engine::{AnyProgressive, Progressive};
 use lumis::image_io::Image;
 use lumis::metrics::{relmse, rmse};
 use lumis::scene::Scene;
+use lumis_app::delta_lights::{self, missed_delta_lights};
 use lumis_app::part_file::{Part, Provenance, format_ranges};
 use std::sync::Arc;
 use std::time::Instant;
@@ -38,6 +39,10 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
         .apply(&mut desc.camera)
         .map_err(|e| anyhow::anyhow!(e))?;
     let scene = Arc::new(Scene::from_desc(&desc).map_err(|e| e.in_file(&args.scene))?);
+    let missed = missed_delta_lights(settings.strategy, &scene);
+    if let Some(note) = delta_lights::note(&missed, "this image") {
+        eprintln!("{note}");
+    }
     let pool = thread_pool(args.threads)?;
     let mut render = match args.sample_range {
         Some(_) => AnyProgressive::Cpu(Progressive::with_first_sample(

@@ -10,6 +10,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::DVec3;
 use lumis::integrator::Strategy;
+use lumis::scene::desc::LightDesc;
 use lumis::scene::{GeometryDesc, MaterialDesc};
 use lumis_app::viewer::light_shape::LightShape;
 use lumis_app::viewer::params::{Pacing, StrategyKind, ViewMode};
@@ -715,5 +716,90 @@ fn camera_controls_switch_projection_and_edit_the_lens() {
     assert!(
         (view_size[1] - 0.5 * dist).abs() < 1e-6 * dist,
         "{view_size:?}"
+    );
+}
+
+/// A floor lit only by delta lights (a point light and a green spot): in the comparison, the
+/// BSDF-only pane's caption says their light is excluded and the others' do not; the Delta
+/// lights section lists both, and the spot's cutoff slider narrows its cone (the beam width
+/// follows, staying within the cutoff) in the description and in the scene rendered.
+#[test]
+fn delta_lights_are_flagged_in_the_bsdf_pane_and_edited_in_their_section() {
+    use lumis_app::delta_lights::CAPTION;
+    let dir = scratch("delta");
+    let file = dir.join("delta.json");
+    std::fs::write(
+        &file,
+        r#"{
+  "camera": {"from": [0, 5, 0.001], "to": [0, 0, 0], "up": [0, 0, 1], "vfov_deg": 60,
+             "width": 32, "height": 32},
+  "materials": {"floor": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}},
+  "shapes": [{"type": "quad", "corner": [-10, 0, -10], "edge_u": [0, 0, 20],
+              "edge_v": [20, 0, 0], "material": "floor"}],
+  "lights": [
+    {"type": "point", "position": [0, 2, 0], "intensity": [4, 4, 4]},
+    {"type": "spot", "from": [1, 2, 0], "to": [1, 0, 0], "up": [0, 0, 1],
+     "intensity": [0, 8, 0], "cutoff_angle_deg": 30}
+  ]
+}"#,
+    )
+    .unwrap();
+    let mut h = harness_at(file, 32, dir);
+    h.get_by_label("Side by side").click();
+    h.run_steps(2);
+    assert_eq!(
+        h.state().params.compare_strategies,
+        [StrategyKind::Light, StrategyKind::Bsdf, StrategyKind::Mis]
+    );
+    wait_for_current_scene(&mut h, "the delta-light scene");
+    // Every text shown; the lanes' lines start with their labels (pane captions, statistics,
+    // the inspector).
+    let texts: Vec<String> = (h.query_all_by_role(Role::Label))
+        .filter_map(|n| n.value())
+        .collect();
+    let caption = format!("bsdf: {} spp · {CAPTION}", h.state().output().lanes[1].spp);
+    assert!(texts.contains(&caption), "no {caption:?} in {texts:#?}");
+    assert!(
+        texts
+            .iter()
+            .any(|t| t.starts_with(&format!("{caption} · ")) && t.contains("samples/s")),
+        "the statistics line does not say it: {texts:#?}"
+    );
+    for t in texts.iter().filter(|t| t.contains(CAPTION)) {
+        assert!(t.starts_with("bsdf: "), "{t:?}");
+    }
+    for other in ["light: ", "mis power: "] {
+        assert!(texts.iter().any(|t| t.starts_with(other)), "no {other:?} caption");
+    }
+
+    // The section lists the scene's lights; pick the spot and narrow its cone.
+    pick_combo(&mut h, "Delta light", "lights[1] spot");
+    h.run_steps(2);
+    assert_eq!(h.state().selected_delta_light, Some(1));
+    let cone = |h: &Harness<'static, ViewerApp>| match &h.state().desc.as_ref().unwrap().lights[1] {
+        LightDesc::Spot {
+            cutoff_angle_deg,
+            beam_width_deg,
+            ..
+        } => (*cutoff_angle_deg, *beam_width_deg),
+        l => panic!("lights[1] is {l:?}"),
+    };
+    // Mitsuba's default beam: three quarters of the cutoff.
+    assert_eq!(cone(&h), (30.0, 22.5));
+    assert_restarts(&mut h, "spot cutoff", |h| {
+        set_slider(h, "Spot cutoff (°)", 15.0)
+    });
+    assert_eq!(cone(&h), (15.0, 15.0), "the beam stays within the cutoff");
+    wait_for_current_scene(&mut h, "the narrowed spot");
+    let scene = h.state().output().scene.clone().unwrap();
+    let spot = scene.lights.iter().find_map(|l| match l {
+        lumis::lights::Light::Spot(s) => Some(s),
+        _ => None,
+    });
+    let spot = spot.expect("the spot is in the rendered scene");
+    assert!((spot.cutoff - 15f32.to_radians()).abs() < 1e-6, "{spot:?}");
+    assert!(
+        (spot.beam_width - 15f32.to_radians()).abs() < 1e-6,
+        "{spot:?}"
     );
 }

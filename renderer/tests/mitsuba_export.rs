@@ -16,6 +16,7 @@ mod common;
 use glam::DVec3;
 use lumis::engine::Progressive;
 use lumis::integrator::Settings;
+use lumis::scene::desc::{LightDesc, LookAt};
 use lumis::scene::mitsuba::export::{ExportOptions, write_export};
 use lumis::scene::{
     BackgroundDesc, GeometryDesc, MaterialDesc, PlasticModel, ProjectionDesc, Scene, SceneDesc,
@@ -105,6 +106,22 @@ fn canonical(desc: &SceneDesc) -> SceneDesc {
     let left = c.up.cross(dir).normalize();
     c.up = dir.cross(left);
     c.to = c.from + dir;
+    // The lights' frames come back the same way (the `lookat` of their `to_world`); a
+    // direction is normalised once more by the importer and once more by the scene parser.
+    for l in &mut d.lights {
+        match l {
+            LightDesc::Spot { frame, .. } | LightDesc::Projector { frame, .. } => {
+                let dir = (frame.to - frame.from).normalize();
+                let left = frame.up.cross(dir).normalize();
+                frame.up = dir.cross(left);
+                frame.to = frame.from + dir;
+            }
+            LightDesc::Directional { direction, .. } => {
+                *direction = direction.normalize().normalize();
+            }
+            LightDesc::Point { .. } => {}
+        }
+    }
     for s in &mut d.shapes {
         if let GeometryDesc::Polygon { vertices } = &s.geometry {
             let indices = lumis::geometry::polygon::triangulate(vertices)
@@ -138,6 +155,7 @@ fn assert_round_trip(desc: &SceneDesc, name: &str) {
     let dir = Dir::new(name);
     let (_, back) = round_trip(desc, &dir, name);
     assert_same_view(desc, &back.desc, name);
+    assert_same_lights(desc, &back.desc, name);
     let expected = render(&canonical(desc), None);
     let got = render(&back.desc, back.rr_depth);
     if let Some(d) = difference(&expected, &got) {
@@ -176,6 +194,43 @@ fn assert_same_view(desc: &SceneDesc, back: &SceneDesc, name: &str) {
     );
     assert_eq!((a.width, a.height), (b.width, b.height), "{name}");
     assert_eq!(a.principal_point_offset, b.principal_point_offset, "{name}");
+}
+
+/// The imported lights are the original's, in order: frames and directions as [`canonical`]
+/// gives them to 1e-12 (as the camera's), every other number and texture exactly.
+fn assert_same_lights(desc: &SceneDesc, back: &SceneDesc, name: &str) {
+    let want = canonical(desc).lights;
+    assert_eq!(want.len(), back.lights.len(), "{name}: {:?}", back.lights);
+    let close =
+        |u: DVec3, v: DVec3| (u - v).abs().max_element() <= 1e-12 * u.abs().max_element().max(1.0);
+    let same_frame =
+        |a: &LookAt, b: &LookAt| close(a.from, b.from) && close(a.to, b.to) && close(a.up, b.up);
+    for (i, (a, b)) in want.iter().zip(&back.lights).enumerate() {
+        // The frames (and a direction) to the tolerance, then the rest exactly.
+        let mut b = b.clone();
+        let ok = match (a, &mut b) {
+            (LightDesc::Spot { frame: fa, .. }, LightDesc::Spot { frame: fb, .. })
+            | (LightDesc::Projector { frame: fa, .. }, LightDesc::Projector { frame: fb, .. }) => {
+                let ok = same_frame(fa, fb);
+                *fb = *fa;
+                ok
+            }
+            (
+                LightDesc::Directional { direction: da, .. },
+                LightDesc::Directional { direction: db, .. },
+            ) => {
+                let ok = close(*da, *db);
+                *db = *da;
+                ok
+            }
+            _ => true,
+        };
+        assert!(
+            ok && *a == b,
+            "{name}: lights[{i}] {a:?} came back as {:?}",
+            back.lights[i]
+        );
+    }
 }
 
 fn scenes_dir() -> PathBuf {
@@ -270,7 +325,9 @@ fn thin_lens_and_orthographic_cameras_round_trip() {
 
 /// A scene with every material kind, both texture kinds in colour and scalar slots (uv scale
 /// and offset, wrap, raw), a textured emission, boxes, one-sided materials, a shape without a
-/// material and a constant background.
+/// material, a constant background and every light kind (a point, a textured and a plain spot,
+/// a directional, a textured projector whose field of view was given vertically and a constant
+/// one).
 fn kitchen_sink() -> SceneDesc {
     let json = r#"{
       "camera": {"from": [0.3, 1.2, -4], "to": [0, 0.4, 0], "up": [0, 1, 0.1],
@@ -330,6 +387,20 @@ fn kitchen_sink() -> SceneDesc {
          "indices": [[0, 1, 2]], "material": "varnish"},
         {"type": "quad", "corner": [-2.9, 0, 2.0], "edge_u": [0.8, 0, 0], "edge_v": [0, 0.8, 0],
          "material": "carbon"}
+      ],
+      "lights": [
+        {"type": "point", "position": [1.5, 2.0, -1.0], "intensity": [2, 1.5, 1]},
+        {"type": "spot", "from": [-1, 2.5, -2], "to": [0, 0, 0.5], "up": [0, 1, 0],
+         "intensity": [4, 4, 3.5], "cutoff_angle_deg": 35, "beam_width_deg": 20,
+         "texture": {"type": "bitmap", "file": "textured_mesh_albedo.png", "uv_scale": [2, 1]}},
+        {"type": "spot", "from": [2, 3, 1], "to": [1.6, 0, 0.8], "up": [0.3, 0.2, 1],
+         "intensity": [3, 2, 1], "cutoff_angle_deg": 50},
+        {"type": "directional", "direction": [0.3, -1, 0.4], "irradiance": [0.5, 0.45, 0.4]},
+        {"type": "projector", "from": [0.5, 2, -3], "to": [0, 0.5, 3], "up": [0.1, 1, 0],
+         "fov_deg": 30, "fov_axis": "y", "scale": 2,
+         "irradiance": {"type": "bitmap", "file": "textured_mesh_albedo.png"}},
+        {"type": "projector", "from": [-2, 1.5, -1], "to": [0, 0.3, 2.5],
+         "fov_deg": 25, "irradiance": [1, 0.5, 0.25], "scale": 0.5}
       ]
     }"#;
     parse_scene_in(json, &scenes_dir()).unwrap_or_else(|e| panic!("{e}"))
@@ -443,6 +514,26 @@ fn wrong_mappings_are_detected() {
             1,
         )
     });
+    // The textured projector's horizontal field of view read as the vertical one (its image is
+    // twice as wide as high).
+    assert_detected(&sink, "projector_fov_axis", |t| {
+        t.replacen(
+            "<string name=\"fov_axis\" value=\"x\"/>",
+            "<string name=\"fov_axis\" value=\"y\"/>",
+            1,
+        )
+    });
+    // The directional light reversed.
+    assert_detected(&sink, "directional_reversed", |t| {
+        let key = "<vector name=\"direction\" value=\"";
+        let start = t.find(key).unwrap() + key.len();
+        let end = start + t[start..].find('"').unwrap();
+        let reversed: Vec<String> = t[start..end]
+            .split(' ')
+            .map(|v| format!("{:?}", -v.parse::<f64>().unwrap()))
+            .collect();
+        format!("{}{}{}", &t[..start], reversed.join(" "), &t[end..])
+    });
 }
 
 #[test]
@@ -495,6 +586,16 @@ fn what_mitsuba_cannot_take_is_an_error_naming_the_json_path() {
             "scale",
         ),
     ];
+    // A light's bitmap with a `scale`, which Mitsuba's bitmap does not have.
+    let spot = r#"{"camera": {"from": [0, 0, -3], "to": [0, 0, 0], "up": [0, 1, 0],
+                    "vfov_deg": 40, "width": 8, "height": 8}, "shapes": [],
+                   "lights": [{"type": "point", "position": [0, 1, 0], "intensity": [1, 1, 1]},
+                              {"type": "spot", "from": [0, 1, 0], "to": [0, 0, 0],
+                               "up": [0, 0, 1], "intensity": [1, 1, 1], "texture": {"type": "bitmap",
+                               "file": "textured_mesh_albedo.png", "scale": 0.5}}]}"#;
+    let cases = cases
+        .into_iter()
+        .chain([(spot.to_owned(), "lights[1].texture", "scale")]);
     let dir = Dir::new("errors");
     for (json, path, words) in cases {
         let desc = parse_scene_in(&json, &folder).unwrap_or_else(|e| panic!("{e}\n{json}"));

@@ -49,11 +49,8 @@ fn every_asset_loads() {
 fn plastic_scene_strategies_agree() {
     let scene = asset("plastic_lights.json");
     // Every light shape is present, and every material is plastic or diffuse.
-    let kinds: std::collections::BTreeSet<&str> = scene
-        .lights
-        .iter()
-        .map(common::emitters::kind)
-        .collect();
+    let kinds: std::collections::BTreeSet<&str> =
+        scene.lights.iter().map(common::emitters::kind).collect();
     assert_eq!(
         kinds.into_iter().collect::<Vec<_>>(),
         ["disk", "polygon", "quad", "sphere", "triangle"]

@@ -53,6 +53,8 @@ pub struct ViewerApp {
     pub selected_material: Option<usize>,
     /// Selected light and its editor state.
     pub light: Option<LightEdit>,
+    /// Selected delta light (index into `desc.lights`) for the delta-light controls.
+    pub selected_delta_light: Option<usize>,
     /// Reference image (same size as the film) for the error, and its file.
     pub reference: Option<(PathBuf, Arc<Vec<Vec3>>)>,
     /// Last error to show in the window (load failures, save failures).
@@ -114,6 +116,7 @@ impl ViewerApp {
             home_camera: None,
             selected_material: None,
             light: None,
+            selected_delta_light: None,
             reference: None,
             error: None,
             status: None,
@@ -158,6 +161,7 @@ impl ViewerApp {
                 self.scene_path = Some(path.to_path_buf());
                 self.selected_material = None;
                 self.light = None;
+                self.selected_delta_light = None;
                 self.error = None;
                 // Another image: fit it, and inspect its centre unless a pixel is pinned there.
                 self.view.zoom = super::zoom::Zoom::Fit;

@@ -91,6 +91,7 @@ impl ViewerApp {
                     self.reference_controls(ui);
                     ui.separator();
                     self.selection_controls(ui);
+                    self.delta_light_controls(ui);
                     ui.separator();
                     ui.heading("Camera");
                     self.camera_controls(ui);

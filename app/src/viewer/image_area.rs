@@ -1,6 +1,7 @@
 //! The image area: the panes (the single view, 2–3 strategies in the grid that shows them
 //! largest, one of them alone, or the wipe), all at one shared zoom and pan, with the inspected
-//! pixel outlined in each, the colour legend of a false-colour view and the key hints below.
+//! pixel outlined in each, the colour legend of a false-colour view and the key hints below. A
+//! BSDF-only pane of a scene with delta lights says in its caption that their light is excluded.
 
 use super::app::ViewerApp;
 use super::gesture::{Gesture, gesture_of};
@@ -9,7 +10,9 @@ use super::params::ViewMode;
 use super::textures::Picture;
 use super::tonemap::Content;
 use super::wipe::{self, Source};
+use super::worker::LaneView;
 use super::zoom::{pixel_at, snap};
+use crate::delta_lights::{self, missed_delta_lights};
 
 /// Height of the legend and hint lines under the panes.
 const FOOTER: f32 = 40.0;
@@ -63,11 +66,28 @@ impl ViewerApp {
             Source::Reference if self.reference.is_some() => "reference".into(),
             Source::Reference => "reference (none loaded)".into(),
             Source::Lane(i) => match self.output.lanes.get(i) {
-                Some(l) if l.preview => format!("{}: preview", l.label),
-                Some(l) => format!("{}: {} spp", l.label, l.spp),
+                Some(l) if l.preview => format!("{}: preview{}", l.label, self.excluded(l)),
+                Some(l) => format!("{}: {} spp{}", l.label, l.spp, self.excluded(l)),
                 None => "–".into(),
             },
         }
+    }
+
+    /// What a lane's caption adds when its image lacks the scene's delta lights
+    /// ([`ViewerApp::misses_delta_lights`]).
+    fn excluded(&self, lane: &LaneView) -> String {
+        if self.misses_delta_lights(lane) {
+            format!(" · {}", delta_lights::CAPTION)
+        } else {
+            String::new()
+        }
+    }
+
+    /// Whether `lane`'s strategy never finds the delta lights of the scene it renders
+    /// ([`crate::delta_lights`]), so that its image lacks their light.
+    pub(crate) fn misses_delta_lights(&self, lane: &LaneView) -> bool {
+        (self.output.scene.as_ref())
+            .is_some_and(|s| !missed_delta_lights(lane.settings.strategy, s).is_empty())
     }
 
     fn pane_caption(&self, pane: Pane) -> String {

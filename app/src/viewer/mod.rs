@@ -3,8 +3,8 @@
 //! with a live convergence plot and predictions of the time to a target error.
 //!
 //! * [`app`]: state, actions and the frame loop; [`params`], the settings the panels edit;
-//!   [`controls`], [`menus`], [`panes_controls`], [`selection`], [`environment`], [`plot`] and
-//!   [`inspector`] draw its panels.
+//!   [`controls`], [`menus`], [`panes_controls`], [`selection`], [`delta_light`], [`environment`],
+//!   [`plot`] and [`inspector`] draw its panels.
 //! * [`image_area`]: the panes, in the [`layout`] grid that shows them largest, at the shared
 //!   [`zoom`]; the [`wipe`]; mouse [`gesture`]s and [`keys`]; the false-colour [`legend`];
 //!   [`textures`], uploaded only when they change.
@@ -21,6 +21,7 @@ pub mod app;
 pub mod camera;
 pub mod controls;
 pub mod convergence;
+pub mod delta_light;
 pub mod edit;
 pub mod environment;
 pub mod equal_error;

@@ -17,15 +17,21 @@ pub const LANE_COLOURS: [egui::Color32; 3] = [
     egui::Color32::from_rgb(90, 190, 90),
 ];
 
-fn stats_line(l: &LaneView) -> String {
+/// A lane's statistics; `excluded`: its image lacks the scene's delta lights (said after the spp).
+fn stats_line(l: &LaneView, excluded: bool) -> String {
     let error = match l.error {
         Some((e, source)) => format!("relMSE {e:.3e} ({})", source.label()),
         None => "relMSE –".into(),
     };
     format!(
-        "{}: {} spp · {:.3e} samples/s · {:.1} s · {} non-finite discarded · {}{}",
+        "{}: {} spp{} · {:.3e} samples/s · {:.1} s · {} non-finite discarded · {}{}",
         l.label,
         l.spp,
+        if excluded {
+            format!(" · {}", crate::delta_lights::CAPTION)
+        } else {
+            String::new()
+        },
         l.samples_per_second,
         l.render_seconds,
         l.nonfinite,
@@ -61,7 +67,7 @@ impl ViewerApp {
                 for l in &self.output.lanes {
                     ui.label(format!(
                         "{} · {}",
-                        stats_line(l),
+                        stats_line(l, self.misses_delta_lights(l)),
                         describe(&l.curve, target)
                     ));
                 }

@@ -15,6 +15,7 @@ use std::time::Instant;
 
 mod bench;
 mod compare;
+mod delta_lights;
 mod errors;
 mod render;
 mod scenes;

@@ -250,3 +250,7 @@ pub(crate) fn horizontal_fov_deg(fov: f64, axis: &str, aspect: f64) -> Option<f6
         _ => None,
     }
 }
+
+#[cfg(test)]
+#[path = "parse_lights_tests.rs"]
+mod tests;

@@ -17,7 +17,7 @@ use crate::common;
 use crate::gpu_common;
 use common::protocol::decide;
 use common::{STRATEGIES, data_dir, reference, variance_image};
-use gpu_common::images::{film_image_z_test_at, gpu_render, same_seed_check};
+use gpu_common::images::{film_image_z_test_at, gpu_render, same_seed_check, same_seed_check_spp};
 use lumis::integrator::Settings;
 use lumis::scene::Scene;
 use std::sync::Arc;
@@ -115,5 +115,56 @@ fn gpu_xml_orthographic_matches_the_cpu_and_mitsuba() {
 #[test]
 fn gpu_xml_principal_point_matches_the_cpu_and_mitsuba() {
     let failures = check("xml_principal_point");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// [`check`], and for scenes lit by delta lights `mis-optimal` too at 12 spp with the CPU's
+/// seed (past its first stage, so that α and `opt_delta_light`'s moments count).
+fn check_delta(name: &str) -> Vec<String> {
+    let mut failures = check(name);
+    if gpu_common::context().is_none() {
+        return failures;
+    }
+    let path = data_dir().join("mitsuba").join(format!("{name}.xml"));
+    let m = lumis::scene::mitsuba::load(&path, &[]).unwrap_or_else(|e| panic!("{e}"));
+    let scene = Arc::new(Scene::from_desc(&m.desc).unwrap_or_else(|e| panic!("{e}")));
+    let settings = Settings {
+        strategy: lumis::integrator::Strategy::MisOptimal,
+        rr_depth: m.rr_depth.unwrap_or(5),
+        ..Settings::default()
+    };
+    let what = format!("gpu {name}.xml MisOptimal 12 spp same seed as the CPU");
+    if let Some(Err(e)) = same_seed_check_spp(&what, &scene, settings, 12) {
+        failures.push(e);
+    }
+    failures
+}
+
+/// `xml_point.xml` (Mitsuba's `point`: `lights/point.wgsl`, the delta branch of
+/// `integrator/path.wgsl`).
+#[test]
+fn gpu_xml_point_matches_the_cpu_and_mitsuba() {
+    let failures = check_delta("xml_point");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// `xml_spot.xml` (Mitsuba's `spot`, with and without a texture: `lights/spot.wgsl`).
+#[test]
+fn gpu_xml_spot_matches_the_cpu_and_mitsuba() {
+    let failures = check_delta("xml_spot");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// `xml_directional.xml` (Mitsuba's `directional`: `lights/directional.wgsl`).
+#[test]
+fn gpu_xml_directional_matches_the_cpu_and_mitsuba() {
+    let failures = check_delta("xml_directional");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// `xml_projector.xml` (Mitsuba's `projector`, textured and constant: `lights/projector.wgsl`).
+#[test]
+fn gpu_xml_projector_matches_the_cpu_and_mitsuba() {
+    let failures = check_delta("xml_projector");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

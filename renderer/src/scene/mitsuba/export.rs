@@ -10,10 +10,12 @@
 //! value from a transform (a rectangle's corner), the transform is chosen so that it computes
 //! exactly the original (see [`super::export_shape`]).
 
-use super::export_bsdf::{Bsdfs, color_value};
+use super::export_bsdf::{Bsdfs, color_value, texture_xml};
 use super::export_shape::shape;
 use crate::integrator::Settings;
-use crate::scene::desc::{BackgroundDesc, FilterDesc, ProjectionDesc, SceneDesc};
+use crate::scene::desc::{
+    BackgroundDesc, FilterDesc, LightDesc, LookAt, ProjectionDesc, SceneDesc,
+};
 use crate::scene::error::SceneError;
 use crate::scene::mesh::MeshData;
 use crate::scene::mesh::ply::{Encoding, write as write_ply};
@@ -71,6 +73,7 @@ pub fn export_scene(
     integrator(&mut x, desc, options);
     sensor(&mut x, desc, options)?;
     background(&mut x, desc, &folder)?;
+    lights(&mut x, desc, &folder)?;
     let mut ctx = ExportCtx {
         folder,
         stem,
@@ -311,6 +314,103 @@ fn background(x: &mut Xml, desc: &SceneDesc, folder: &Path) -> Result<(), SceneE
         }
     }
     Ok(())
+}
+
+/// Each light as the Mitsuba delta emitter the importer maps back to it (`delta_emitter`): a
+/// `point` at its `position`, a `directional` along its `direction`, a `spot` and a
+/// `projector` in a `to_world` `lookat` of their frame (the importer takes its origin, axis and
+/// orthonormalised up back); the projector's field of view is the horizontal one
+/// (`fov_axis` x), which lumis stores.
+fn lights(x: &mut Xml, desc: &SceneDesc, folder: &Path) -> Result<(), SceneError> {
+    for (i, light) in desc.lights.iter().enumerate() {
+        let path = format!("lights[{i}]");
+        match light {
+            LightDesc::Point {
+                position,
+                intensity,
+            } => {
+                x.open("emitter", &[("type", "point")]);
+                x.leaf(
+                    "point",
+                    &[("name", "position"), ("value", &vec3(*position))],
+                );
+                color_value(x, "intensity", *intensity);
+            }
+            LightDesc::Spot {
+                frame,
+                intensity,
+                cutoff_angle_deg,
+                beam_width_deg,
+                texture,
+            } => {
+                x.open("emitter", &[("type", "spot")]);
+                color_value(x, "intensity", *intensity);
+                x.leaf(
+                    "float",
+                    &[("name", "cutoff_angle"), ("value", &num(*cutoff_angle_deg))],
+                );
+                x.leaf(
+                    "float",
+                    &[("name", "beam_width"), ("value", &num(*beam_width_deg))],
+                );
+                if let Some(t) = texture {
+                    texture_xml(x, "texture", t, false, folder, &format!("{path}.texture"))?;
+                }
+                look_at(x, frame);
+            }
+            LightDesc::Directional {
+                direction,
+                irradiance,
+            } => {
+                x.open("emitter", &[("type", "directional")]);
+                x.leaf(
+                    "vector",
+                    &[("name", "direction"), ("value", &vec3(*direction))],
+                );
+                color_value(x, "irradiance", *irradiance);
+            }
+            LightDesc::Projector {
+                frame,
+                fov_x_deg,
+                irradiance,
+                texture,
+                scale,
+            } => {
+                x.open("emitter", &[("type", "projector")]);
+                match texture {
+                    Some(t) => texture_xml(
+                        x,
+                        "irradiance",
+                        t,
+                        false,
+                        folder,
+                        &format!("{path}.irradiance"),
+                    )?,
+                    None => color_value(x, "irradiance", *irradiance),
+                }
+                x.leaf("float", &[("name", "scale"), ("value", &num(*scale))]);
+                x.leaf("float", &[("name", "fov"), ("value", &num(*fov_x_deg))]);
+                x.leaf("string", &[("name", "fov_axis"), ("value", "x")]);
+                look_at(x, frame);
+            }
+        }
+        x.close("emitter");
+    }
+    Ok(())
+}
+
+/// `<transform name="to_world"><lookat …/></transform>` of a light's frame.
+fn look_at(x: &mut Xml, f: &LookAt) {
+    x.open("transform", &[("name", "to_world")]);
+    x.leaf(
+        "lookat",
+        &[
+            ("origin", &vec3(f.from)),
+            ("target", &vec3(f.to)),
+            ("up", &vec3(f.up)),
+        ],
+    );
+    x.close("transform");
 }
 
 /// A file as the XML names it: relative to the XML's folder when it lies inside it (both

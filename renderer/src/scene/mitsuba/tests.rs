@@ -115,3 +115,287 @@ fn rotation_and_basis() {
         assert!((s.length() - 1.0).abs() < 1e-12 && (t.length() - 1.0).abs() < 1e-12);
     }
 }
+
+/// The delta emitters (`delta_emitter`): small scenes written to a temporary folder and
+/// imported, the lights compared with what the mapping's formulas give, and each refusal one
+/// error naming the file's line.
+mod delta_emitters {
+    use crate::scene::desc::{LightDesc, LookAt};
+    use crate::scene::error::SceneError;
+    use glam::DVec3;
+    use std::path::PathBuf;
+
+    /// A camera every scene starts with (lines 2–5); the body starts on line 6.
+    const SENSOR: &str = r#"<sensor type="perspective"><float name="fov" value="40"/>
+    <transform name="to_world"><lookat origin="0 1 -5" target="0 0 0" up="0 1 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+</sensor>"#;
+
+    /// Imports `body` (inside a scene with [`SENSOR`]) from a file of its own.
+    fn import(name: &str, body: &str) -> (String, Result<Vec<LightDesc>, SceneError>) {
+        let text = format!("<scene version=\"3.0.0\">\n{SENSOR}\n{body}\n</scene>\n");
+        let dir: PathBuf = std::env::temp_dir().join(format!(
+            "lumis-delta-emitters-{name}-{}",
+            std::process::id()
+        ));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("scene.xml");
+        std::fs::write(&path, &text).unwrap();
+        let got = super::super::load(&path, &[]).map(|i| i.desc.lights);
+        let _ = std::fs::remove_dir_all(&dir);
+        (text, got)
+    }
+
+    /// The lights of `body`, panicking with the error.
+    fn lights(name: &str, body: &str) -> Vec<LightDesc> {
+        let (text, got) = import(name, body);
+        got.unwrap_or_else(|e| panic!("{e}\n{text}"))
+    }
+
+    /// The error of `body`: one line naming `scene.xml` at the line of `marker` and saying
+    /// `fragment`.
+    fn refused(name: &str, body: &str, marker: &str, fragment: &str) -> String {
+        let (text, got) = import(name, body);
+        let e = got.err().unwrap_or_else(|| panic!("accepted:\n{text}"));
+        let msg = e.to_string();
+        let at = text.find(marker).unwrap_or_else(|| panic!("no {marker}"));
+        let line = text[..at].matches('\n').count() + 1;
+        let want = format!("scene.xml:{line}:");
+        assert!(msg.contains(&want), "expected {want} in: {msg}");
+        assert!(msg.contains(fragment), "expected `{fragment}` in: {msg}");
+        assert!(!msg.contains('\n'), "one line: {msg}");
+        msg
+    }
+
+    fn close(a: DVec3, b: DVec3) -> bool {
+        (a - b).abs().max_element() <= 1e-12
+    }
+
+    /// A point light by `position` and by a `to_world` translation (Mitsuba's two ways): the
+    /// same light; a missing intensity is Mitsuba's default 1.
+    #[test]
+    fn a_point_light_by_position_or_by_to_world() {
+        let want = LightDesc::Point {
+            position: DVec3::new(1.0, 2.5, -3.0),
+            intensity: DVec3::new(4.0, 3.0, 2.0),
+        };
+        let by_position = lights(
+            "point_position",
+            r#"<emitter type="point"><point name="position" value="1 2.5 -3"/>
+                <rgb name="intensity" value="4 3 2"/></emitter>"#,
+        );
+        assert_eq!(by_position, [want.clone()]);
+        let by_to_world = lights(
+            "point_to_world",
+            r#"<emitter type="point"><rgb name="intensity" value="4 3 2"/>
+                <transform name="to_world"><translate x="1" y="2.5" z="-3"/></transform>
+            </emitter>"#,
+        );
+        assert_eq!(by_to_world, [want]);
+        let default = lights("point_default", r#"<emitter type="point"/>"#);
+        assert_eq!(
+            default,
+            [LightDesc::Point {
+                position: DVec3::ZERO,
+                intensity: DVec3::ONE,
+            }]
+        );
+    }
+
+    /// A spot's frame is its `lookat`'s (origin, origin + axis, the orthonormalised up), its
+    /// beam width three quarters of the cutoff where not given (Mitsuba's default).
+    #[test]
+    fn a_spot_light_takes_its_lookat_and_the_default_beam_width() {
+        let got = lights(
+            "spot",
+            r#"<emitter type="spot"><rgb name="intensity" value="5 5 4"/>
+                <float name="cutoff_angle" value="30"/>
+                <transform name="to_world"><lookat origin="1 2 3" target="1 0 3" up="0 0.5 1"/>
+                </transform>
+            </emitter>"#,
+        );
+        assert_eq!(
+            got,
+            [LightDesc::Spot {
+                frame: LookAt {
+                    from: DVec3::new(1.0, 2.0, 3.0),
+                    to: DVec3::new(1.0, 1.0, 3.0),
+                    up: DVec3::Z,
+                },
+                intensity: DVec3::new(5.0, 5.0, 4.0),
+                cutoff_angle_deg: 30.0,
+                beam_width_deg: 22.5,
+                texture: None,
+            }]
+        );
+    }
+
+    /// A directional light by `direction` (normalised) and by a `to_world` lookat: it travels
+    /// along the frame's +z, from the origin towards the target.
+    #[test]
+    fn a_directional_light_by_direction_or_by_to_world() {
+        let want = DVec3::new(1.0, -2.0, 2.0) / 3.0;
+        for (name, body) in [
+            (
+                "directional_direction",
+                r#"<emitter type="directional"><vector name="direction" value="1 -2 2"/>
+                    <rgb name="irradiance" value="0.5 0.4 0.3"/></emitter>"#,
+            ),
+            (
+                "directional_to_world",
+                r#"<emitter type="directional"><rgb name="irradiance" value="0.5 0.4 0.3"/>
+                    <transform name="to_world"><lookat origin="3 3 3" target="4 1 5" up="0 1 0"/>
+                    </transform>
+                </emitter>"#,
+            ),
+        ] {
+            let got = lights(name, body);
+            let [
+                LightDesc::Directional {
+                    direction,
+                    irradiance,
+                },
+            ] = got[..]
+            else {
+                panic!("{name}: {got:?}")
+            };
+            assert!(close(direction, want), "{name}: {direction}");
+            assert_eq!(irradiance, DVec3::new(0.5, 0.4, 0.3), "{name}");
+        }
+    }
+
+    /// A projector of constant irradiance has aspect 1, so a field of view on `fov_axis` y is
+    /// the same horizontally; its frame is its lookat's.
+    #[test]
+    fn a_constant_projector_with_a_vertical_fov() {
+        let got = lights(
+            "projector",
+            r#"<emitter type="projector"><rgb name="irradiance" value="2 1 0.5"/>
+                <float name="scale" value="3"/><float name="fov" value="35"/>
+                <string name="fov_axis" value="y"/>
+                <transform name="to_world"><lookat origin="0 4 0" target="0 0 0" up="0 0 1"/>
+                </transform>
+            </emitter>"#,
+        );
+        let [
+            LightDesc::Projector {
+                frame,
+                fov_x_deg,
+                irradiance,
+                texture: None,
+                scale,
+            },
+        ] = got[..]
+        else {
+            panic!("{got:?}")
+        };
+        assert!((fov_x_deg - 35.0).abs() < 1e-12, "{fov_x_deg}");
+        assert_eq!((irradiance, scale), (DVec3::new(2.0, 1.0, 0.5), 3.0));
+        assert_eq!(
+            frame,
+            LookAt {
+                from: DVec3::new(0.0, 4.0, 0.0),
+                to: DVec3::new(0.0, 3.0, 0.0),
+                up: DVec3::Z,
+            }
+        );
+    }
+
+    /// A bitmap in the repository (never read: the refusals come first).
+    fn bitmap() -> String {
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../tests/data/scenes/textured_mesh_albedo.png")
+            .to_string_lossy()
+            .into_owned()
+    }
+
+    #[test]
+    fn a_point_with_position_and_to_world_is_refused() {
+        refused(
+            "point_both",
+            r#"<emitter type="point" id="both"><point name="position" value="0 1 0"/>
+                <transform name="to_world"><translate x="1"/></transform></emitter>"#,
+            "id=\"both\"",
+            "either `position` or `to_world`",
+        );
+    }
+
+    #[test]
+    fn a_textured_point_intensity_is_refused() {
+        refused(
+            "point_texture",
+            &format!(
+                r#"<emitter type="point">
+                <texture type="bitmap" name="intensity"><string name="filename" value="{}"/>
+                </texture></emitter>"#,
+                bitmap()
+            ),
+            "<texture",
+            "must not vary",
+        );
+    }
+
+    #[test]
+    fn a_constant_spot_texture_is_refused() {
+        refused(
+            "spot_constant_texture",
+            r#"<emitter type="spot">
+                <rgb name="texture" value="1 0.5 0.5"/></emitter>"#,
+            "<rgb name=\"texture\"",
+            "spatially varying",
+        );
+    }
+
+    #[test]
+    fn a_scaled_or_mirrored_spot_or_projector_frame_is_refused() {
+        refused(
+            "spot_scaled",
+            r#"<emitter type="spot">
+                <transform name="to_world"><scale value="2"/></transform></emitter>"#,
+            "<transform",
+            "scales, shears or mirrors",
+        );
+        refused(
+            "projector_mirrored",
+            r#"<emitter type="projector"><float name="fov" value="30"/>
+                <transform name="to_world"><scale x="-1"/>
+                    <lookat origin="0 1 0" target="0 0 0" up="0 0 1"/></transform></emitter>"#,
+            "<transform",
+            "scales, shears or mirrors",
+        );
+    }
+
+    #[test]
+    fn a_directional_with_direction_and_to_world_is_refused() {
+        refused(
+            "directional_both",
+            r#"<emitter type="directional" id="both"><vector name="direction" value="0 -1 0"/>
+                <transform name="to_world"><lookat origin="0 0 0" target="0 -1 0" up="0 0 1"/>
+                </transform></emitter>"#,
+            "id=\"both\"",
+            "either `direction` or `to_world`",
+        );
+    }
+
+    /// Errors the scene parser finds are placed at the XML the value came from.
+    #[test]
+    fn a_negative_intensity_and_a_beam_wider_than_the_cutoff_are_refused_where_written() {
+        let msg = refused(
+            "point_negative",
+            r#"<emitter type="point">
+                <rgb name="intensity" value="1 -1 1"/></emitter>"#,
+            "<rgb name=\"intensity\"",
+            "negative",
+        );
+        assert!(msg.contains("lights[0].intensity"), "{msg}");
+        let msg = refused(
+            "spot_beam",
+            r#"<emitter type="point"/>
+            <emitter type="spot"><float name="cutoff_angle" value="20"/>
+                <float name="beam_width" value="25"/></emitter>"#,
+            "<float name=\"beam_width\"",
+            "out of range",
+        );
+        assert!(msg.contains("lights[1].beam_width_deg"), "{msg}");
+    }
+}
