@@ -69,13 +69,26 @@ fn compare(
     spp: u32,
     seed: u32,
 ) -> Result<(), String> {
-    let scene = Arc::new(Scene::from_desc(desc).unwrap_or_else(|e| panic!("{e}")));
     let settings = Settings {
         strategy,
         rr_depth,
         ..Settings::default()
     };
-    let what = format!("{name}.xml {strategy:?} {spp} spp seed {seed}");
+    compare_with(name, desc, settings, spp, seed)
+}
+
+/// [`compare`] with any `settings`.
+fn compare_with(
+    name: &str,
+    desc: &SceneDesc,
+    settings: Settings,
+    spp: u32,
+    seed: u32,
+) -> Result<(), String> {
+    let scene = Arc::new(Scene::from_desc(desc).unwrap_or_else(|e| panic!("{e}")));
+    let strategy = settings.strategy;
+    let selection = settings.light_selection.name();
+    let what = format!("{name}.xml {strategy:?} ({selection} selection) {spp} spp seed {seed}");
     let reference_img = reference(&format!("{name}.exr"));
     let reference_var = reference(&format!("{name}.var.exr"));
     let var = Some(&reference_var);
@@ -341,16 +354,25 @@ const DELTA_STRATEGIES: [Strategy; 5] = [
     Strategy::MisOptimal,
 ];
 
-/// [`DELTA_STRATEGIES`] at 256 spp, seed `seed + i`, against the reference; panics with every
-/// failure.
+/// [`DELTA_STRATEGIES`] at 256 spp, seed `seed + i`, against the reference, and MIS (power)
+/// with the light BVH's selection (which bounds a point light by its position, a spot or
+/// projector by its cone, and samples a directional light with the lights at infinity), seed
+/// `seed + 5`; panics with every failure.
 fn every_strategy_seeing_delta_lights(name: &str, seed: u32) {
     let m = import(name, &[]);
     let rr = m.rr_depth.unwrap_or(5);
-    let failures: Vec<String> = DELTA_STRATEGIES
+    let mut failures: Vec<String> = DELTA_STRATEGIES
         .into_iter()
         .enumerate()
         .filter_map(|(i, s)| compare(name, &m.desc, rr, s, 256, seed + i as u32).err())
         .collect();
+    let bvh = Settings {
+        strategy: MIS,
+        rr_depth: rr,
+        light_selection: lumis::lights::LightSelection::Bvh,
+        ..Settings::default()
+    };
+    failures.extend(compare_with(name, &m.desc, bvh, 256, seed + 5).err());
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
@@ -387,7 +409,7 @@ fn assert_scene_change_detected(
 }
 
 /// `xml_point.xml` (Mitsuba's `point`: one by `position`, one by a `to_world` translation; the
-/// camera scene's rectangle light and sky besides) against its reference, seeds 2300–2304.
+/// camera scene's rectangle light and sky besides) against its reference, seeds 2300–2305.
 #[test]
 fn xml_point_matches_its_mitsuba_reference() {
     every_strategy_seeing_delta_lights("xml_point", 2300);
@@ -409,7 +431,7 @@ fn xml_point_brighter_is_detected() {
 
 /// `xml_spot.xml` (Mitsuba's `spot`: cutoff 25° with beam width 15°, and cutoff 20° with the
 /// default beam width and a bitmap texture projected through the cone) against its reference,
-/// seeds 2310–2314.
+/// seeds 2310–2315.
 #[test]
 fn xml_spot_matches_its_mitsuba_reference() {
     every_strategy_seeing_delta_lights("xml_spot", 2310);
@@ -432,7 +454,7 @@ fn xml_spot_mirrored_texture_is_detected() {
 }
 
 /// `xml_directional.xml` (Mitsuba's `directional`: one by `direction`, one by a `to_world`
-/// look-at) against its reference, seeds 2320–2324.
+/// look-at) against its reference, seeds 2320–2325.
 #[test]
 fn xml_directional_matches_its_mitsuba_reference() {
     every_strategy_seeing_delta_lights("xml_directional", 2320);
@@ -457,7 +479,7 @@ fn xml_directional_turned_is_detected() {
 
 /// `xml_projector.xml` (Mitsuba's `projector`: a 48 × 32 bitmap irradiance with `scale` 10 and
 /// a horizontal fov of 30°, and a constant irradiance with fov 22°) against its reference, seeds
-/// 2330–2334.
+/// 2330–2335.
 #[test]
 fn xml_projector_matches_its_mitsuba_reference() {
     every_strategy_seeing_delta_lights("xml_projector", 2330);

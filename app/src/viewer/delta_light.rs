@@ -399,7 +399,7 @@ mod tests {
             intensity: DVec3::new(0.0, 8.0, 4.0),
             cutoff_angle_deg: 30.0,
             beam_width_deg: 22.5,
-            texture: textured.then(|| lumis::scene::TextureDesc {
+            texture: textured.then_some(lumis::scene::TextureDesc {
                 texture: lumis::textures::Texture::Constant(glam::Vec3::ONE),
             }),
         }

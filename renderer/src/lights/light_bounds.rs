@@ -287,4 +287,68 @@ mod tests {
             "{w}"
         );
     }
+
+    /// A point light's bounds are its point, emitting everywhere; a spot's importance is zero
+    /// exactly outside its cutoff cone (within the slack) and positive inside, so BVH selection
+    /// never drops a spot where it lights a point; a projector's cone holds its frustum's corners.
+    #[test]
+    fn delta_lights_bounds_cover_where_they_emit() {
+        use crate::lights::{PointLight, ProjectorLight, SpotLight};
+        use crate::math::Frame;
+        let frame = Frame {
+            s: Vec3::X,
+            t: Vec3::Y,
+            n: Vec3::Z,
+        };
+        let point = Light::Point(PointLight {
+            position: Vec3::new(1.0, 2.0, 3.0),
+            intensity: Vec3::ONE,
+        });
+        let b = LightBounds::of(&point).unwrap();
+        assert_eq!(
+            (b.lo, b.hi),
+            (Vec3::new(1.0, 2.0, 3.0), Vec3::new(1.0, 2.0, 3.0))
+        );
+        for d in [Vec3::X, -Vec3::Y, Vec3::Z, Vec3::new(-1.0, 1.0, -1.0)] {
+            assert!(b.importance(b.lo + 2.0 * d, Vec3::ZERO) > 0.0, "{d}");
+        }
+        let spot = Light::Spot(SpotLight::new(
+            Vec3::ZERO,
+            frame,
+            Vec3::ONE,
+            30f32.to_radians(),
+            10f32.to_radians(),
+        ));
+        let b = LightBounds::of(&spot).unwrap();
+        for deg in [0.0f32, 10.0, 29.0, 29.9] {
+            let t = deg.to_radians();
+            let p = 3.0 * Vec3::new(t.sin(), 0.0, t.cos());
+            assert!(b.importance(p, Vec3::ZERO) > 0.0, "inside at {deg}°");
+        }
+        for deg in [31.0f32, 90.0, 180.0] {
+            let t = deg.to_radians();
+            let p = 3.0 * Vec3::new(t.sin(), 0.0, t.cos());
+            assert_eq!(b.importance(p, Vec3::ZERO), 0.0, "outside at {deg}°");
+        }
+        let projector = Light::Projector(ProjectorLight {
+            position: Vec3::ZERO,
+            frame,
+            tan_half: glam::Vec2::new(0.5, 0.25),
+            intensity: Vec3::ONE,
+            selection: Vec3::ONE,
+            texture: crate::geometry::primitive::NONE,
+        });
+        let b = LightBounds::of(&projector).unwrap();
+        assert!(b.importance(Vec3::new(0.5, 0.25, 1.0) * 4.0, Vec3::ZERO) > 0.0);
+        assert_eq!(b.importance(Vec3::new(0.0, 0.0, -1.0), Vec3::ZERO), 0.0);
+        let directional = Light::Directional(crate::lights::DirectionalLight {
+            direction: -Vec3::Y,
+            irradiance: Vec3::ONE,
+            scene_radius: 1.0,
+        });
+        assert!(
+            LightBounds::of(&directional).is_none(),
+            "sampled with the infinite lights"
+        );
+    }
 }

@@ -31,9 +31,9 @@ mod tests;
 
 pub use build::Scene;
 pub use desc::{
-    BackgroundDesc, CameraDesc, EnvmapDesc, FilterDesc, FresnelDesc, GeometryDesc, MaterialDesc,
-    MaterialTextures, NamedMaterial, PlasticModel, ProjectionDesc, SceneDesc, ShapeDesc,
-    TextureDesc,
+    BackgroundDesc, CameraDesc, EnvmapDesc, FilterDesc, FresnelDesc, GeometryDesc, LightDesc,
+    LookAt, MaterialDesc, MaterialTextures, NamedMaterial, PlasticModel, ProjectionDesc, SceneDesc,
+    ShapeDesc, TextureDesc,
 };
 pub use error::SceneError;
 pub use parse::{

@@ -66,8 +66,9 @@ fn parse_light(obj: &Obj, loader: &mut TextureLoader) -> Result<LightDesc, Scene
         }
     };
     obj.only_keys(keys, true)?;
+    // Mitsuba's default for every intensity and irradiance: 1.
     let power = |key: &str| -> Result<DVec3, SceneError> {
-        let v = obj.vec3(key)?;
+        let v = obj.opt_vec3(key)?.unwrap_or(DVec3::ONE);
         check_components(v, &obj.at(key), |x| x >= 0.0, "is negative: it must be ≥ 0")?;
         check_components(
             v,
@@ -162,7 +163,8 @@ fn parse_light(obj: &Obj, loader: &mut TextureLoader) -> Result<LightDesc, Scene
                 return Err(SceneError::new(
                     obj.at("fov_deg"),
                     format!(
-                        "{fov} is out of range: the field of view is in (0, 180) (horizontally                          {fov_x_deg})"
+                        "{fov} is out of range: the field of view is in (0, 180) (horizontally \
+                         {fov_x_deg})"
                     ),
                 ));
             }

@@ -33,13 +33,14 @@ pub fn is_float_format(path: &Path) -> bool {
     matches!(extension(path).as_str(), "exr" | "hdr" | "rgbe" | "pfm")
 }
 
-/// Reads a texture file by its extension (`.png`, `.jpg`/`.jpeg`, `.exr`, `.hdr`/`.rgbe`, `.pfm`):
+/// Reads a texture file by its extension (`.png`, `.jpg`/`.jpeg`, `.bmp`, `.exr`, `.hdr`/`.rgbe`,
+/// `.pfm`):
 /// linear RGB,
 /// row 0 at the top, 1 to [`MAX_TEXTURE_TEXELS`] texels.
 pub fn load_texture_image(path: &Path, raw: bool) -> Result<Image, ImageError> {
     let image = match extension(path).as_str() {
         "exr" | "hdr" | "rgbe" | "pfm" => Image::read(path)?,
-        "png" | "jpg" | "jpeg" => {
+        "png" | "jpg" | "jpeg" | "bmp" => {
             let img = image::open(path).map_err(|e| err(path, e))?;
             from_dynamic(img, raw)
         }
@@ -47,7 +48,7 @@ pub fn load_texture_image(path: &Path, raw: bool) -> Result<Image, ImageError> {
             return Err(err(
                 path,
                 format!(
-                    "unsupported texture format '.{other}' (use .png, .jpg, .jpeg, .exr or .hdr)"
+                    "unsupported texture format '.{other}' (use .png, .jpg, .jpeg, .bmp, .exr or .hdr)"
                 ),
             ));
         }
@@ -230,13 +231,31 @@ mod tests {
         assert_eq!(load_texture_image(&path, true).unwrap(), exr);
     }
 
+    /// A BMP (Mitsuba's gallery projects one) decodes to the texels of the same 8-bit image
+    /// stored as PNG: sRGB-decoded, row 0 at the top.
+    #[test]
+    fn bmp_reads_as_png_does() {
+        let mut img = image::RgbImage::new(3, 2);
+        for (x, y, p) in img.enumerate_pixels_mut() {
+            *p = image::Rgb([40 * x as u8, 100 + 50 * y as u8, 7]);
+        }
+        let (png, bmp) = (scratch("t.png"), scratch("t.bmp"));
+        img.save(&png).unwrap();
+        img.save(&bmp).unwrap();
+        for raw in [false, true] {
+            let a = load_texture_image(&png, raw).unwrap();
+            assert_eq!(load_texture_image(&bmp, raw).unwrap(), a);
+        }
+        assert_ne!(load_texture_image(&bmp, false).unwrap().data[0], Vec3::ZERO);
+    }
+
     #[test]
     fn bad_files_name_the_file() {
         let e = load_texture_image(Path::new("/nonexistent/wood.png"), false).unwrap_err();
         assert!(e.to_string().contains("/nonexistent/wood.png"), "{e}");
-        let e = load_texture_image(&scratch("a.bmp"), false).unwrap_err();
+        let e = load_texture_image(&scratch("a.tga"), false).unwrap_err();
         assert!(
-            e.to_string().contains("unsupported texture format '.bmp'"),
+            e.to_string().contains("unsupported texture format '.tga'"),
             "{e}"
         );
         let path = scratch("garbage.png");

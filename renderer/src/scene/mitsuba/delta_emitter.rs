@@ -172,7 +172,7 @@ fn rigid(m: &DMat4) -> Result<(), String> {
     if off > crate::scene::parse_background::ROTATION_TOLERANCE || l.determinant() <= 0.0 {
         return Err(
             "this emitter's to_world scales, shears or mirrors; lumis takes a rotation and a \
-             translation (a <lookat>) for point-like and directional emitters"
+             translation (a <lookat>) for spot, projector and directional emitters"
                 .to_owned(),
         );
     }

@@ -1,5 +1,6 @@
-//! Unit tests of the Mitsuba importer's colour conversions and presets (the scene-level tests
-//! are in `renderer/tests/mitsuba_xml.rs`).
+//! Unit tests of the Mitsuba importer's colour conversions and presets, and of its delta
+//! emitters (`delta_emitters`); the other scene-level tests are in
+//! `renderer/tests/mitsuba_xml.rs`.
 
 use super::presets::{conductor_preset, names};
 use super::transform::{coordinate_system, rotation};
@@ -184,7 +185,7 @@ mod delta_emitters {
             r#"<emitter type="point"><point name="position" value="1 2.5 -3"/>
                 <rgb name="intensity" value="4 3 2"/></emitter>"#,
         );
-        assert_eq!(by_position, [want.clone()]);
+        assert_eq!(by_position, std::slice::from_ref(&want));
         let by_to_world = lights(
             "point_to_world",
             r#"<emitter type="point"><rgb name="intensity" value="4 3 2"/>
@@ -352,7 +353,7 @@ mod delta_emitters {
             "spot_scaled",
             r#"<emitter type="spot">
                 <transform name="to_world"><scale value="2"/></transform></emitter>"#,
-            "<transform",
+            "<scale value",
             "scales, shears or mirrors",
         );
         refused(
@@ -360,7 +361,7 @@ mod delta_emitters {
             r#"<emitter type="projector"><float name="fov" value="30"/>
                 <transform name="to_world"><scale x="-1"/>
                     <lookat origin="0 1 0" target="0 0 0" up="0 0 1"/></transform></emitter>"#,
-            "<transform",
+            "<scale x",
             "scales, shears or mirrors",
         );
     }
@@ -377,9 +378,10 @@ mod delta_emitters {
         );
     }
 
-    /// Errors the scene parser finds are placed at the XML the value came from.
+    /// Errors the scene parser finds (a negative intensity, a beam wider than the cutoff, a
+    /// projector's field of view out of range) are placed at the XML the value came from.
     #[test]
-    fn a_negative_intensity_and_a_beam_wider_than_the_cutoff_are_refused_where_written() {
+    fn the_parsers_refusals_are_placed_where_written() {
         let msg = refused(
             "point_negative",
             r#"<emitter type="point">
@@ -397,5 +399,13 @@ mod delta_emitters {
             "out of range",
         );
         assert!(msg.contains("lights[1].beam_width_deg"), "{msg}");
+        let msg = refused(
+            "projector_fov",
+            r#"<emitter type="projector">
+                <float name="fov" value="200"/></emitter>"#,
+            "value=\"200\"",
+            "200 is out of range: the field of view is in (0, 180) (horizontally 200)",
+        );
+        assert!(msg.contains("lights[0].fov_deg"), "{msg}");
     }
 }
