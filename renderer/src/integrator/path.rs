@@ -632,7 +632,10 @@ fn direct_light<const TRANSMISSION: bool>(
 /// probability `pmf`) at a vertex whose BSDF value (cosine included) towards it is `f`: no other
 /// technique produces this sample, so its MIS weight is 1 in every strategy, and under the
 /// one-sample mixture it is divided by the light branch's probability as well (the BSDF branch
-/// never finds it). Zero where the shadow ray is blocked.
+/// never finds it). Zero where the shadow ray is blocked. Kept out of line, so that the loop of
+/// scenes without delta lights, which never call it, stays as small as it was
+/// (docs/performance.md, "Delta lights").
+#[inline(never)]
 fn delta_light(
     scene: &Scene,
     hit: &SurfaceHit,

@@ -567,7 +567,12 @@ fn lights_match() {
         let ns = Vec3::from_slice(&i[2][..3]);
         match light.sample(p, ns, u, method) {
             Some(s) => {
-                let angle = DIRECTION_AGREEMENT / s.n.dot(s.wi).abs().max(1e-6);
+                // A delta light's point is exact (no normal to be conditioned by).
+                let angle = if light.is_delta() {
+                    DIRECTION_AGREEMENT
+                } else {
+                    DIRECTION_AGREEMENT / s.n.dot(s.wi).abs().max(1e-6)
+                };
                 let dist = (s.p - p).length();
                 let what = |q: &str| {
                     format!(

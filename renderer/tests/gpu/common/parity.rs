@@ -47,6 +47,12 @@ pub const PARITY_SCENE: &str = r#"{
     {"type": "sphere", "center": [-1.6, 0.25, -3.0], "radius": 0.25, "material": "mitsuba_beckmann"},
     {"type": "sphere", "center": [1.0, 0.2, -3.0], "radius": 0.2, "material": "mitsuba_ggx"},
     {"type": "sphere", "center": [2.0, 0.2, -3.4], "radius": 0.2, "material": "tinted_copper"}
+  ],
+  "lights": [
+    {"type": "point", "position": [0.5, 2.5, 0.5], "intensity": [3, 2, 1]},
+    {"type": "spot", "from": [-1, 3, -1], "to": [0, 0, 0], "intensity": [9, 8, 7], "cutoff_angle_deg": 35, "beam_width_deg": 20},
+    {"type": "directional", "direction": [0.3, -1, 0.2], "irradiance": [1, 1.5, 2]},
+    {"type": "projector", "from": [1, 3, -2], "to": [0, 0, 0.5], "fov_deg": 50, "irradiance": [2, 3, 4], "scale": 1.5}
   ]
 }"#;
 
