@@ -104,22 +104,22 @@ fn refusals_name_file_line_and_element() {
     let dir = Dir::new("refusals");
     let cases: [(&str, &str, &str, &str); 20] = [
         (
-            r#"<emitter type="point"/>"#,
-            "point",
+            r#"<emitter type="sunsky"/>"#,
+            "sunsky",
             "scene/emitter",
-            "emitter type `point` is not supported",
+            "emitter type `sunsky` is not supported",
         ),
         (
-            r#"<emitter type="directional"/>"#,
-            "directional",
+            r#"<emitter type="directionalarea"/>"#,
+            "directionalarea",
             "scene/emitter",
-            "no directional lights",
+            "no directional area lights",
         ),
         (
-            r#"<emitter type="spot"/>"#,
+            r#"<shape type="sphere"><emitter type="spot"/></shape>"#,
             "spot",
-            "scene/emitter",
-            "emitter type `spot`",
+            "scene/shape/emitter",
+            "a `spot` emitter cannot be attached to a shape",
         ),
         (
             r#"<shape type="sphere"><bsdf type="bumpmap"/></shape>"#,

@@ -18,9 +18,6 @@ use serde_json::{Value as Json, json};
 /// Emitter types Mitsuba has and lumis does not, with the reason.
 fn unsupported(ty: &str) -> String {
     let why = match ty {
-        "point" | "spot" | "projector" | "directional" => {
-            " (a delta light: it is a light of the scene, not of a shape)"
-        }
         "directionalarea" => " (lumis has no directional area lights)",
         "sunsky" | "sky" | "sun" => " (lumis' environment is a constant or an EXR or HDR map)",
         _ => "",
@@ -33,11 +30,20 @@ fn unsupported(ty: &str) -> String {
 /// The `radiance` of an `area` emitter inside a shape (a colour or a texture).
 pub fn area(ctx: &mut Ctx, e: &Plugin, json_path: &str) -> Result<Json, SceneError> {
     if e.ty != "area" {
-        return Err(e.error(if matches!(e.ty, "constant" | "envmap") {
-            format!("a `{}` emitter cannot be attached to a shape", e.ty)
-        } else {
-            unsupported(e.ty)
-        }));
+        return Err(e.error(
+            if matches!(
+                e.ty,
+                "constant" | "envmap" | "point" | "spot" | "directional" | "projector"
+            ) {
+                format!(
+                    "a `{}` emitter cannot be attached to a shape (it is a light of the scene: \
+                 declare it at the top level)",
+                    e.ty
+                )
+            } else {
+                unsupported(e.ty)
+            },
+        ));
     }
     if e.has("to_world") {
         return Err(e.error("an area emitter takes no to_world (Mitsuba refuses it too)"));
