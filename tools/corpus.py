@@ -136,7 +136,10 @@ def image_mean(images):
     return [sum(p[c] for img in images for row in img for p in row) / n for c in range(3)]
 
 
-def mitsuba_renders(mi, path, scale, spp, k):
+def load_resized(mi, path, scale, spp):
+    """Mitsuba's scene of the unmodified XML `path` with its film's width and height scaled by
+    `scale` (each rounded as lumis rounds it) in the parsed scene, nothing else changed; `$spp`
+    set to `spp` where the scene needs it. Also used by tools/make_gallery_reference.py."""
     cfg = mi.parser.ParserConfig("llvm_ad_rgb")
     try:
         state = mi.parser.parse_file(cfg, str(path))
@@ -164,6 +167,11 @@ def mitsuba_renders(mi, path, scale, spp, k):
         scene = mi.parser.instantiate(cfg, state)
     finally:
         mi.set_file_resolver(saved)
+    return scene
+
+
+def mitsuba_renders(mi, path, scale, spp, k):
+    scene = load_resized(mi, path, scale, spp)
     images = []
     for seed in range(1, k + 1):
         img = mi.render(scene, seed=seed, spp=spp)

@@ -16,7 +16,7 @@ Tests never run it; tests/data/refs/README.md records each reference's command.
 """
 
 import argparse
-import re
+import sys
 import time
 from pathlib import Path
 
@@ -36,32 +36,13 @@ def main():
     a = ap.parse_args()
     assert a.spp % a.npass == 0, "--spp must be a multiple of --pass"
     mi.set_variant("llvm_ad_rgb")
-    path = Path(a.scene).resolve()
-    cfg = mi.parser.ParserConfig("llvm_ad_rgb")
-    try:
-        state = mi.parser.parse_file(cfg, str(path))
-    except Exception as e:  # a scene that needs $spp gets it, as the gallery's own renders did
-        if "spp" not in str(e):
-            raise
-        state = mi.parser.parse_file(cfg, str(path), spp=str(a.spp))
-    for node in state.nodes:
-        if node.type == mi.ObjectType.Film:
-            w, h = node.props["width"], node.props["height"]
-            side = lambda n: max(1, int(np.floor(n * a.scale + 0.5)))
-            node.props["width"], node.props["height"] = side(w), side(h)
-            print("film %dx%d -> %dx%d" % (w, h, side(w), side(h)))
-            break
-    mi.parser.transform_all(cfg, state)
-    # Files named relative to the scene or its <path>s resolve at instantiation (as mi.load_file).
-    saved = mi.FileResolver(mi.file_resolver())
-    resolver = mi.file_resolver()
-    for value in reversed(re.findall(r'<path\s+value="([^"]+)"', path.read_text())):
-        resolver.prepend(str((path.parent / value).resolve()))
-    resolver.prepend(str(path.parent))
-    try:
-        scene = mi.parser.instantiate(cfg, state)
-    finally:
-        mi.set_file_resolver(saved)
+    # The same parsed, resized scene as tools/corpus.py's Mitsuba side.
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from corpus import load_resized
+
+    scene = load_resized(mi, Path(a.scene).resolve(), a.scale, a.spp)
+    film = scene.sensors()[0].film().size()
+    print("film %dx%d" % (film[0], film[1]))
 
     def half(seed):
         acc = None
