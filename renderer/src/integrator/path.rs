@@ -593,12 +593,7 @@ fn direct_light<const TRANSMISSION: bool>(
     if f == Vec3::ZERO && p_bsdf_cv <= 0.0 {
         return PURE;
     }
-    let shadow = if ls.infinite {
-        spawn_ray(hit.p, hit.p_error, n, ls.wi)
-    } else {
-        spawn_ray_to(hit.p, hit.p_error, n, ls.p, ls.p_error, ls.n)
-    };
-    if scene.accel.occluded(&shadow) {
+    if scene.accel.occluded(&shadow_ray(hit, n, &ls)) {
         if cv && crate::mutants::optimal_occluded_combined() {
             let p_bsdf = material.pdf_specialised::<TRANSMISSION>(wo, wi);
             if let Some((rl, rb)) = balance_ratios(pmf * ls.pdf, p_bsdf) {
@@ -628,6 +623,17 @@ fn direct_light<const TRANSMISSION: bool>(
     (contribution, outcome)
 }
 
+/// The shadow ray from `hit` (geometric normal `n`) to light sample `ls`: to infinity along its
+/// direction for a light at infinity, else to its point (both ends offset off their surfaces).
+#[inline(always)]
+fn shadow_ray(hit: &SurfaceHit, n: Vec3, ls: &crate::lights::LightSample) -> Ray {
+    if ls.infinite {
+        spawn_ray(hit.p, hit.p_error, n, ls.wi)
+    } else {
+        spawn_ray_to(hit.p, hit.p_error, n, ls.p, ls.p_error, ls.n)
+    }
+}
+
 /// Next-event estimation's contribution from a delta light's sample `ls` (the light selected with
 /// probability `pmf`) at a vertex whose BSDF value (cosine included) towards it is `f`: no other
 /// technique produces this sample, so its MIS weight is 1 in every strategy, and under the
@@ -648,12 +654,7 @@ fn delta_light(
     if f == Vec3::ZERO {
         return Vec3::ZERO;
     }
-    let shadow = if ls.infinite {
-        spawn_ray(hit.p, hit.p_error, n, ls.wi)
-    } else {
-        spawn_ray_to(hit.p, hit.p_error, n, ls.p, ls.p_error, ls.n)
-    };
-    if scene.accel.occluded(&shadow) {
+    if scene.accel.occluded(&shadow_ray(hit, n, ls)) {
         return Vec3::ZERO;
     }
     let branch = match weight {

@@ -77,6 +77,15 @@ fn nee_pure() -> NeeResult {
     return NeeResult(vec3f(0.0), false, 0.0, 0.0);
 }
 
+// `shadow_ray`: from hit (geometric normal n) to the light sample ls, to infinity for a light
+// at infinity.
+fn shadow_ray(hit: SurfaceHit, n: vec3f, ls: LightSample) -> Ray {
+    if ls.infinite {
+        return spawn_ray(hit.p, hit.p_error, n, ls.wi);
+    }
+    return spawn_ray_to(hit.p, hit.p_error, n, ls.p, ls.p_error, ls.n);
+}
+
 // Next-event estimation (`direct_light`); `mixture_w` ≥ 0 on the mixture's light branch; `mis_h`
 // the MIS heuristic or NONE (light sampling alone); `cv`: mis-optimal's control variate needs the
 // outcome; `shading`: the frame is a shading normal's (the rule above applies).
@@ -124,13 +133,7 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
     if all(f == vec3f(0.0)) && p_bsdf_cv <= 0.0 {
         return nee_pure();
     }
-    var shadow: Ray;
-    if ls.infinite {
-        shadow = spawn_ray(hit.p, hit.p_error, n, ls.wi);
-    } else {
-        shadow = spawn_ray_to(hit.p, hit.p_error, n, ls.p, ls.p_error, ls.n);
-    }
-    if scene_occluded(shadow) {
+    if scene_occluded(shadow_ray(hit, n, ls)) {
         return nee_pure();
     }
     let p_light = choice.pmf * ls.pdf;
@@ -165,13 +168,7 @@ fn delta_light(hit: SurfaceHit, n: vec3f, ls: LightSample, f: vec3f, pmf: f32, m
     if all(f == vec3f(0.0)) {
         return NeeResult(vec3f(0.0), false, -1.0, 0.0);
     }
-    var shadow: Ray;
-    if ls.infinite {
-        shadow = spawn_ray(hit.p, hit.p_error, n, ls.wi);
-    } else {
-        shadow = spawn_ray_to(hit.p, hit.p_error, n, ls.p, ls.p_error, ls.n);
-    }
-    if scene_occluded(shadow) {
+    if scene_occluded(shadow_ray(hit, n, ls)) {
         return NeeResult(vec3f(0.0), false, -1.0, 0.0);
     }
     var branch = 1.0;
