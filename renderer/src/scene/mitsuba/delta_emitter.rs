@@ -13,6 +13,7 @@ use super::plugin::Plugin;
 use super::texture::color_param;
 use super::values::{Slot, constant_color};
 use crate::scene::error::SceneError;
+use crate::scene::parse_background::proper_rotation;
 use glam::{DMat3, DMat4, DVec3};
 use serde_json::{Value as Json, json};
 
@@ -160,21 +161,13 @@ fn frame(ctx: &mut Ctx, e: &Plugin, json_path: &str) -> Result<(DVec3, DVec3, DV
     Ok((from, from + m.z_axis.truncate(), m.y_axis.truncate()))
 }
 
-/// Whether the linear part of `m` is a proper rotation (to 1e-4, as the environment map's): a
-/// scale changes a spot's texture mapping and a projector's brightness in Mitsuba, a mirror its
-/// orientation, which lumis' look-at frames do not hold.
+/// Whether the linear part of `m` is a proper rotation (the environment map's rule,
+/// [`proper_rotation`]): a scale changes a spot's texture mapping and a projector's brightness in
+/// Mitsuba, a mirror its orientation, which lumis' look-at frames do not hold.
 fn rigid(m: &DMat4) -> Result<(), String> {
-    let l = DMat3::from_mat4(*m);
-    let off = (l.transpose() * l - DMat3::IDENTITY)
-        .to_cols_array()
-        .iter()
-        .fold(0.0f64, |a, &x| a.max(x.abs()));
-    if off > crate::scene::parse_background::ROTATION_TOLERANCE || l.determinant() <= 0.0 {
-        return Err(
-            "this emitter's to_world scales, shears or mirrors; lumis takes a rotation and a \
-             translation (a <lookat>) for spot, projector and directional emitters"
-                .to_owned(),
-        );
-    }
-    Ok(())
+    proper_rotation(DMat3::from_mat4(*m)).map(|_| ()).map_err(|_| {
+        "this emitter's to_world scales, shears or mirrors; lumis takes a rotation and a \
+         translation (a <lookat>) for spot, projector and directional emitters"
+            .to_owned()
+    })
 }
