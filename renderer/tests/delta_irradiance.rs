@@ -27,7 +27,7 @@ use common::protocol::decide_against;
 use common::*;
 use glam::{DVec3, Vec3};
 use lumis::image_io::Image;
-use lumis::integrator::{Heuristic, Settings, Strategy};
+use lumis::integrator::{Settings, Strategy};
 use lumis::scene::Scene;
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -125,18 +125,6 @@ fn closed_form(scene: &Scene) -> Image {
         data,
     }
 }
-
-const DELTA_STRATEGIES: [Strategy; 5] = [
-    Strategy::Light,
-    Strategy::Mixture { light_weight: 0.5 },
-    Strategy::Mis {
-        heuristic: Heuristic::Power,
-    },
-    Strategy::Mis {
-        heuristic: Heuristic::Balance,
-    },
-    Strategy::MisOptimal,
-];
 
 fn check(
     scene: &Arc<Scene>,

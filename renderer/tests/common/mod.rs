@@ -44,6 +44,16 @@ pub const STRATEGIES_AND_OPTIMAL: [Strategy; 6] = [
     Strategy::MisOptimal,
 ];
 
+/// The strategies that can see a delta light (point, spot, directional, projector): every one
+/// of [`STRATEGIES_AND_OPTIMAL`] but BSDF-only, which never finds one.
+pub const DELTA_STRATEGIES: [Strategy; 5] = [
+    STRATEGIES[0],
+    STRATEGIES[2],
+    STRATEGIES[3],
+    STRATEGIES[4],
+    Strategy::MisOptimal,
+];
+
 /// Both light-sampling methods.
 pub const METHODS: [LightSampling; 2] = [LightSampling::Area, LightSampling::SolidAngle];
 

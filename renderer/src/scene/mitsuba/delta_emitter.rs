@@ -165,9 +165,11 @@ fn frame(ctx: &mut Ctx, e: &Plugin, json_path: &str) -> Result<(DVec3, DVec3, DV
 /// [`proper_rotation`]): a scale changes a spot's texture mapping and a projector's brightness in
 /// Mitsuba, a mirror its orientation, which lumis' look-at frames do not hold.
 fn rigid(m: &DMat4) -> Result<(), String> {
-    proper_rotation(DMat3::from_mat4(*m)).map(|_| ()).map_err(|_| {
-        "this emitter's to_world scales, shears or mirrors; lumis takes a rotation and a \
+    proper_rotation(DMat3::from_mat4(*m))
+        .map(|_| ())
+        .map_err(|_| {
+            "this emitter's to_world scales, shears or mirrors; lumis takes a rotation and a \
          translation (a <lookat>) for spot, projector and directional emitters"
-            .to_owned()
-    })
+                .to_owned()
+        })
 }
