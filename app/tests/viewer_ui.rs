@@ -811,7 +811,8 @@ fn delta_lights_are_flagged_in_the_bsdf_pane_and_edited_in_their_section() {
     let spot = spot.expect("the spot is in the rendered scene");
     assert!((spot.cutoff - 15f32.to_radians()).abs() < 1e-6, "{spot:?}");
     assert!(
-        (spot.beam_width - 15f32.to_radians()).abs() < 1e-6,
+        // The beam angle within 1e-6 rad, as seen through its cosine (slope sin 15°).
+        (spot.cos_beam - 15f32.to_radians().cos()).abs() < 1e-6 * 15f32.to_radians().sin(),
         "{spot:?}"
     );
 }

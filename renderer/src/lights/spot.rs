@@ -28,8 +28,6 @@ pub struct SpotLight {
     pub intensity: Vec3,
     /// The cutoff angle, in radians, in (0, π].
     pub cutoff: f32,
-    /// The beam width, in radians, in [0, `cutoff`].
-    pub beam_width: f32,
     /// cos of the cutoff angle.
     pub cos_cutoff: f32,
     /// cos of the beam width.
@@ -60,7 +58,6 @@ impl SpotLight {
             frame,
             intensity,
             cutoff,
-            beam_width,
             cos_cutoff: cutoff.cos(),
             cos_beam: beam_width.cos(),
             inv_transition: 1.0 / (cutoff - beam_width),
