@@ -324,9 +324,10 @@ fn thin_lens_and_orthographic_cameras_round_trip() {
 }
 
 /// A scene with every material kind, both texture kinds in colour and scalar slots (uv scale
-/// and offset, wrap, raw), a textured emission, boxes, one-sided materials, a shape without a
-/// material, a constant background and every light kind (a point, a textured and a plain spot,
-/// a directional, a textured projector whose field of view was given vertically and a constant
+/// and offset, wrap, raw), a textured emission, boxes, cylinders (a textured one and a flipped
+/// anisotropic one with its own u axis), one-sided materials, a shape without a material, a
+/// constant background and every light kind (a point, a textured and a plain spot, a
+/// directional, a textured projector whose field of view was given vertically and a constant
 /// one).
 fn kitchen_sink() -> SceneDesc {
     let json = r#"{
@@ -386,7 +387,11 @@ fn kitchen_sink() -> SceneDesc {
         {"type": "triangles", "positions": [[-2, 0, -2], [-1.5, 0, -2], [-1.8, 0.8, -1.9]],
          "indices": [[0, 1, 2]], "material": "varnish"},
         {"type": "quad", "corner": [-2.9, 0, 2.0], "edge_u": [0.8, 0, 0], "edge_v": [0, 0.8, 0],
-         "material": "carbon"}
+         "material": "carbon"},
+        {"type": "cylinder", "p0": [-0.9, 0, 1.2], "p1": [-0.9, 0.9, 1.2], "radius": 0.3,
+         "material": "checker"},
+        {"type": "cylinder", "p0": [0.9, 0.3, -2.2], "p1": [1.9, 0.5, -2.0], "radius": 0.25,
+         "u_axis": [0, 1, 0.2], "flip_normals": true, "material": "carbon"}
       ],
       "lights": [
         {"type": "point", "position": [1.5, 2.0, -1.0], "intensity": [2, 1.5, 1]},

@@ -362,6 +362,32 @@ fn xml_principal_point_wrong_sign_is_detected() {
     assert_detected("xml_principal_point", &m, 2170, "with ox=-0.15");
 }
 
+/// `xml_cylinder.xml` (Mitsuba's `cylinder`: from `to_world` alone and from p0, p1 and radius,
+/// a checkerboard over its (u, v), anisotropic rough gold along its ∂p/∂u, two-sided, with
+/// `flip_normals`; insides seen through the open ends) against its reference, seeds 2360–2364.
+#[test]
+fn xml_cylinder_matches_its_mitsuba_reference() {
+    every_strategy("xml_cylinder", [256, 256, 256, 256, 256], 2360);
+}
+
+/// Power: `xml_cylinder.xml` with `-D turn=30` (the textured tube turned 30° about its own
+/// axis: the same surface, its u axis and so its checkerboard turned, what an importer that
+/// ignored the rotation in the u axis would render) fails, MIS 256 spp, seed 2370.
+#[test]
+fn xml_cylinder_turned_texture_is_detected() {
+    let m = import("xml_cylinder", &[("turn", "30")]);
+    assert_detected("xml_cylinder", &m, 2370, "with turn=30");
+}
+
+/// Power: `xml_cylinder.xml` with the gold tube's `alpha_u` and `alpha_v` swapped (its lobe
+/// along the axis instead of around it: what ∂p/∂u along the axis would render) fails, MIS
+/// 256 spp, seed 2371.
+#[test]
+fn xml_cylinder_tangent_along_the_axis_is_detected() {
+    let m = import("xml_cylinder", &[("alpha_u", "0.35"), ("alpha_v", "0.05")]);
+    assert_detected("xml_cylinder", &m, 2371, "with alpha_u and alpha_v swapped");
+}
+
 /// [`DELTA_STRATEGIES`] (BSDF-only never finds a delta light:
 /// [`delta_lights_are_missing_from_bsdf_only`]) at 256 spp, seed `seed + i`, against the reference, and MIS (power)
 /// with the light BVH's selection (which bounds a point light by its position, a spot or

@@ -1,9 +1,11 @@
-//! Self-intersection (pbrt-v4's `Triangle.Reintersect`, extended to disks and spheres): a ray
+//! Self-intersection (pbrt-v4's `Triangle.Reintersect`, extended to disks, spheres and
+//! cylinders): a ray
 //! spawned from a hit point never hits the surface it leaves, for random shapes at random
 //! positions and scales from 1e-4 to 1e6, and a shadow ray between points on two surfaces is never
 //! blocked by either end. Seeded; every failure prints the shape and the ray.
 
 use glam::Vec3;
+use lumis::geometry::cylinder::Cylinder;
 use lumis::geometry::disk::Disk;
 use lumis::geometry::ray::{spawn_ray, spawn_ray_to};
 use lumis::geometry::sphere::Sphere;
@@ -42,11 +44,28 @@ fn is_far_side(s: &Sphere, ray: &Ray, t: f32) -> bool {
     (t as f64 - t_far).abs() <= 0.5 * t_far
 }
 
+/// [`is_far_side`] for a cylinder's tube: the same question about the ray projected onto the
+/// plane perpendicular to the axis.
+fn is_far_side_of_tube(c: &Cylinder, ray: &Ray, t: f32) -> bool {
+    let z = c.axis.as_dvec3().normalize();
+    let flat = |v: glam::DVec3| v - z * z.dot(v);
+    let f = flat((ray.o - c.p0).as_dvec3());
+    let d = flat(ray.d.as_dvec3());
+    let (a, b, cc) = (d.dot(d), f.dot(d), f.dot(f) - (c.radius as f64).powi(2));
+    let disc = b * b - a * cc;
+    if cc >= 0.0 || disc < 0.0 || a == 0.0 {
+        return false;
+    }
+    let t_far = (-b + disc.sqrt()) / a;
+    (t as f64 - t_far).abs() <= 0.5 * t_far
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Kind {
     Triangle,
     Disk,
     Sphere,
+    Cylinder,
 }
 
 /// A random shape of `kind` around a random position, with its size, or `None` if degenerate.
@@ -69,6 +88,21 @@ fn random_shape(kind: Kind, rng: &mut Rng) -> Option<(Shape, f32)> {
             center,
             radius: size,
         }),
+        Kind::Cylinder => {
+            // At least 2⁻¹⁴ of its distance from the origin (about a thousand ulps of its
+            // position): a narrower tube is narrower than the rounding of its own hit points
+            // across it, which may put a point beside the wall where it curves away, out of
+            // reach of any offset along the normal (a case seen at radius 1e-3, 1e4 away).
+            let size = size.max(center.length() * 2f32.powi(-14));
+            let axis = random_dir(rng) * size * (0.2 + 4.0 * rng.next_f32());
+            Shape::Cylinder(Cylinder {
+                p0: center,
+                axis,
+                u_axis: Frame::from_normal(axis.normalize()).s,
+                radius: size * (0.05 + rng.next_f32()),
+                flip: rng.next_f32() < 0.5,
+            })
+        }
     };
     Some((shape, size))
 }
@@ -90,6 +124,12 @@ fn random_point(shape: &Shape, rng: &mut Rng) -> Vec3 {
             d.center + f.to_world(Vec3::new(r * phi.cos(), r * phi.sin(), 0.0))
         }
         Shape::Sphere(s) => s.center + s.radius * random_dir(rng),
+        Shape::Cylinder(c) => {
+            let f = Frame::from_normal(c.axis.normalize());
+            let phi = std::f32::consts::TAU * rng.next_f32();
+            let radial = f.to_world(Vec3::new(phi.cos(), phi.sin(), 0.0)) * c.radius;
+            c.p0 + c.axis * rng.next_f32() + radial
+        }
     }
 }
 
@@ -133,9 +173,13 @@ fn check_kind(kind: Kind, seed: u32) -> Counts {
             let Some(t) = intersect(&shape, &ray).map(|h| h.t) else {
                 continue;
             };
-            // Only a sphere can be hit again, on its far side, by a ray heading inwards.
+            // Only a sphere or a tube can be hit again, on its far side, by a ray heading
+            // inwards (a flipped tube's normal points inwards).
             let far_side = match shape {
                 Shape::Sphere(s) if w.dot(hit.n) < 0.0 => is_far_side(&s, &ray, t),
+                Shape::Cylinder(c) if (w.dot(hit.n) < 0.0) != c.flip => {
+                    is_far_side_of_tube(&c, &ray, t)
+                }
                 _ => false,
             };
             assert!(
@@ -151,8 +195,16 @@ fn check_kind(kind: Kind, seed: u32) -> Counts {
             continue;
         };
         let d = to.p - hit.p;
-        // A sphere legitimately blocks a segment that leaves it inwards; skip those.
-        if kind == Kind::Sphere && (d.dot(hit.n) <= 0.0 || d.dot(to.n) >= 0.0) {
+        // A sphere legitimately blocks a segment that leaves it inwards; skip those. A tube
+        // blocks segments through its inside too, and the two of them may cross: only segments
+        // that leave outwards and arrive from outside, with the flip undone.
+        let outward = |s: &Shape, n: Vec3| match s {
+            Shape::Cylinder(c) if c.flip => -n,
+            _ => n,
+        };
+        if matches!(kind, Kind::Sphere | Kind::Cylinder)
+            && (d.dot(outward(&shape, hit.n)) <= 0.0 || d.dot(outward(&other, to.n)) >= 0.0)
+        {
             continue;
         }
         let ray = spawn_ray_to(hit.p, hit.p_error, hit.n, to.p, to.p_error, to.n);
@@ -187,4 +239,9 @@ fn disks_never_reintersect() {
 #[test]
 fn spheres_never_reintersect() {
     check_kind(Kind::Sphere, 3);
+}
+
+#[test]
+fn cylinders_never_reintersect() {
+    check_kind(Kind::Cylinder, 4);
 }

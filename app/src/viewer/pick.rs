@@ -30,6 +30,8 @@ pub fn light_to_shape(desc: &SceneDesc) -> Vec<usize> {
             | GeometryDesc::Polygon { .. }
             | GeometryDesc::Disk { .. }
             | GeometryDesc::Sphere { .. } => 1,
+            // The parser refuses an emitting cylinder.
+            GeometryDesc::Cylinder { .. } => 0,
         };
         out.extend(std::iter::repeat_n(i, count));
     }

@@ -2,6 +2,7 @@
 
 pub mod bvh;
 pub mod bvh_build;
+pub mod cylinder;
 pub mod disk;
 pub mod mesh_attributes;
 pub mod polygon;

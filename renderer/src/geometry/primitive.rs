@@ -1,6 +1,7 @@
 //! A primitive: one hittable shape with its material and, if it emits, its light.
 //! WGSL twin: `geometry/primitive.wgsl`.
 
+use super::cylinder::Cylinder;
 use super::disk::Disk;
 use super::ray::{Ray, SurfaceHit};
 use super::sphere::Sphere;
@@ -16,12 +17,12 @@ pub const NONE: u32 = u32::MAX;
 pub struct ShapeHit {
     /// Ray parameter.
     pub t: f32,
-    /// Barycentrics of a triangle hit (unused for disks and spheres).
+    /// Barycentrics of a triangle hit (unused for the analytic shapes).
     pub b: [f32; 3],
 }
 
-/// The shapes the BVH holds. Quads, polygons and boxes are triangulated; disks and spheres stay
-/// analytic.
+/// The shapes the BVH holds. Quads, polygons and boxes are triangulated; disks, spheres and
+/// cylinders stay analytic.
 #[derive(Clone, Copy, Debug)]
 pub enum Shape {
     /// A flat triangle with its right-hand-rule normal.
@@ -35,6 +36,8 @@ pub enum Shape {
     Disk(Disk),
     /// A sphere.
     Sphere(Sphere),
+    /// A cylinder (Mitsuba's open tube).
+    Cylinder(Cylinder),
 }
 
 impl Shape {
@@ -49,6 +52,7 @@ impl Shape {
             Shape::Triangle { v, .. } => (v[0].min(v[1]).min(v[2]), v[0].max(v[1]).max(v[2])),
             Shape::Disk(d) => d.bounds(),
             Shape::Sphere(s) => (s.center - s.radius, s.center + s.radius),
+            Shape::Cylinder(c) => c.bounds(),
         }
     }
 
@@ -61,6 +65,7 @@ impl Shape {
             }
             Shape::Disk(d) => d.intersect(ray).map(|t| ShapeHit { t, b: [0.0; 3] }),
             Shape::Sphere(s) => s.intersect(ray).map(|t| ShapeHit { t, b: [0.0; 3] }),
+            Shape::Cylinder(c) => c.intersect(ray).map(|t| ShapeHit { t, b: [0.0; 3] }),
         }
     }
 
@@ -101,6 +106,17 @@ impl Shape {
                     b: glam::Vec2::ZERO,
                 }
             }
+            Shape::Cylinder(c) => {
+                let (p, p_error, n) = c.surface_point(ray, t);
+                SurfaceHit {
+                    t,
+                    p,
+                    p_error,
+                    n,
+                    prim,
+                    b: glam::Vec2::ZERO,
+                }
+            }
         }
     }
 }
@@ -121,7 +137,7 @@ pub struct Primitive {
 
 impl obvhs::Boundable for Primitive {
     fn aabb(&self) -> obvhs::aabb::Aabb {
-        // Widened by the rounding of the disk and sphere bounds, so the box holds every hit.
+        // Widened by the rounding of the analytic shapes' bounds, so the box holds every hit.
         let (lo, hi) = self.shape.bounds();
         let pad = super::ray::gamma(3) * lo.abs().max(hi.abs());
         obvhs::aabb::Aabb::new((lo - pad).into(), (hi + pad).into())

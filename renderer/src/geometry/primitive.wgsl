@@ -1,11 +1,13 @@
 // The shapes the BVH holds, the twin of `geometry/primitive.rs`: a `switch` in the variant order
-// of `Shape` (Triangle, Disk, Sphere).
+// of `Shape` (Triangle, Disk, Sphere, Cylinder).
 //
 // Record layout (see `gpu/scene/shapes.rs`): a.w, b.w, c.w = bits of (kind, material, light).
 //   Triangle: a, b, c = vertices, d.xyz = unit normal, d.w = bits of its attribute index (NONE
 //             without vertex attributes; `geometry/mesh_attributes.wgsl`).
 //   Disk:     a.xyz = centre, d.xyz = unit normal, d.w = radius.
 //   Sphere:   a.xyz = centre, d.w = radius.
+//   Cylinder: a.xyz = p0, b.xyz = axis, c.xyz = unit u axis, d.w = radius (negative: normals
+//             towards the axis; `geometry/cylinder.wgsl`).
 
 struct Prim {
     a: vec4f,
@@ -26,7 +28,7 @@ fn prim_light(p: Prim) -> u32 {
     return bitcast<u32>(p.c.w);
 }
 
-// `Primitive::attr`: only triangles have attributes (a disk's or sphere's d.w is its radius).
+// `Primitive::attr`: only triangles have attributes (the analytic shapes' d.w is their radius).
 fn prim_attr(p: Prim) -> u32 {
     if prim_kind(p) == SHAPE_TRIANGLE {
         return bitcast<u32>(p.d.w);
@@ -41,7 +43,7 @@ struct SurfaceHit {
     p_error: vec3f,
     n: vec3f,
     prim: u32,
-    // Barycentrics (b1, b2) of a triangle hit, for vertex attributes; zero on disks and spheres.
+    // Barycentrics (b1, b2) of a triangle hit, for vertex attributes; zero on analytic shapes.
     b: vec2f,
 }
 
@@ -59,6 +61,11 @@ fn shape_intersect_t(p: Prim, ray: Ray, tri: TriangleRay) -> f32 {
 // #if HAS_SPHERE_SHAPE
         case SHAPE_SPHERE: {
             return sphere_intersect(p.a.xyz, p.d.w, ray);
+        }
+// #endif
+// #if HAS_CYLINDER_SHAPE
+        case SHAPE_CYLINDER: {
+            return cylinder_intersect(p.a.xyz, p.b.xyz, p.c.xyz, abs(p.d.w), ray);
         }
 // #endif
         default: {
@@ -84,6 +91,12 @@ fn shape_surface_hit(p: Prim, ray: Ray, t: f32, prim: u32) -> SurfaceHit {
             return SurfaceHit(t, sp.p, sp.p_error, sp.n, prim, vec2f(0.0));
         }
 // #endif
+// #if HAS_CYLINDER_SHAPE
+        case SHAPE_CYLINDER: {
+            let cp = cylinder_surface_point(p.a.xyz, p.b.xyz, p.c.xyz, p.d.w, ray, t);
+            return SurfaceHit(t, cp.p, cp.p_error, cp.n, prim, vec2f(0.0));
+        }
+// #endif
         // SHAPE_TRIANGLE (an unknown kind never gets here: `shape_intersect_t` flags it and misses).
         default: {
             // Barycentrics recomputed once per closest hit, as on the CPU.
@@ -103,7 +116,8 @@ fn shape_surface_hit(p: Prim, ray: Ray, t: f32, prim: u32) -> SurfaceHit {
 // `Scene::uv` (`scene/surface.rs`): the texture coordinates of `hit` on primitive `p`. Triangles
 // interpolate their mesh's UVs, else give their barycentrics (`mesh_uv`; quads and box faces
 // carry UVs along their edges); spheres Mitsuba 3's (u = φ/2π from +x towards +y, v = θ/π from
-// +z); disks (r/radius, φ/2π) in the frame of their normal.
+// +z); disks (r/radius, φ/2π) in the frame of their normal; cylinders Mitsuba's (φ/2π from
+// their u axis, the fraction of the height).
 fn surface_uv(p: Prim, hit: SurfaceHit) -> vec2f {
     switch prim_kind(p) {
 // #if HAS_SPHERE_SHAPE
@@ -114,6 +128,11 @@ fn surface_uv(p: Prim, hit: SurfaceHit) -> vec2f {
 // #if HAS_DISK_SHAPE
         case SHAPE_DISK: {
             return disk_uv(p.a.xyz, p.d.xyz, p.d.w, hit.p);
+        }
+// #endif
+// #if HAS_CYLINDER_SHAPE
+        case SHAPE_CYLINDER: {
+            return cylinder_uv(p.a.xyz, p.b.xyz, p.c.xyz, hit.p);
         }
 // #endif
         // SHAPE_TRIANGLE (an unknown kind was flagged when it was intersected).

@@ -7,7 +7,8 @@
 //!   normal); without them, its first edge p1 − p0 (the barycentric parameterisation);
 //! - a sphere: the azimuthal direction (−y, x, 0) about +z through its centre (Mitsuba's for a
 //!   sphere its `to_world` does not rotate);
-//! - a disk: the radial direction from its centre.
+//! - a disk: the radial direction from its centre;
+//! - a cylinder: the direction of growing φ about its axis (`Cylinder::dp_du`).
 //!
 //! The frame is the shading normal with ∂p/∂u made orthogonal to it (Gram–Schmidt), the frame of
 //! the normal alone where that leaves nothing (∂p/∂u zero or along the normal). Only
@@ -42,6 +43,7 @@ pub fn dp_du(prim: &Primitive, attributes: &MeshAttributes, hit: &SurfaceHit) ->
             Vec3::new(-d.y, d.x, 0.0)
         }
         Shape::Disk(d) => hit.p - d.center,
+        Shape::Cylinder(c) => c.dp_du(hit.p),
     }
 }
 

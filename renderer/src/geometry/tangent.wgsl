@@ -1,6 +1,7 @@
 // The surface tangent ∂p/∂u at a hit and the BSDF frame it orients for an anisotropic BSDF,
 // the twin of `geometry/tangent.rs` (Mitsuba 3.9.1's: a mesh triangle's UV map, else its first
-// edge; a sphere's azimuth about +z; a disk's radius). Only under HAS_ANISOTROPIC.
+// edge; a sphere's azimuth about +z; a disk's radius; a cylinder's azimuth about its axis). Only
+// under HAS_ANISOTROPIC.
 
 // `tangent::dp_du` of `hit` on primitive `p` (not normalised).
 fn surface_dp_du(p: Prim, hit: SurfaceHit) -> vec3f {
@@ -14,6 +15,11 @@ fn surface_dp_du(p: Prim, hit: SurfaceHit) -> vec3f {
 // #if HAS_DISK_SHAPE
         case SHAPE_DISK: {
             return hit.p - p.a.xyz;
+        }
+// #endif
+// #if HAS_CYLINDER_SHAPE
+        case SHAPE_CYLINDER: {
+            return cross(p.b.xyz, hit.p - p.a.xyz);
         }
 // #endif
         // SHAPE_TRIANGLE (an unknown kind was flagged when it was intersected).

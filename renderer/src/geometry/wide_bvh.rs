@@ -552,6 +552,7 @@ mod tests {
                     Shape::Triangle { v, .. } => (v[0] + v[1] + v[2]) / 3.0,
                     Shape::Sphere(s) => s.center,
                     Shape::Disk(d) => d.center,
+                    Shape::Cylinder(c) => c.p0,
                 };
                 let d = (target - o).normalize();
                 let t_max = if i % 2 == 0 { f32::INFINITY } else { 6.0 };

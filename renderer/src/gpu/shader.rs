@@ -89,6 +89,7 @@ const MODULES: &[Module] = &[
     module!("geometry/triangle.wgsl"),
     module!("geometry/disk.wgsl"),
     module!("geometry/sphere.wgsl"),
+    module!("geometry/cylinder.wgsl"),
     module!("geometry/primitive.wgsl"),
     module!("geometry/mesh_attributes.wgsl"),
     module!("geometry/tangent.wgsl"),
@@ -163,6 +164,8 @@ pub struct Features {
     pub has_disk_shape: bool,
     /// Sphere shapes.
     pub has_sphere_shape: bool,
+    /// Cylinder shapes (`geometry/cylinder.wgsl`).
+    pub has_cylinder_shape: bool,
     /// Triangles with vertex normals: the BSDF frame follows the interpolated shading normal and
     /// the shading-normal rule applies (`geometry/mesh_attributes.wgsl`, `same_side` in `integrator/path.wgsl`).
     pub has_shading_normals: bool,
@@ -204,6 +207,7 @@ impl Features {
             has_dielectric: true,
             has_disk_shape: true,
             has_sphere_shape: true,
+            has_cylinder_shape: true,
             has_shading_normals: true,
             has_textures: true,
             has_mixes: true,
@@ -286,6 +290,7 @@ impl Features {
                 Shape::Triangle { .. } => {}
                 Shape::Disk(_) => f.has_disk_shape = true,
                 Shape::Sphere(_) => f.has_sphere_shape = true,
+                Shape::Cylinder(_) => f.has_cylinder_shape = true,
             }
         }
         // Area sampling of a sphere light re-traces the sphere.
@@ -302,7 +307,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 32] {
+    fn defines(&self) -> [(&'static str, bool); 33] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -349,6 +354,7 @@ impl Features {
             ),
             ("HAS_DISK_SHAPE", self.has_disk_shape),
             ("HAS_SPHERE_SHAPE", self.has_sphere_shape),
+            ("HAS_CYLINDER_SHAPE", self.has_cylinder_shape),
             ("HAS_SHADING_NORMALS", self.has_shading_normals),
             ("HAS_TEXTURES", self.has_textures),
             ("HAS_MIXES", self.has_mixes),

@@ -9,6 +9,7 @@ use super::desc::{
 use super::error::SceneError;
 use super::parse_shapes::unit;
 use crate::camera::Camera;
+use crate::geometry::cylinder::Cylinder;
 use crate::geometry::disk::Disk;
 use crate::geometry::mesh_attributes::{
     AttrMesh, AttrTriangle, HAS_NORMALS, HAS_UVS, MeshAttributes, normal_matrix,
@@ -616,6 +617,34 @@ impl Scene {
                         shape: Shape::Sphere(sphere),
                         material: mat,
                         light,
+                        attr: NONE,
+                    });
+                }
+                GeometryDesc::Cylinder {
+                    p0,
+                    p1,
+                    radius,
+                    u_axis,
+                    flip_normals,
+                } => {
+                    // Mitsuba's default u axis is the first of the axis' frame
+                    // (`to_frame(Frame3f(d))`, the same construction as `Frame::from_normal`).
+                    let z = unit(*p1 - *p0);
+                    let u = match u_axis {
+                        Some(u) => unit(*u - z * z.dot(*u)),
+                        None => Frame::from_normal(v(z)).s.as_dvec3(),
+                    };
+                    prims.push(Primitive {
+                        shape: Shape::Cylinder(Cylinder {
+                            p0: v(*p0),
+                            axis: v(*p1 - *p0),
+                            u_axis: v(u),
+                            radius: *radius as f32,
+                            flip: *flip_normals,
+                        }),
+                        material: mat,
+                        // The parser refuses an emitting cylinder.
+                        light: NONE,
                         attr: NONE,
                     });
                 }

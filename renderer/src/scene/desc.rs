@@ -544,6 +544,22 @@ pub enum GeometryDesc {
         /// Radius, > 0.
         radius: f64,
     },
+    /// Mitsuba's cylinder: the open tube (no end caps) of `radius` around the segment
+    /// `p0 → p1`, normals away from the axis unless `flip_normals`; texture coordinates
+    /// `u = φ/2π` from `u_axis` (made perpendicular to the axis; by default the first axis of
+    /// the axis' frame, as Mitsuba's), `v` from 0 at `p0` to 1 at `p1`. Does not emit.
+    Cylinder {
+        /// Centre of the base circle.
+        p0: DVec3,
+        /// Centre of the top circle, ≠ `p0`.
+        p1: DVec3,
+        /// Radius, > 0.
+        radius: f64,
+        /// Where `u = 0`, as given (not parallel to the axis); `None`: Mitsuba's default.
+        u_axis: Option<DVec3>,
+        /// Whether the normals point towards the axis.
+        flip_normals: bool,
+    },
     /// Axis-aligned box `[min, max]`, rotated about +y through the origin, then translated.
     Box {
         /// Lower corner; `min < max` on every axis.
@@ -644,6 +660,24 @@ impl SceneDesc {
             GeometryDesc::Sphere { center, radius } => json!({
                 "type": "sphere", "center": vec3(*center), "radius": radius,
             }),
+            GeometryDesc::Cylinder {
+                p0,
+                p1,
+                radius,
+                u_axis,
+                flip_normals,
+            } => {
+                let mut c = json!({
+                    "type": "cylinder", "p0": vec3(*p0), "p1": vec3(*p1), "radius": radius,
+                });
+                if let Some(u) = u_axis {
+                    c["u_axis"] = vec3(*u);
+                }
+                if *flip_normals {
+                    c["flip_normals"] = json!(true);
+                }
+                c
+            }
             GeometryDesc::Box {
                 min,
                 max,

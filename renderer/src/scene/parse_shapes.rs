@@ -49,6 +49,7 @@ fn parse_shape(
         "triangles" => &["positions", "indices"],
         "disk" => &["center", "normal", "radius"],
         "sphere" => &["center", "radius"],
+        "cylinder" => &["p0", "p1", "radius", "u_axis", "flip_normals"],
         "box" => &["min", "max", "rotate_y_deg", "translate"],
         "mesh" => &[
             "file",
@@ -62,7 +63,7 @@ fn parse_shape(
                 obj.at("type"),
                 format!(
                     "unknown shape type `{other}` \
-                     (expected quad, polygon, triangles, mesh, disk, sphere or box)"
+                     (expected quad, polygon, triangles, mesh, disk, sphere, cylinder or box)"
                 ),
             ));
         }
@@ -108,6 +109,7 @@ fn parse_shape(
             center: obj.vec3("center")?,
             radius: radius(obj)?,
         },
+        "cylinder" => cylinder(obj, emits)?,
         _ => boxed(obj)?,
     };
     Ok(ShapeDesc {
@@ -161,6 +163,39 @@ fn radius(obj: &Obj) -> Result<f64, SceneError> {
         ));
     }
     Ok(r)
+}
+
+fn cylinder(obj: &Obj, emits: bool) -> Result<GeometryDesc, SceneError> {
+    if emits {
+        return Err(SceneError::new(
+            obj.at("emission"),
+            "a cylinder cannot emit: lumis has no cylinder light (use a mesh)",
+        ));
+    }
+    let (p0, p1, radius) = (obj.vec3("p0")?, obj.vec3("p1")?, radius(obj)?);
+    let axis = p1 - p0;
+    if axis == DVec3::ZERO {
+        return Err(SceneError::new(
+            obj.at("p1"),
+            "p1 equals p0: the cylinder has no height",
+        ));
+    }
+    let u_axis = obj.opt_vec3("u_axis")?;
+    if let Some(u) = u_axis
+        && u.cross(axis).length() <= 1e-6 * u.length() * axis.length()
+    {
+        return Err(SceneError::new(
+            obj.at("u_axis"),
+            "u_axis is zero or parallel to the cylinder's axis p1 − p0",
+        ));
+    }
+    Ok(GeometryDesc::Cylinder {
+        p0,
+        p1,
+        radius,
+        u_axis,
+        flip_normals: obj.opt_bool("flip_normals")?.unwrap_or(false),
+    })
 }
 
 fn quad(obj: &Obj) -> Result<GeometryDesc, SceneError> {
@@ -266,6 +301,63 @@ mod tests {
         assert!(parse_scene_value(&s).is_ok());
         let s = with(4, json!("sphere"));
         expect_err(&s, "shapes[4]", "expected an object, found a string");
+    }
+
+    /// The cylinder's keys, its defaults, the description written back, and each bad input as
+    /// one error at its key.
+    #[test]
+    fn cylinder_keys_and_errors() {
+        let c = json!({"type": "cylinder", "p0": [0, 0, 0], "p1": [0, 2, 0], "radius": 0.5,
+                       "u_axis": [1, 1, 0], "flip_normals": true});
+        let d = parse_scene_value(&with(4, c.clone())).unwrap();
+        let GeometryDesc::Cylinder {
+            p1,
+            radius,
+            u_axis,
+            flip_normals,
+            ..
+        } = d.shapes[4].geometry
+        else {
+            panic!("{:?}", d.shapes[4].geometry)
+        };
+        assert_eq!((p1, radius), (DVec3::new(0.0, 2.0, 0.0), 0.5));
+        assert_eq!(
+            (u_axis, flip_normals),
+            (Some(DVec3::new(1.0, 1.0, 0.0)), true)
+        );
+        let again = parse_scene_value(&d.to_json()).unwrap();
+        assert_eq!(again.shapes[4].geometry, d.shapes[4].geometry);
+        let plain = json!({"type": "cylinder", "p0": [0, 0, 0], "p1": [0, 0, 1], "radius": 1});
+        let d = parse_scene_value(&with(4, plain)).unwrap();
+        assert!(matches!(
+            d.shapes[4].geometry,
+            GeometryDesc::Cylinder {
+                u_axis: None,
+                flip_normals: false,
+                ..
+            }
+        ));
+        let bad = |key: &str, value: serde_json::Value| {
+            let mut c = c.clone();
+            c[key] = value;
+            with(4, c)
+        };
+        expect_err(
+            &bad("radius", json!(0)),
+            "shapes[4].radius",
+            "must be positive",
+        );
+        expect_err(&bad("p1", json!([0, 0, 0])), "shapes[4].p1", "no height");
+        expect_err(
+            &bad("u_axis", json!([0, -3, 0])),
+            "shapes[4].u_axis",
+            "parallel to the cylinder's axis",
+        );
+        expect_err(
+            &bad("emission", json!([1, 1, 1])),
+            "shapes[4].emission",
+            "a cylinder cannot emit",
+        );
     }
 
     #[test]

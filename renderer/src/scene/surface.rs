@@ -2,10 +2,12 @@
 //! coordinates by shape: mesh triangles interpolate their file's UVs (else their barycentrics),
 //! quads and box faces run `u` along `edge_u` and `v` along `edge_v`, other triangles give their
 //! barycentrics; spheres as Mitsuba 3's (`u = φ/2π` from +x towards +y, `v = θ/π` from +z),
-//! disks `(r/radius, φ/2π)` around the normal's frame. Emission with its texture evaluated
+//! disks `(r/radius, φ/2π)` around the normal's frame, cylinders Mitsuba's (`φ/2π` from their
+//! u axis, the fraction of the height). Emission with its texture evaluated
 //! at a hit or at a point sampled on a light, by the same rule ([`Scene::uv_at`]).
 
 use super::Scene;
+use crate::geometry::cylinder::Cylinder;
 use crate::geometry::disk::Disk;
 use crate::geometry::primitive::NONE;
 use crate::geometry::sphere::Sphere;
@@ -33,6 +35,8 @@ pub enum SurfacePoint<'a> {
     Sphere(&'a Sphere, Vec3),
     /// A point on a disk.
     Disk(&'a Disk, Vec3),
+    /// A point on a cylinder.
+    Cylinder(&'a Cylinder, Vec3),
 }
 
 impl Scene {
@@ -47,6 +51,7 @@ impl Scene {
             },
             Shape::Sphere(s) => SurfacePoint::Sphere(s, hit.p),
             Shape::Disk(d) => SurfacePoint::Disk(d, hit.p),
+            Shape::Cylinder(c) => SurfacePoint::Cylinder(c, hit.p),
         })
     }
 
@@ -68,6 +73,7 @@ impl Scene {
                 let v = if phi < 0.0 { phi + TAU } else { phi } / TAU;
                 Vec2::new((local.x.hypot(local.y) / d.radius).min(1.0), v)
             }
+            SurfacePoint::Cylinder(c, p) => c.uv(p),
         }
     }
 

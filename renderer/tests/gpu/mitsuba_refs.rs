@@ -118,6 +118,14 @@ fn gpu_xml_principal_point_matches_the_cpu_and_mitsuba() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// `xml_cylinder.xml` (Mitsuba's cylinder: `geometry/cylinder.wgsl`'s intersection, its
+/// texture coordinates and ∂p/∂u, flipped normals).
+#[test]
+fn gpu_xml_cylinder_matches_the_cpu_and_mitsuba() {
+    let failures = check("xml_cylinder");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// [`check`], and for scenes lit by delta lights `mis-optimal` too at 12 spp with the CPU's
 /// seed (past its first stage, so that α and `opt_delta_light`'s moments count).
 fn check_delta(name: &str) -> Vec<String> {

@@ -539,7 +539,8 @@ fn grid_mesh(uvs: bool) -> MeshData {
 }
 
 /// One shape of every kind: a sphere, a tilted disk, a quad, a rotated box, `triangles`
-/// (barycentrics), a mesh with texture coordinates and one without.
+/// (barycentrics), a mesh with texture coordinates and one without, a slanted cylinder with its
+/// own u axis.
 fn uv_scene() -> Arc<Scene> {
     let dir = std::env::temp_dir().join(format!("lumis-gpu-tex-uv-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -556,7 +557,8 @@ fn uv_scene() -> Arc<Scene> {
     {{"type": "box", "min": [-0.4, -0.4, -0.4], "max": [0.4, 0.5, 0.3], "rotate_y_deg": 30, "translate": [0.1, -0.2, 0]}},
     {{"type": "triangles", "positions": [[1, -2, 0], [2.4, -2, 0.4], [1.5, -0.8, -0.2]], "indices": [[0, 1, 2]]}},
     {{"type": "mesh", "file": "{}", "to_world": [[1, 0, 0, -0.9], [0, 1, 0, 1.3], [0, 0, 1, 1.5], [0, 0, 0, 1]]}},
-    {{"type": "mesh", "file": "{}", "to_world": [[1, 0, 0, 0.6], [0, 1, 0, -2.4], [0, 0, 1, 1.2], [0, 0, 0, 1]]}}
+    {{"type": "mesh", "file": "{}", "to_world": [[1, 0, 0, 0.6], [0, 1, 0, -2.4], [0, 0, 1, 1.2], [0, 0, 0, 1]]}},
+    {{"type": "cylinder", "p0": [1.3, -0.6, 0.6], "p1": [2.4, -0.1, 0.9], "radius": 0.35, "u_axis": [0.2, 0.3, -1]}}
   ]
 }}"#,
         with.display(),
@@ -582,12 +584,13 @@ fn circular(a: f32, b: f32) -> f32 {
 ///   2u. A disk's local coordinates come from dot products with a frame that FMA may round
 ///   differently, 16u·|p − c| each: r/radius agrees to that over the radius plus 8u, φ to
 ///   16u·|p − c|/ρ + 4πu; its φ is compared modulo 1 (the sign of a local y within rounding of 0
-///   may differ: the seam). Triangles as `renderer/tests/gpu/parity_mesh.rs`: 6u·Σ|wᵢ||tᵢ|, barycentrics
+///   may differ: the seam). A cylinder's likewise: φ to 16u·|p − p0|/r + 4πu over 2π plus 2u,
+///   v = (p − p0)·ẑ/h to 16u·|p − p0|/h + 8u. Triangles as `renderer/tests/gpu/parity_mesh.rs`: 6u·Σ|wᵢ||tᵢ|, barycentrics
 ///   exactly;
 /// - end to end, at the GPU's own hits (`scene_intersect`, whose points agree to 1e-5 and
 ///   barycentrics to 1e-6): 4e-6 for triangles' uvs (within [−1.6, 2.1]: 6e-6), and for
-///   spheres and disks 2e-5 over the distance from the pole or centre (ρ), periodic
-///   coordinates modulo 1. The same primitive must be hit.
+///   spheres and disks 2e-5 over the distance from the pole or centre (ρ), cylinders 2e-5
+///   over the radius (u) and the height (v), periodic coordinates modulo 1. The same primitive must be hit.
 #[test]
 fn surface_uvs_match_scene_uv() {
     let Some(ctx) = context() else {
@@ -639,7 +642,7 @@ fn surface_uvs_match_scene_uv() {
     );
     let mut at_cpu = Compare::new("uv at the CPU's hits", 0.0, 0.0);
     let mut at_gpu = Compare::new("uv at the GPU's hits", 0.0, 0.0);
-    let mut counts = [0usize; 3];
+    let mut counts = [0usize; 4];
     for ((h, o), ray) in hits.iter().zip(out.chunks(2)).zip(&rays) {
         let Some(h) = h else {
             assert_eq!(o[1][2].to_bits(), NONE, "a miss");
@@ -675,6 +678,17 @@ fn surface_uvs_match_scene_uv() {
                 at_gpu.scalar_conditioned(o[1][0], want.x, 2e-5 / k.radius, &what);
                 at_gpu.scalar_conditioned(circular(o[1][1], want.y), 0.0, e, &what);
             }
+            Shape::Cylinder(c) => {
+                counts[3] += 1;
+                let (rel, height) = ((h.p - c.p0).length(), c.axis.length());
+                let dl = 16.0 * U * rel;
+                let dphi = (dl / c.radius + 4.0 * PI * U) / TAU + 2.0 * U;
+                at_cpu.scalar_conditioned(circular(o[0][0], want.x), 0.0, dphi, &what);
+                at_cpu.scalar_conditioned(o[0][1], want.y, dl / height + 8.0 * U, &what);
+                let e = 2e-5 / c.radius;
+                at_gpu.scalar_conditioned(circular(o[1][0], want.x), 0.0, e, &what);
+                at_gpu.scalar_conditioned(o[1][1], want.y, 2e-5 / height, &what);
+            }
             Shape::Triangle { .. } => {
                 counts[2] += 1;
                 let a = &scene.attributes;
@@ -699,8 +713,8 @@ fn surface_uvs_match_scene_uv() {
         }
     }
     eprintln!(
-        "hits: {} sphere, {} disk, {} triangle",
-        counts[0], counts[1], counts[2]
+        "hits: {} sphere, {} disk, {} triangle, {} cylinder",
+        counts[0], counts[1], counts[2], counts[3]
     );
     assert!(counts.iter().all(|&c| c > 500), "{counts:?}");
     at_cpu.finish(0);

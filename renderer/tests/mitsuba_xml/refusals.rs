@@ -102,7 +102,7 @@ fn json_validation_errors_name_the_xml() {
 #[test]
 fn refusals_name_file_line_and_element() {
     let dir = Dir::new("refusals");
-    let cases: [(&str, &str, &str, &str); 20] = [
+    let cases: [(&str, &str, &str, &str); 23] = [
         (
             r#"<emitter type="sunsky"/>"#,
             "sunsky",
@@ -176,10 +176,28 @@ fn refusals_name_file_line_and_element() {
             "property `reflectanse` (an rgb) is not supported",
         ),
         (
-            r#"<shape type="cylinder"/>"#,
+            r#"<shape type="cylinder"><emitter type="area"/></shape>"#,
             "cylinder",
             "scene/shape",
-            "shape type `cylinder`",
+            "an emitting cylinder is not supported",
+        ),
+        (
+            r#"<shape type="cylinder"><transform name="to_world"><scale x="2"/></transform></shape>"#,
+            "scale x",
+            "scene/shape/transform",
+            "an elliptic",
+        ),
+        (
+            r#"<shape type="cylinder"><transform name="to_world"><scale z="-1"/></transform></shape>"#,
+            "scale z",
+            "scene/shape/transform",
+            "a mirroring to_world (negative determinant) on a cylinder",
+        ),
+        (
+            r#"<shape type="cylinder"><float name="radius" value="0"/></shape>"#,
+            "cylinder",
+            "scene/shape",
+            "a cylinder needs a positive radius",
         ),
         (
             r#"<shape type="sphere"><medium type="homogeneous" name="interior"/></shape>"#,
@@ -489,10 +507,10 @@ fn out_of_scope_plugins_are_refused_with_their_reason() {
     // Not out of scope: lumis lacks it (another issue's work), and says so differently.
     let msg = refused(
         &dir,
-        r#"<shape type="cylinder"/>"#,
-        "cylinder",
+        r#"<shape type="shapegroup"/>"#,
+        "shapegroup",
         "scene/shape",
-        "cylinder",
+        "lumis has no instancing",
     );
     assert!(!msg.contains("out of scope"), "{msg}");
 }

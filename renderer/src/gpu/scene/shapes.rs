@@ -10,7 +10,7 @@ use bytemuck::{Pod, Zeroable};
 
 /// A primitive record (`Prim` in `geometry/primitive.wgsl`): a.w, b.w, c.w hold the bits of (kind, material,
 /// light); the rest is the shape (see the top of `geometry/primitive.wgsl`), and a triangle's d.w (a free slot)
-/// the bits of its attribute index ([`crate::geometry::Primitive::attr`]; disks and spheres,
+/// the bits of its attribute index ([`crate::geometry::Primitive::attr`]; the analytic shapes,
 /// which have none, use d.w for their radius).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
@@ -30,6 +30,8 @@ gpu_tags! {
         Disk => "SHAPE_DISK",
         /// [`Shape::Sphere`].
         Sphere => "SHAPE_SPHERE",
+        /// [`Shape::Cylinder`].
+        Cylinder => "SHAPE_CYLINDER",
     }
 }
 
@@ -40,6 +42,7 @@ impl ShapeTag {
             Shape::Triangle { .. } => ShapeTag::Triangle,
             Shape::Disk(_) => ShapeTag::Disk,
             Shape::Sphere(_) => ShapeTag::Sphere,
+            Shape::Cylinder(_) => ShapeTag::Cylinder,
         }
     }
 }
@@ -57,6 +60,13 @@ pub(super) fn encode(scene: &Scene) -> Vec<GpuPrim> {
                 Shape::Triangle { v, n } => (v[0], v[1], v[2], v4(n, bits(p.attr))),
                 Shape::Disk(k) => (k.center, zero, zero, v4(k.n, k.radius)),
                 Shape::Sphere(s) => (s.center, zero, zero, [0.0, 0.0, 0.0, s.radius]),
+                // The flip as the radius' sign.
+                Shape::Cylinder(c) => (
+                    c.p0,
+                    c.axis,
+                    c.u_axis,
+                    [0.0, 0.0, 0.0, if c.flip { -c.radius } else { c.radius }],
+                ),
             };
             GpuPrim {
                 a: v4(a, bits(ShapeTag::of(&p.shape).gpu_tag())),

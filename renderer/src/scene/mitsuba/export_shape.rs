@@ -6,6 +6,9 @@
 //! * a box is its six faces as rectangles, in [`box_faces`] order: exactly the six quads lumis
 //!   builds for it (Mitsuba's `cube` would import as 12 triangles with other uv and lights);
 //! * a sphere is `center` + `radius` (no `to_world`: the importer's radius is then exact);
+//! * a cylinder is `p0`, `p1`, `radius` and `flip_normals` where its u axis is Mitsuba's
+//!   default, else a `to_world` = [r·u, r·(ẑ × u), p1 − p0, p0] of the unit tube (whose frame
+//!   is the identity);
 //! * a disk is a `disk` with `to_world` = [r·a, r·b, n, center] for a right-handed orthonormal
 //!   (a, b, n), axis-aligned where n is, so that r and n come back exact;
 //! * a mesh from an `.obj`, `.ply` or `.serialized` file names the file with its `to_world`
@@ -80,6 +83,38 @@ pub(crate) fn shape(
             x.open("shape", &[("type", "sphere")]);
             x.leaf("point", &[("name", "center"), ("value", &vec3(*center))]);
             x.leaf("float", &[("name", "radius"), ("value", &num(*radius))]);
+            attachments(ctx, x, desc, s)?;
+        }
+        GeometryDesc::Cylinder {
+            p0,
+            p1,
+            radius,
+            u_axis,
+            flip_normals,
+        } => {
+            x.open("shape", &[("type", "cylinder")]);
+            match u_axis {
+                None => {
+                    x.leaf("point", &[("name", "p0"), ("value", &vec3(*p0))]);
+                    x.leaf("point", &[("name", "p1"), ("value", &vec3(*p1))]);
+                    x.leaf("float", &[("name", "radius"), ("value", &num(*radius))]);
+                }
+                Some(u) => {
+                    let axis = *p1 - *p0;
+                    let z = axis.normalize();
+                    let u = (*u - z * z.dot(*u)).normalize();
+                    let m = DMat4::from_cols(
+                        (u * *radius).extend(0.0),
+                        (z.cross(u) * *radius).extend(0.0),
+                        axis.extend(0.0),
+                        p0.extend(1.0),
+                    );
+                    matrix(x, "to_world", &m);
+                }
+            }
+            if *flip_normals {
+                x.leaf("boolean", &[("name", "flip_normals"), ("value", "true")]);
+            }
             attachments(ctx, x, desc, s)?;
         }
         GeometryDesc::Disk {

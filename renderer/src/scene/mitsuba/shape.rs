@@ -1,12 +1,14 @@
 //! Shapes: `obj`, `ply`, `serialized` (lumis' `mesh`), `rectangle` (a `quad`), `cube`
-//! (`triangles`), `disk` and `sphere`, with `to_world`, `flip_normals` and `face_normals`, their
-//! BSDF and area emitter.
+//! (`triangles`), `disk`, `sphere` and `cylinder`, with `to_world`, `flip_normals` and
+//! `face_normals`, their BSDF and area emitter.
 //!
 //! Mitsuba's rectangle is `to_world` of [-1, 1]² at z = 0 with normal +z and `uv` = the
 //! position in [0, 1]², which is lumis' quad from `to_world(-1, -1, 0)` with edges
 //! `to_world(2, 0, 0)` and `to_world(0, 2, 0)` (u along the first edge, normal `edge_u × edge_v`).
 //! Its cube is `to_world` of [-1, 1]³ with outward normals; its disk the unit disk at z = 0
-//! facing +z; its sphere `to_world · translate(center) · scale(radius)` of the unit sphere.
+//! facing +z; its sphere `to_world · translate(center) · scale(radius)` of the unit sphere; its
+//! cylinder `to_world · translate(p0) · to_frame(p1 − p0) · scale(r, r, |p1 − p0|)` of the unit
+//! tube around [0, 1] on z, whose x axis is where `u = 0`.
 //! A shape without a BSDF gets Mitsuba's default, a one-sided diffuse of reflectance 0.5 (0 if
 //! it emits); a `null` BSDF without an emitter is invisible and is left out.
 
@@ -16,7 +18,7 @@ use super::plugin::Plugin;
 use super::transform::rows_json;
 use super::{Ctx, target};
 use crate::scene::error::SceneError;
-use glam::{DMat3, DMat4, DVec3};
+use glam::{DMat3, DMat4, DVec3, DVec4};
 use serde_json::{Value as Json, json};
 
 /// Name of the material standing in for Mitsuba's default BSDF.
@@ -237,10 +239,10 @@ pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, Sc
             }
             json!({"type": "sphere", "center": m.w_axis.truncate().to_array(), "radius": r})
         }
+        "cylinder" => cylinder(ctx, s, &path, &to_world, &tpos, flip, emission.is_some())?,
         other => {
             let why = match other {
                 "shapegroup" | "instance" => " (lumis has no instancing)",
-                "cylinder" => " (use a mesh)",
                 _ => "",
             };
             return Err(s.error(format!(
@@ -251,7 +253,8 @@ pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, Sc
     };
     s.finish(
         "filename, to_world, face_normals, flip_normals (not on meshes or spheres), shape_index \
-         (serialized), center and radius (sphere), one bsdf, one area emitter",
+         (serialized), center and radius (sphere), p0, p1 and radius (cylinder), one bsdf, one \
+         area emitter",
     )?;
     if let Some(name) = mat {
         obj["material"] = json!(name);
@@ -262,8 +265,82 @@ pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, Sc
     Ok(Some(obj))
 }
 
+/// Mitsuba's cylinder as lumis' (`p0`, `p1`, `radius` read here): its object-to-world matrix
+/// maps the unit tube's axis [0, 1]·z to the segment and its x axis to `u_axis`. Refused, each
+/// with its position: an emitting cylinder (lumis has no cylinder light), one whose `to_world`
+/// mirrors it (Mitsuba's normals would then point inward by its cross product, lumis' by its
+/// radius vector) or makes it elliptic or slanted (shear or unequal x and y scales: Mitsuba
+/// only warns and renders an elliptic tube with a circle's area).
+fn cylinder(
+    ctx: &mut Ctx,
+    s: &Plugin,
+    path: &str,
+    to_world: &DMat4,
+    tpos: &super::xml::Pos,
+    flip: bool,
+    emits: bool,
+) -> Result<Json, SceneError> {
+    if emits {
+        return Err(s.error(
+            "an emitting cylinder is not supported: lumis has no cylinder light (use a mesh)",
+        ));
+    }
+    let radius = s.float("radius", 1.0)?;
+    let p0 = s.vector("p0", DVec3::ZERO)?;
+    let p1 = s.vector("p1", DVec3::Z)?;
+    for key in ["radius", "p0", "p1"] {
+        if let Some(p) = s.get(key) {
+            ctx.origin(&format!("{path}.{key}"), p.pos());
+        }
+    }
+    let d = p1 - p0;
+    let length = d.length();
+    if !(radius > 0.0 && length > 0.0) {
+        return Err(s.error(format!(
+            "a cylinder needs a positive radius and p1 ≠ p0 (radius {radius}, height {length})"
+        )));
+    }
+    let z = d / length;
+    let (x, y) = super::transform::coordinate_system(z);
+    let frame = DMat4::from_cols(x.extend(0.0), y.extend(0.0), z.extend(0.0), DVec4::W);
+    let m = *to_world
+        * DMat4::from_translation(p0)
+        * frame
+        * DMat4::from_scale(DVec3::new(radius, radius, length));
+    let m3 = DMat3::from_mat4(m);
+    let (ex, ey, axis) = (m3.x_axis, m3.y_axis, m3.z_axis);
+    let r = ex.length();
+    let h = axis.length();
+    let round = 1e-6;
+    if m3.determinant() < 0.0 {
+        return Err(tpos.error(
+            "a mirroring to_world (negative determinant) on a cylinder is not supported:              Mitsuba's normals would point inward",
+        ));
+    }
+    if (ey.length() - r).abs() > round * r
+        || ex.dot(ey).abs() > round * r * r
+        || ex.dot(axis).abs() > round * r * h
+        || ey.dot(axis).abs() > round * r * h
+    {
+        return Err(tpos.error(
+            "the cylinder's to_world shears it or scales its x and y differently (an elliptic \
+             or slanted tube), which lumis' cylinder cannot be",
+        ));
+    }
+    ctx.origin(&format!("{path}.u_axis"), tpos);
+    let p0w = m.w_axis.truncate();
+    let mut c = json!({
+        "type": "cylinder", "p0": p0w.to_array(), "p1": (p0w + axis).to_array(),
+        "radius": r, "u_axis": (ex / r).to_array(),
+    });
+    if flip {
+        c["flip_normals"] = json!(true);
+    }
+    Ok(c)
+}
+
 /// Every property a shape may have (an invisible shape's are read without effect).
-const SHAPE_PROPERTIES: [&str; 9] = [
+const SHAPE_PROPERTIES: [&str; 11] = [
     "filename",
     "to_world",
     "face_normals",
@@ -272,6 +349,8 @@ const SHAPE_PROPERTIES: [&str; 9] = [
     "shape_index",
     "center",
     "radius",
+    "p0",
+    "p1",
     "silhouette_sampling_weight",
 ];
 
