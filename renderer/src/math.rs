@@ -16,6 +16,13 @@ pub struct Frame {
 }
 
 impl Frame {
+    /// The world axes.
+    pub const IDENTITY: Frame = Frame {
+        s: Vec3::X,
+        t: Vec3::Y,
+        n: Vec3::Z,
+    };
+
     /// Builds a frame around the unit vector `n` (Duff et al. 2017, branchless and continuous
     /// except at one sign flip).
     pub fn from_normal(n: Vec3) -> Frame {

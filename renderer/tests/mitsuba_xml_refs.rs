@@ -388,6 +388,24 @@ fn xml_cylinder_tangent_along_the_axis_is_detected() {
     assert_detected("xml_cylinder", &m, 2371, "with alpha_u and alpha_v swapped");
 }
 
+/// `xml_textured_shapes.xml` (Mitsuba's texture coordinates on spheres and disks turned by
+/// their `to_world`: a checkered sphere with a tilted pole, a checkered disk turned about its
+/// normal, a sphere light with a checkered radiance, anisotropic gold about a tilted pole)
+/// against its reference, seeds 2380–2384.
+#[test]
+fn xml_textured_shapes_matches_its_mitsuba_reference() {
+    every_strategy("xml_textured_shapes", [256, 256, 256, 256, 256], 2380);
+}
+
+/// Power: `xml_textured_shapes.xml` with `-D turn=20` (the checkered sphere turned 20° about
+/// its own pole: the same surface, its texture turned, what a sphere whose uv ignored the
+/// rotation would render) fails, MIS 256 spp, seed 2390.
+#[test]
+fn xml_textured_shapes_turned_sphere_is_detected() {
+    let m = import("xml_textured_shapes", &[("turn", "20")]);
+    assert_detected("xml_textured_shapes", &m, 2390, "with turn=20");
+}
+
 /// [`DELTA_STRATEGIES`] (BSDF-only never finds a delta light:
 /// [`delta_lights_are_missing_from_bsdf_only`]) at 256 spp, seed `seed + i`, against the reference, and MIS (power)
 /// with the light BVH's selection (which bounds a point light by its position, a spot or

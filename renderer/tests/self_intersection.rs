@@ -79,15 +79,8 @@ fn random_shape(kind: Kind, rng: &mut Rng) -> Option<(Shape, f32)> {
             center + size * random_dir(rng),
             center + size * random_dir(rng),
         ])?,
-        Kind::Disk => Shape::Disk(Disk {
-            center,
-            n: random_dir(rng),
-            radius: size,
-        }),
-        Kind::Sphere => Shape::Sphere(Sphere {
-            center,
-            radius: size,
-        }),
+        Kind::Disk => Shape::Disk(Disk::new(center, random_dir(rng), size)),
+        Kind::Sphere => Shape::Sphere(Sphere::new(center, size)),
         Kind::Cylinder => {
             // At least 2⁻¹⁴ of its distance from the origin (about a thousand ulps of its
             // position): a narrower tube is narrower than the rounding of its own hit points

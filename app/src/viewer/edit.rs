@@ -242,7 +242,7 @@ impl LightEdit {
     pub fn new(desc: &SceneDesc, shape: usize) -> LightEdit {
         let s = &desc.shapes[shape];
         let geometry = match &s.geometry {
-            GeometryDesc::Sphere { center, radius } => LightGeometry::Sphere {
+            GeometryDesc::Sphere { center, radius, .. } => LightGeometry::Sphere {
                 center: *center,
                 radius: *radius,
             },
@@ -266,9 +266,27 @@ impl LightEdit {
     pub fn apply(&self, desc: &mut SceneDesc) {
         let s = &mut desc.shapes[self.shape];
         match self.geometry {
-            LightGeometry::Planar(p) => s.geometry = p.geometry(),
+            LightGeometry::Planar(p) => {
+                // A disk that stays a disk keeps its texture frame.
+                let kept = match s.geometry {
+                    GeometryDesc::Disk { u_axis, .. } => u_axis,
+                    _ => None,
+                };
+                s.geometry = p.geometry();
+                if let GeometryDesc::Disk { u_axis, .. } = &mut s.geometry {
+                    *u_axis = kept;
+                }
+            }
+            // Its texture frame stays.
             LightGeometry::Sphere { center, radius } => {
-                s.geometry = GeometryDesc::Sphere { center, radius }
+                if let GeometryDesc::Sphere {
+                    center: c,
+                    radius: r,
+                    ..
+                } = &mut s.geometry
+                {
+                    (*c, *r) = (center, radius);
+                }
             }
             LightGeometry::Fixed => {}
         }
@@ -370,6 +388,39 @@ mod tests {
         desc.materials[0].two_sided = false;
         let back = parse_scene_value(&desc.to_json()).map_err(|e| e.to_string())?;
         Ok(back.materials[0].material.clone())
+    }
+
+    /// Editing a light keeps what the controls do not change: a disk light's and a sphere
+    /// light's texture frames (which a texture on their emission follows).
+    #[test]
+    fn light_edits_keep_texture_frames() {
+        let json = serde_json::json!({
+            "camera": {"from": [0, 1, -4], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 40,
+                       "width": 8, "height": 8},
+            "shapes": [
+                {"type": "disk", "center": [0, 2, 0], "normal": [0, -1, 0], "radius": 0.5,
+                 "u_axis": [1, 0, 1], "emission": [4, 4, 4]},
+                {"type": "sphere", "center": [1, 1, 0], "radius": 0.3, "pole": [1, 0, 0],
+                 "u_axis": [0, 1, 0], "emission": [2, 2, 2]}
+            ]
+        });
+        let mut desc = parse_scene_value(&json).unwrap();
+        let before: Vec<GeometryDesc> = desc.shapes.iter().map(|s| s.geometry.clone()).collect();
+        for shape in 0..2 {
+            let mut edit = LightEdit::new(&desc, shape);
+            edit.radiance *= 2.0;
+            edit.apply(&mut desc);
+        }
+        for (s, g) in desc.shapes.iter().zip(&before) {
+            assert_eq!(&s.geometry, g);
+        }
+        let doubled = [DVec3::splat(8.0), DVec3::splat(4.0)];
+        assert!(
+            desc.shapes
+                .iter()
+                .zip(doubled)
+                .all(|(s, e)| s.emission == e)
+        );
     }
 
     #[test]

@@ -125,6 +125,7 @@ impl PlanarLight {
                 center,
                 normal,
                 radius,
+                ..
             } => Some(PlanarLight {
                 centre: *center,
                 normal: *normal,
@@ -185,10 +186,12 @@ impl PlanarLight {
         };
         match self.shape {
             LightShape::Polygon(n) => GeometryDesc::Polygon { vertices: ring(n) },
+            // The default texture frame (`LightEdit::apply` keeps a disk's own).
             LightShape::Disk => GeometryDesc::Disk {
                 center: self.centre,
                 normal: self.normal,
                 radius: r,
+                u_axis: None,
             },
             LightShape::Quad => {
                 let s = self.area.sqrt();

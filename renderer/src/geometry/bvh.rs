@@ -208,10 +208,7 @@ mod tests {
         for i in 0..n {
             let c = Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 10.0;
             let shape = if i % 3 == 0 {
-                Shape::Sphere(Sphere {
-                    center: c,
-                    radius: 0.3,
-                })
+                Shape::Sphere(Sphere::new(c, 0.3))
             } else {
                 let d = |r: &mut Rng| Vec3::new(r.next_f32(), r.next_f32(), r.next_f32()) - 0.5;
                 match Shape::triangle([c, c + d(rng), c + d(rng)]) {

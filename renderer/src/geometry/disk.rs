@@ -2,6 +2,7 @@
 //! WGSL twin: `geometry/disk.wgsl`.
 
 use super::ray::{Ray, crosses_plane_ahead, gamma};
+use crate::math::Frame;
 use glam::Vec3;
 
 /// A disk.
@@ -13,9 +14,24 @@ pub struct Disk {
     pub n: Vec3,
     /// Radius.
     pub radius: f32,
+    /// Its object x and y axes in its plane, as Mitsuba's `to_world` turns them: texture
+    /// coordinates `(r/radius, φ/2π)` with φ from `axes[0]` towards `axes[1]`
+    /// (`scene/surface.rs`). By default the tangents of `Frame::from_normal(n)`.
+    pub axes: [Vec3; 2],
 }
 
 impl Disk {
+    /// A disk with the default axes.
+    pub fn new(center: Vec3, n: Vec3, radius: f32) -> Disk {
+        let f = Frame::from_normal(n);
+        Disk {
+            center,
+            n,
+            radius,
+            axes: [f.s, f.t],
+        }
+    }
+
     /// Surface area.
     pub fn area(&self) -> f32 {
         std::f32::consts::PI * self.radius * self.radius
@@ -61,11 +77,7 @@ mod tests {
 
     #[test]
     fn hit_and_miss() {
-        let d = Disk {
-            center: Vec3::new(0.0, 2.0, 0.0),
-            n: -Vec3::Y,
-            radius: 1.0,
-        };
+        let d = Disk::new(Vec3::new(0.0, 2.0, 0.0), -Vec3::Y, 1.0);
         let t = d
             .intersect(&Ray::new(Vec3::new(0.5, 0.0, 0.5), Vec3::Y))
             .unwrap();

@@ -4,8 +4,10 @@
 // Record layout (see `gpu/scene/shapes.rs`): a.w, b.w, c.w = bits of (kind, material, light).
 //   Triangle: a, b, c = vertices, d.xyz = unit normal, d.w = bits of its attribute index (NONE
 //             without vertex attributes; `geometry/mesh_attributes.wgsl`).
-//   Disk:     a.xyz = centre, d.xyz = unit normal, d.w = radius.
-//   Sphere:   a.xyz = centre, d.w = radius.
+//   Disk:     a.xyz = centre, b.xyz, c.xyz = its x and y axes (texture coordinates),
+//             d.xyz = unit normal, d.w = radius.
+//   Sphere:   a.xyz = centre, b.xyz, c.xyz, d.xyz = its frame's x, y and z (texture
+//             coordinates, ∂p/∂u), d.w = radius.
 //   Cylinder: a.xyz = p0, b.xyz = axis, c.xyz = unit u axis, d.w = radius (negative: normals
 //             towards the axis; `geometry/cylinder.wgsl`).
 
@@ -115,19 +117,19 @@ fn shape_surface_hit(p: Prim, ray: Ray, t: f32, prim: u32) -> SurfaceHit {
 // #if HAS_TEXTURES
 // `Scene::uv` (`scene/surface.rs`): the texture coordinates of `hit` on primitive `p`. Triangles
 // interpolate their mesh's UVs, else give their barycentrics (`mesh_uv`; quads and box faces
-// carry UVs along their edges); spheres Mitsuba 3's (u = φ/2π from +x towards +y, v = θ/π from
-// +z); disks (r/radius, φ/2π) in the frame of their normal; cylinders Mitsuba's (φ/2π from
+// carry UVs along their edges); spheres Mitsuba 3's (u = φ/2π from their frame's x towards y,
+// v = θ/π from its z); disks (r/radius, φ/2π) from their x axis towards their y; cylinders Mitsuba's (φ/2π from
 // their u axis, the fraction of the height).
 fn surface_uv(p: Prim, hit: SurfaceHit) -> vec2f {
     switch prim_kind(p) {
 // #if HAS_SPHERE_SHAPE
         case SHAPE_SPHERE: {
-            return sphere_uv(p.a.xyz, p.d.w, hit.p);
+            return sphere_uv(p.a.xyz, p.d.w, Frame(p.b.xyz, p.c.xyz, p.d.xyz), hit.p);
         }
 // #endif
 // #if HAS_DISK_SHAPE
         case SHAPE_DISK: {
-            return disk_uv(p.a.xyz, p.d.xyz, p.d.w, hit.p);
+            return disk_uv(p.a.xyz, p.b.xyz, p.c.xyz, p.d.w, hit.p);
         }
 // #endif
 // #if HAS_CYLINDER_SHAPE
@@ -142,16 +144,18 @@ fn surface_uv(p: Prim, hit: SurfaceHit) -> vec2f {
     }
 }
 
-// `Scene::uv_at` of point y on the sphere (centre, radius): hits and sphere lights' samples.
-fn sphere_uv(center: vec3f, radius: f32, y: vec3f) -> vec2f {
-    let d = (y - center) / radius;
+// `Scene::uv_at` of point y on the sphere (centre, radius, frame): hits and sphere lights'
+// samples.
+fn sphere_uv(center: vec3f, radius: f32, frame: Frame, y: vec3f) -> vec2f {
+    let d = to_local(frame, (y - center) / radius);
     return vec2f(turn_fraction(atan2_precise(d.y, d.x)), acos_precise(clamp(d.z, -1.0, 1.0)) / PI);
 }
 
-// `Scene::uv_at` of point y on the disk (centre, unit normal n, radius): hits and disk lights'
-// samples.
-fn disk_uv(center: vec3f, n: vec3f, radius: f32, y: vec3f) -> vec2f {
-    let local = to_local(frame_from_normal(n), y - center);
+// `Scene::uv_at` of point y on the disk (centre, its x and y axes, radius): hits and disk
+// lights' samples.
+fn disk_uv(center: vec3f, x_axis: vec3f, y_axis: vec3f, radius: f32, y: vec3f) -> vec2f {
+    let rel = y - center;
+    let local = vec2f(dot(rel, x_axis), dot(rel, y_axis));
     let r = min(hypot(local.x, local.y) / radius, 1.0);
     return vec2f(r, turn_fraction(atan2_precise(local.y, local.x)));
 }

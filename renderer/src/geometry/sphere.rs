@@ -3,6 +3,7 @@
 //! WGSL twin: `geometry/sphere.wgsl`.
 
 use super::ray::{Ray, gamma};
+use crate::math::Frame;
 use glam::Vec3;
 
 /// A sphere; its normal points outwards.
@@ -12,9 +13,22 @@ pub struct Sphere {
     pub center: Vec3,
     /// Radius.
     pub radius: f32,
+    /// Its object frame, as Mitsuba's `to_world` rotates it: texture coordinates `u = φ/2π`
+    /// from `s` towards `t`, `v = θ/π` from the pole `n` (`scene/surface.rs`); ∂p/∂u runs
+    /// about `n`. The world axes unless the scene turns it.
+    pub frame: Frame,
 }
 
 impl Sphere {
+    /// A sphere in the world's axes.
+    pub fn new(center: Vec3, radius: f32) -> Sphere {
+        Sphere {
+            center,
+            radius,
+            frame: Frame::IDENTITY,
+        }
+    }
+
     /// Surface area.
     pub fn area(&self) -> f32 {
         4.0 * std::f32::consts::PI * self.radius * self.radius
@@ -70,10 +84,7 @@ mod tests {
 
     #[test]
     fn hits_from_outside_and_inside() {
-        let s = Sphere {
-            center: Vec3::new(1.0, 2.0, 3.0),
-            radius: 0.5,
-        };
+        let s = Sphere::new(Vec3::new(1.0, 2.0, 3.0), 0.5);
         let t = s
             .intersect(&Ray::new(Vec3::new(1.0, 2.0, 0.0), Vec3::Z))
             .unwrap();
@@ -85,10 +96,7 @@ mod tests {
                 .is_none()
         );
         // far away, tiny sphere: the careful form keeps precision
-        let s = Sphere {
-            center: Vec3::new(0.0, 0.0, 1e4),
-            radius: 1e-2,
-        };
+        let s = Sphere::new(Vec3::new(0.0, 0.0, 1e4), 1e-2);
         let t = s.intersect(&Ray::new(Vec3::ZERO, Vec3::Z)).unwrap();
         assert!((t - (1e4 - 1e-2)).abs() < 2e-3);
     }

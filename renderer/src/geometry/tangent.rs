@@ -5,8 +5,8 @@
 //! - a mesh triangle with texture coordinates: ∂p/∂u of its UV map, from its edges and their UV
 //!   differences (a degenerate map, determinant 0: the first axis of the frame of the geometric
 //!   normal); without them, its first edge p1 − p0 (the barycentric parameterisation);
-//! - a sphere: the azimuthal direction (−y, x, 0) about +z through its centre (Mitsuba's for a
-//!   sphere its `to_world` does not rotate);
+//! - a sphere: the azimuthal direction about its frame's pole through its centre (`(−y, x, 0)`
+//!   about +z for a sphere its `to_world` does not turn);
 //! - a disk: the radial direction from its centre;
 //! - a cylinder: the direction of growing φ about its axis (`Cylinder::dp_du`).
 //!
@@ -38,10 +38,7 @@ pub fn dp_du(prim: &Primitive, attributes: &MeshAttributes, hit: &SurfaceHit) ->
             }
             (duv1.y * dp0 - duv0.y * dp1) / det
         }
-        Shape::Sphere(s) => {
-            let d = hit.p - s.center;
-            Vec3::new(-d.y, d.x, 0.0)
-        }
+        Shape::Sphere(s) => s.frame.n.cross(hit.p - s.center),
         Shape::Disk(d) => hit.p - d.center,
         Shape::Cylinder(c) => c.dp_du(hit.p),
     }

@@ -1,6 +1,6 @@
 // The surface tangent ∂p/∂u at a hit and the BSDF frame it orients for an anisotropic BSDF,
 // the twin of `geometry/tangent.rs` (Mitsuba 3.9.1's: a mesh triangle's UV map, else its first
-// edge; a sphere's azimuth about +z; a disk's radius; a cylinder's azimuth about its axis). Only
+// edge; a sphere's azimuth about its frame's pole; a disk's radius; a cylinder's azimuth about its axis). Only
 // under HAS_ANISOTROPIC.
 
 // `tangent::dp_du` of `hit` on primitive `p` (not normalised).
@@ -8,8 +8,7 @@ fn surface_dp_du(p: Prim, hit: SurfaceHit) -> vec3f {
     switch prim_kind(p) {
 // #if HAS_SPHERE_SHAPE
         case SHAPE_SPHERE: {
-            let d = hit.p - p.a.xyz;
-            return vec3f(-d.y, d.x, 0.0);
+            return cross(p.d.xyz, hit.p - p.a.xyz);
         }
 // #endif
 // #if HAS_DISK_SHAPE

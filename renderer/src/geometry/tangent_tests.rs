@@ -91,10 +91,7 @@ fn a_degenerate_uv_map_falls_back_to_the_normals_frame() {
 
 #[test]
 fn spheres_turn_about_z_and_disks_point_outward() {
-    let s = Sphere {
-        center: Vec3::new(1.0, 2.0, 3.0),
-        radius: 2.0,
-    };
+    let s = Sphere::new(Vec3::new(1.0, 2.0, 3.0), 2.0);
     let p = s.center + Vec3::new(1.2, -1.6, 0.0);
     let d = dp_du(
         &prim(Shape::Sphere(s), NONE),
@@ -104,11 +101,7 @@ fn spheres_turn_about_z_and_disks_point_outward() {
     assert!(d.dot(p - s.center).abs() < 1e-6 && d.z == 0.0 && d.length() > 1.0);
     // Counter-clockwise seen from +z, as Mitsuba's φ grows.
     assert!((p - s.center).cross(d).z > 0.0);
-    let disk = Disk {
-        center: Vec3::ZERO,
-        n: Vec3::Y,
-        radius: 1.0,
-    };
+    let disk = Disk::new(Vec3::ZERO, Vec3::Y, 1.0);
     let q = Vec3::new(0.3, 0.0, -0.4);
     let d = dp_du(
         &prim(Shape::Disk(disk), NONE),
@@ -116,6 +109,23 @@ fn spheres_turn_about_z_and_disks_point_outward() {
         &hit(q, Vec3::Y),
     );
     assert_eq!(d, q);
+    // A sphere whose pole is turned to +x (Mitsuba's `to_world` rotation): about +x.
+    let turned = Sphere {
+        frame: crate::math::Frame {
+            s: Vec3::Y,
+            t: Vec3::Z,
+            n: Vec3::X,
+        },
+        ..s
+    };
+    let p = s.center + Vec3::new(0.5, 1.2, -1.6);
+    let d = dp_du(
+        &prim(Shape::Sphere(turned), NONE),
+        &MeshAttributes::default(),
+        &hit(p, (p - s.center).normalize()),
+    );
+    assert!(d.x == 0.0 && d.dot(p - s.center).abs() < 1e-6 && d.length() > 1.0);
+    assert!((p - s.center).cross(d).x > 0.0);
 }
 
 #[test]

@@ -321,10 +321,7 @@ mod tests {
             .filter_map(|i| {
                 let c = v(rng) * 10.0 * scale;
                 let shape = if i % 4 == 0 {
-                    Shape::Sphere(Sphere {
-                        center: c,
-                        radius: 0.2 * scale,
-                    })
+                    Shape::Sphere(Sphere::new(c, 0.2 * scale))
                 } else {
                     Shape::triangle([c, c + (v(rng) - 0.5) * scale, c + (v(rng) - 0.5) * scale])?
                 };

@@ -322,12 +322,12 @@ fn light_uv(l: Light, s: LightSample) -> vec2f {
 // #endif
 // #if HAS_DISK_LIGHT
         case LIGHT_DISK: {
-            return disk_uv(l.a.xyz, l.d.xyz, l.a.w, s.p);
+            return disk_uv(l.a.xyz, l.b.xyz, l.c.xyz, l.a.w, s.p);
         }
 // #endif
 // #if HAS_SPHERE_LIGHT
         case LIGHT_SPHERE: {
-            return sphere_uv(l.a.xyz, l.a.w, s.p);
+            return sphere_uv(l.a.xyz, l.a.w, Frame(l.b.xyz, l.c.xyz, l.d.xyz), s.p);
         }
 // #endif
 // #if HAS_DELTA_LIGHT

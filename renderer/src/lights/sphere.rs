@@ -139,10 +139,7 @@ mod tests {
     #[test]
     fn far_area_samples_agree_with_traced_pdf() {
         let light = SphereLight {
-            sphere: Sphere {
-                center: Vec3::new(68.404_03, 0.0, 187.938_52),
-                radius: 1.0,
-            },
+            sphere: Sphere::new(Vec3::new(68.404_03, 0.0, 187.938_52), 1.0),
             le: Vec3::ONE,
             texture: crate::geometry::primitive::NONE,
         };

@@ -589,12 +589,14 @@ impl Scene {
                     center,
                     normal,
                     radius,
+                    u_axis,
                 } => {
-                    let disk = Disk {
-                        center: v(*center),
-                        n: v(*normal).normalize(),
-                        radius: *radius as f32,
-                    };
+                    let mut disk = Disk::new(v(*center), v(*normal).normalize(), *radius as f32);
+                    if let Some(u) = u_axis {
+                        let n = unit(*normal);
+                        let u = unit(*u - n * n.dot(*u));
+                        disk.axes = [v(u), v(n.cross(u))];
+                    }
                     let light = push_light(Some(Light::Disk(DiskLight::new(disk, le))))?;
                     prims.push(Primitive {
                         shape: Shape::Disk(disk),
@@ -603,10 +605,24 @@ impl Scene {
                         attr: NONE,
                     });
                 }
-                GeometryDesc::Sphere { center, radius } => {
+                GeometryDesc::Sphere {
+                    center,
+                    radius,
+                    pole,
+                    u_axis,
+                } => {
+                    // The world's axes exactly when neither is given (z = +z, x = +x − 0).
+                    let z = unit(pole.unwrap_or(DVec3::Z));
+                    let x = u_axis.unwrap_or(DVec3::X);
+                    let x = unit(x - z * z.dot(x));
                     let sphere = Sphere {
                         center: v(*center),
                         radius: *radius as f32,
+                        frame: Frame {
+                            s: v(x),
+                            t: v(z.cross(x)),
+                            n: v(z),
+                        },
                     };
                     let light = push_light(Some(Light::Sphere(SphereLight {
                         sphere,

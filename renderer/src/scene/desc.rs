@@ -536,6 +536,10 @@ pub enum GeometryDesc {
         normal: DVec3,
         /// Radius, > 0.
         radius: f64,
+        /// Where its texture coordinates' φ = 0 lies, as given (not along the normal; made
+        /// perpendicular to it, φ growing towards `normal × u_axis`); `None`: the first tangent
+        /// of the normal's frame.
+        u_axis: Option<DVec3>,
     },
     /// Sphere with outward normals.
     Sphere {
@@ -543,6 +547,11 @@ pub enum GeometryDesc {
         center: DVec3,
         /// Radius, > 0.
         radius: f64,
+        /// Its texture coordinates' pole (θ = 0), as given; `None`: +z.
+        pole: Option<DVec3>,
+        /// Where φ = 0 lies, as given (not along the pole; made perpendicular to it, φ growing
+        /// towards `pole × u_axis`); `None`: +x.
+        u_axis: Option<DVec3>,
     },
     /// Mitsuba's cylinder: the open tube (no end caps) of `radius` around the segment
     /// `p0 → p1`, normals away from the axis unless `flip_normals`; texture coordinates
@@ -654,12 +663,32 @@ impl SceneDesc {
                 center,
                 normal,
                 radius,
-            } => json!({
-                "type": "disk", "center": vec3(*center), "normal": vec3(*normal), "radius": radius,
-            }),
-            GeometryDesc::Sphere { center, radius } => json!({
-                "type": "sphere", "center": vec3(*center), "radius": radius,
-            }),
+                u_axis,
+            } => {
+                let mut d = json!({
+                    "type": "disk", "center": vec3(*center), "normal": vec3(*normal),
+                    "radius": radius,
+                });
+                if let Some(u) = u_axis {
+                    d["u_axis"] = vec3(*u);
+                }
+                d
+            }
+            GeometryDesc::Sphere {
+                center,
+                radius,
+                pole,
+                u_axis,
+            } => {
+                let mut s = json!({"type": "sphere", "center": vec3(*center), "radius": radius});
+                if let Some(p) = pole {
+                    s["pole"] = vec3(*p);
+                }
+                if let Some(u) = u_axis {
+                    s["u_axis"] = vec3(*u);
+                }
+                s
+            }
             GeometryDesc::Cylinder {
                 p0,
                 p1,

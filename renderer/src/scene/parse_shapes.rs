@@ -47,8 +47,8 @@ fn parse_shape(
         "quad" => &["corner", "edge_u", "edge_v"],
         "polygon" => &["vertices"],
         "triangles" => &["positions", "indices"],
-        "disk" => &["center", "normal", "radius"],
-        "sphere" => &["center", "radius"],
+        "disk" => &["center", "normal", "radius", "u_axis"],
+        "sphere" => &["center", "radius", "pole", "u_axis"],
         "cylinder" => &["p0", "p1", "radius", "u_axis", "flip_normals"],
         "box" => &["min", "max", "rotate_y_deg", "translate"],
         "mesh" => &[
@@ -103,12 +103,21 @@ fn parse_shape(
                 center,
                 normal: unit(normal),
                 radius,
+                u_axis: u_axis(obj, normal, "normal")?,
             }
         }
-        "sphere" => GeometryDesc::Sphere {
-            center: obj.vec3("center")?,
-            radius: radius(obj)?,
-        },
+        "sphere" => {
+            let pole = obj.opt_vec3("pole")?;
+            if pole == Some(DVec3::ZERO) {
+                return Err(SceneError::new(obj.at("pole"), "zero-length pole"));
+            }
+            GeometryDesc::Sphere {
+                center: obj.vec3("center")?,
+                radius: radius(obj)?,
+                pole,
+                u_axis: u_axis(obj, pole.unwrap_or(DVec3::Z), "pole")?,
+            }
+        }
         "cylinder" => cylinder(obj, emits)?,
         _ => boxed(obj)?,
     };
@@ -165,6 +174,21 @@ fn radius(obj: &Obj) -> Result<f64, SceneError> {
     Ok(r)
 }
 
+/// The optional `u_axis` of an analytic shape: where its texture coordinates' φ = 0 lies, which
+/// must not be zero or along `axis` (the shape's `what`: its normal, pole or axis).
+fn u_axis(obj: &Obj, axis: DVec3, what: &str) -> Result<Option<DVec3>, SceneError> {
+    let u = obj.opt_vec3("u_axis")?;
+    if let Some(u) = u
+        && u.cross(axis).length() <= 1e-6 * u.length() * axis.length()
+    {
+        return Err(SceneError::new(
+            obj.at("u_axis"),
+            format!("u_axis is zero or parallel to the shape's {what}"),
+        ));
+    }
+    Ok(u)
+}
+
 fn cylinder(obj: &Obj, emits: bool) -> Result<GeometryDesc, SceneError> {
     if emits {
         return Err(SceneError::new(
@@ -180,20 +204,11 @@ fn cylinder(obj: &Obj, emits: bool) -> Result<GeometryDesc, SceneError> {
             "p1 equals p0: the cylinder has no height",
         ));
     }
-    let u_axis = obj.opt_vec3("u_axis")?;
-    if let Some(u) = u_axis
-        && u.cross(axis).length() <= 1e-6 * u.length() * axis.length()
-    {
-        return Err(SceneError::new(
-            obj.at("u_axis"),
-            "u_axis is zero or parallel to the cylinder's axis p1 − p0",
-        ));
-    }
     Ok(GeometryDesc::Cylinder {
         p0,
         p1,
         radius,
-        u_axis,
+        u_axis: u_axis(obj, axis, "axis p1 − p0")?,
         flip_normals: obj.opt_bool("flip_normals")?.unwrap_or(false),
     })
 }
@@ -351,12 +366,53 @@ mod tests {
         expect_err(
             &bad("u_axis", json!([0, -3, 0])),
             "shapes[4].u_axis",
-            "parallel to the cylinder's axis",
+            "parallel to the shape's axis p1 − p0",
         );
         expect_err(
             &bad("emission", json!([1, 1, 1])),
             "shapes[4].emission",
             "a cylinder cannot emit",
+        );
+    }
+
+    /// A sphere's `pole` and `u_axis` and a disk's `u_axis` (version 3): kept as given, written
+    /// back, and refused where they leave no frame.
+    #[test]
+    fn sphere_and_disk_texture_frames() {
+        let sphere = json!({"type": "sphere", "center": [0, 0, 0], "radius": 1,
+                            "pole": [0, 1, 0], "u_axis": [1, 0, 1]});
+        let disk = json!({"type": "disk", "center": [0, 0, 0], "normal": [0, 1, 0], "radius": 1,
+                          "u_axis": [0, 0, 2]});
+        for shape in [&sphere, &disk] {
+            let d = parse_scene_value(&with(4, shape.clone())).unwrap();
+            let again = parse_scene_value(&d.to_json()).unwrap();
+            assert_eq!(again.shapes[4].geometry, d.shapes[4].geometry);
+        }
+        let d = parse_scene_value(&with(4, sphere.clone())).unwrap();
+        assert!(matches!(
+            d.shapes[4].geometry,
+            GeometryDesc::Sphere {
+                pole: Some(p),
+                u_axis: Some(u),
+                ..
+            } if p == DVec3::Y && u == DVec3::new(1.0, 0.0, 1.0)
+        ));
+        let mut bad = sphere.clone();
+        bad["u_axis"] = json!([0, -2, 0]);
+        expect_err(
+            &with(4, bad),
+            "shapes[4].u_axis",
+            "parallel to the shape's pole",
+        );
+        let mut bad = sphere.clone();
+        bad["pole"] = json!([0, 0, 0]);
+        expect_err(&with(4, bad), "shapes[4].pole", "zero-length pole");
+        let mut bad = disk.clone();
+        bad["u_axis"] = json!([0, 3, 0]);
+        expect_err(
+            &with(4, bad),
+            "shapes[4].u_axis",
+            "parallel to the shape's normal",
         );
     }
 

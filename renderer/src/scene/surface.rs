@@ -1,8 +1,8 @@
 //! A hit's texture coordinates and its material: a mix resolved, textures evaluated there. Texture
 //! coordinates by shape: mesh triangles interpolate their file's UVs (else their barycentrics),
 //! quads and box faces run `u` along `edge_u` and `v` along `edge_v`, other triangles give their
-//! barycentrics; spheres as Mitsuba 3's (`u = φ/2π` from +x towards +y, `v = θ/π` from +z),
-//! disks `(r/radius, φ/2π)` around the normal's frame, cylinders Mitsuba's (`φ/2π` from their
+//! barycentrics; spheres as Mitsuba 3's (`u = φ/2π` from its frame's x towards y, `v = θ/π`
+//! from its z), disks `(r/radius, φ/2π)` from their x axis towards their y, cylinders Mitsuba's (`φ/2π` from their
 //! u axis, the fraction of the height). Emission with its texture evaluated
 //! at a hit or at a point sampled on a light, by the same rule ([`Scene::uv_at`]).
 
@@ -14,7 +14,7 @@ use crate::geometry::sphere::Sphere;
 use crate::geometry::{Shape, SurfaceHit};
 use crate::lights::{Light, LightSample, LightSampling};
 use crate::materials::Material;
-use crate::math::{Frame, atan2};
+use crate::math::atan2;
 use glam::{Vec2, Vec3};
 use std::borrow::Cow;
 use std::f32::consts::{PI, TAU};
@@ -62,13 +62,14 @@ impl Scene {
         match point {
             SurfacePoint::Triangle { attr, b } => self.attributes.uv(attr, b),
             SurfacePoint::Sphere(s, p) => {
-                let d = (p - s.center) / s.radius;
+                let d = s.frame.to_local((p - s.center) / s.radius);
                 let phi = atan2(d.y, d.x);
                 let u = if phi < 0.0 { phi + TAU } else { phi } / TAU;
                 Vec2::new(u, d.z.clamp(-1.0, 1.0).acos() / PI)
             }
             SurfacePoint::Disk(d, p) => {
-                let local = Frame::from_normal(d.n).to_local(p - d.center);
+                let rel = p - d.center;
+                let local = Vec2::new(rel.dot(d.axes[0]), rel.dot(d.axes[1]));
                 let phi = atan2(local.y, local.x);
                 let v = if phi < 0.0 { phi + TAU } else { phi } / TAU;
                 Vec2::new((local.x.hypot(local.y) / d.radius).min(1.0), v)

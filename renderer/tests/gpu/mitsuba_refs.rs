@@ -118,6 +118,14 @@ fn gpu_xml_principal_point_matches_the_cpu_and_mitsuba() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// `xml_textured_shapes.xml` (the texture frames of spheres and disks, `sphere_uv` and
+/// `disk_uv` at hits and at sphere lights' samples).
+#[test]
+fn gpu_xml_textured_shapes_matches_the_cpu_and_mitsuba() {
+    let failures = check("xml_textured_shapes");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// `xml_cylinder.xml` (Mitsuba's cylinder: `geometry/cylinder.wgsl`'s intersection, its
 /// texture coordinates and ∂p/∂u, flipped normals).
 #[test]

@@ -60,14 +60,23 @@ fn textures_map_with_their_options() {
         "texture/transform",
         "to_uv rotates or shears",
     );
-    // A textured sphere would need Mitsuba's spherical uv, which lumis' sphere has not.
+    // A textured sphere's uv follow its object frame, which a non-uniform scale does not give.
     refused(
         &dir,
-        r#"<shape type="sphere"><ref id="wood"/></shape>
+        r#"<shape type="sphere"><ref id="wood"/><transform name="to_world"><scale x="2"/></transform></shape>
 <bsdf type="diffuse" id="wood"><texture name="reflectance" type="checkerboard"/></bsdf>"#,
-        "<shape type=\"sphere\">",
+        "scale x",
+        "scene/shape/transform",
+        "a textured or anisotropic sphere needs a to_world of a rotation and a uniform scale",
+    );
+    // A flipped disk's φ would run the other way about its normal than lumis' disk lets it.
+    refused(
+        &dir,
+        r#"<shape type="disk"><ref id="wood"/><boolean name="flip_normals" value="true"/></shape>
+<bsdf type="diffuse" id="wood"><texture name="reflectance" type="checkerboard"/></bsdf>"#,
+        "<shape type=\"disk\">",
         "scene/shape",
-        "a textured sphere is not supported",
+        "a textured flipped disk is not supported",
     );
 }
 
@@ -152,10 +161,10 @@ fn refusals_name_file_line_and_element() {
             "textured specular_reflectance together with eta and k",
         ),
         (
-            r#"<shape type="sphere"><bsdf type="roughconductor"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.3"/></bsdf></shape>"#,
+            r#"<shape type="cube"><bsdf type="roughconductor"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.3"/></bsdf></shape>"#,
             "<shape",
             "scene/shape",
-            "anisotropic BSDF on a sphere",
+            "anisotropic BSDF on a cube",
         ),
         (
             r#"<shape type="obj"><string name="filename" value="x.obj"/><bsdf type="roughplastic"><float name="alpha_u" value="0.1"/><texture type="checkerboard" name="alpha_v"/></bsdf></shape>"#,

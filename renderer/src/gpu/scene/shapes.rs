@@ -55,11 +55,10 @@ pub(super) fn encode(scene: &Scene) -> Vec<GpuPrim> {
         .primitives()
         .iter()
         .map(|p| {
-            let zero = glam::Vec3::ZERO;
             let (a, b, c, d) = match p.shape {
                 Shape::Triangle { v, n } => (v[0], v[1], v[2], v4(n, bits(p.attr))),
-                Shape::Disk(k) => (k.center, zero, zero, v4(k.n, k.radius)),
-                Shape::Sphere(s) => (s.center, zero, zero, [0.0, 0.0, 0.0, s.radius]),
+                Shape::Disk(k) => (k.center, k.axes[0], k.axes[1], v4(k.n, k.radius)),
+                Shape::Sphere(s) => (s.center, s.frame.s, s.frame.t, v4(s.frame.n, s.radius)),
                 // The flip as the radius' sign.
                 Shape::Cylinder(c) => (
                     c.p0,

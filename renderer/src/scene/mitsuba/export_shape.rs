@@ -5,12 +5,16 @@
 //!   importer's `to_world · (-1, -1, 0)` is the corner to the last bit ([`rectangle_matrix`]);
 //! * a box is its six faces as rectangles, in [`box_faces`] order: exactly the six quads lumis
 //!   builds for it (Mitsuba's `cube` would import as 12 triangles with other uv and lights);
-//! * a sphere is `center` + `radius` (no `to_world`: the importer's radius is then exact);
+//! * a sphere is `center` + `radius` (no `to_world`: the importer's radius is then exact), or,
+//!   with a `pole` or `u_axis`, a `to_world` = [r·u, r·(pole × u), r·pole, center] (Mitsuba's
+//!   texture frame);
 //! * a cylinder is `p0`, `p1`, `radius` and `flip_normals` where its u axis is Mitsuba's
 //!   default, else a `to_world` = [r·u, r·(ẑ × u), p1 − p0, p0] of the unit tube (whose frame
 //!   is the identity);
 //! * a disk is a `disk` with `to_world` = [r·a, r·b, n, center] for a right-handed orthonormal
-//!   (a, b, n), axis-aligned where n is, so that r and n come back exact;
+//!   (a, b, n), axis-aligned where n is, so that r and n come back exact; a = its `u_axis`, or
+//!   for a textured disk without one the first tangent of the normal's frame, so that Mitsuba's
+//!   texture coordinates are lumis';
 //! * a mesh from an `.obj`, `.ply` or `.serialized` file names the file with its `to_world`
 //!   (row-major `matrix`); a glTF mesh, inline triangles and a polygon (triangulated as lumis
 //!   triangulates it) are written to a binary PLY beside the XML. A mesh without vertex normals
@@ -19,8 +23,8 @@
 //!   computes the same.
 //!
 //! A textured material or emission on a shape whose texture coordinates Mitsuba defines
-//! otherwise than lumis (sphere, disk, polygon, triangles, a mesh without uv) is an error, as
-//! the importer refuses the same.
+//! otherwise than lumis (polygon, triangles, a mesh without uv) is an error, as the importer
+//! refuses the same.
 
 use super::export::{ExportCtx, Xml, file_name, matrix_value, num, vec3};
 use super::export_bsdf::{color_value, is_textured, texture_xml};
@@ -78,11 +82,29 @@ pub(crate) fn shape(
                 attachments(ctx, x, desc, s)?;
             }
         }
-        GeometryDesc::Sphere { center, radius } => {
-            no_uv("sphere")?;
+        GeometryDesc::Sphere {
+            center,
+            radius,
+            pole,
+            u_axis,
+        } => {
             x.open("shape", &[("type", "sphere")]);
-            x.leaf("point", &[("name", "center"), ("value", &vec3(*center))]);
-            x.leaf("float", &[("name", "radius"), ("value", &num(*radius))]);
+            if pole.is_none() && u_axis.is_none() {
+                // Mitsuba's sphere in the world's axes, as lumis' default.
+                x.leaf("point", &[("name", "center"), ("value", &vec3(*center))]);
+                x.leaf("float", &[("name", "radius"), ("value", &num(*radius))]);
+            } else {
+                let z = pole.unwrap_or(DVec3::Z).normalize();
+                let u = u_axis.unwrap_or(DVec3::X);
+                let u = (u - z * z.dot(u)).normalize();
+                let m = DMat4::from_cols(
+                    (u * *radius).extend(0.0),
+                    (z.cross(u) * *radius).extend(0.0),
+                    (z * *radius).extend(0.0),
+                    center.extend(1.0),
+                );
+                matrix(x, "to_world", &m);
+            }
             attachments(ctx, x, desc, s)?;
         }
         GeometryDesc::Cylinder {
@@ -121,10 +143,29 @@ pub(crate) fn shape(
             center,
             normal,
             radius,
+            u_axis,
         } => {
-            no_uv("disk")?;
+            // With a texture, the frame whose x axis is where φ = 0 (the normal's own frame by
+            // default, lumis' `Frame::from_normal`); without, any (`disk_matrix`).
+            let axes = match u_axis {
+                Some(u) => {
+                    let u = (*u - *normal * normal.dot(*u)).normalize();
+                    Some((u, normal.cross(u)))
+                }
+                None if textured => Some(super::transform::coordinate_system(*normal)),
+                None => None,
+            };
+            let m = match axes {
+                Some((a, b)) => DMat4::from_cols(
+                    (a * *radius).extend(0.0),
+                    (b * *radius).extend(0.0),
+                    normal.extend(0.0),
+                    center.extend(1.0),
+                ),
+                None => disk_matrix(*center, *normal, *radius),
+            };
             x.open("shape", &[("type", "disk")]);
-            matrix(x, "to_world", &disk_matrix(*center, *normal, *radius));
+            matrix(x, "to_world", &m);
             attachments(ctx, x, desc, s)?;
         }
         GeometryDesc::Polygon { vertices } => {

@@ -191,7 +191,9 @@ pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, Sc
             json!({"type": "triangles", "positions": positions, "indices": indices})
         }
         "disk" => {
-            no_uv("disk")?;
+            if flip {
+                no_uv("flipped disk")?;
+            }
             let m = DMat3::from_mat4(to_world);
             let (du, dv) = (m.x_axis, m.y_axis);
             let r = du.length();
@@ -206,11 +208,16 @@ pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, Sc
                 n = -n;
             }
             ctx.origin(&format!("{path}.radius"), &tpos);
-            json!({"type": "disk", "center": to_world.w_axis.truncate().to_array(),
-                   "normal": n.to_array(), "radius": r})
+            let mut d = json!({"type": "disk", "center": to_world.w_axis.truncate().to_array(),
+                               "normal": n.to_array(), "radius": r});
+            // Mitsuba's φ = 0 at its object x axis (what else only a texture sees).
+            if textured {
+                ctx.origin(&format!("{path}.u_axis"), &tpos);
+                d["u_axis"] = json!((du / r).to_array());
+            }
+            d
         }
         "sphere" => {
-            no_uv("sphere")?;
             let center = s.vector("center", DVec3::ZERO)?;
             let radius = s.float("radius", 1.0)?;
             if let Some(p) = s.get("radius") {
@@ -237,7 +244,24 @@ pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, Sc
                      supported: lumis' spheres face outward",
                 ));
             }
-            json!({"type": "sphere", "center": m.w_axis.truncate().to_array(), "radius": r})
+            let mut sphere =
+                json!({"type": "sphere", "center": m.w_axis.truncate().to_array(), "radius": r});
+            // Mitsuba's texture frame is its object frame (what else only a texture or an
+            // anisotropic BSDF sees); a non-uniform scale leaves no frame to give.
+            let (x, z) = (m3.x_axis / r, m3.z_axis / r);
+            if (textured || anisotropic) && (x != DVec3::X || z != DVec3::Z) {
+                if let Err(e) = crate::scene::parse_background::proper_rotation(m3 / r) {
+                    return Err(tpos.error(format!(
+                        "a textured or anisotropic sphere needs a to_world of a rotation and a \
+                         uniform scale (its texture frame): {e}"
+                    )));
+                }
+                ctx.origin(&format!("{path}.pole"), &tpos);
+                ctx.origin(&format!("{path}.u_axis"), &tpos);
+                sphere["pole"] = json!(z.to_array());
+                sphere["u_axis"] = json!(x.to_array());
+            }
+            sphere
         }
         "cylinder" => cylinder(ctx, s, &path, &to_world, &tpos, flip, emission.is_some())?,
         other => {
