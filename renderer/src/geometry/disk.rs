@@ -14,21 +14,31 @@ pub struct Disk {
     pub n: Vec3,
     /// Radius.
     pub radius: f32,
-    /// Its object x and y axes in its plane, as Mitsuba's `to_world` turns them: texture
-    /// coordinates `(r/radius, φ/2π)` with φ from `axes[0]` towards `axes[1]`
-    /// (`scene/surface.rs`). By default the tangents of `Frame::from_normal(n)`.
-    pub axes: [Vec3; 2],
+    /// Its object x axis, as Mitsuba's `to_world` turns it (unit, in its plane): texture
+    /// coordinates `(r/radius, φ/2π)` with φ from it towards `n × u_axis` (`scene/surface.rs`).
+    /// `None`: the tangents of `Frame::from_normal(n)`.
+    pub u_axis: Option<Vec3>,
 }
 
 impl Disk {
     /// A disk with the default axes.
     pub fn new(center: Vec3, n: Vec3, radius: f32) -> Disk {
-        let f = Frame::from_normal(n);
         Disk {
             center,
             n,
             radius,
-            axes: [f.s, f.t],
+            u_axis: None,
+        }
+    }
+
+    /// The x and y axes of its texture coordinates.
+    pub fn uv_axes(&self) -> [Vec3; 2] {
+        match self.u_axis {
+            Some(u) => [u, self.n.cross(u)],
+            None => {
+                let f = Frame::from_normal(self.n);
+                [f.s, f.t]
+            }
         }
     }
 

@@ -13,10 +13,13 @@ pub struct Sphere {
     pub center: Vec3,
     /// Radius.
     pub radius: f32,
-    /// Its object frame, as Mitsuba's `to_world` rotates it: texture coordinates `u = φ/2π`
-    /// from `s` towards `t`, `v = θ/π` from the pole `n` (`scene/surface.rs`); ∂p/∂u runs
-    /// about `n`. The world axes unless the scene turns it.
-    pub frame: Frame,
+    /// Its object frame's z axis, as Mitsuba's `to_world` turns it (unit): texture coordinates
+    /// `v = θ/π` from it (`scene/surface.rs`), ∂p/∂u about it. +z unless the scene turns it.
+    pub pole: Vec3,
+    /// Its object frame's x axis (unit, ⟂ `pole`): `u = φ/2π` from it towards
+    /// `pole × u_axis`. +x unless the scene turns it. (Two vectors, not a frame: a `Primitive`
+    /// stays 64 bytes.)
+    pub u_axis: Vec3,
 }
 
 impl Sphere {
@@ -25,7 +28,17 @@ impl Sphere {
         Sphere {
             center,
             radius,
-            frame: Frame::IDENTITY,
+            pole: Vec3::Z,
+            u_axis: Vec3::X,
+        }
+    }
+
+    /// The object frame (`s` = `u_axis`, `n` = `pole`); the world's axes exactly by default.
+    pub fn frame(&self) -> Frame {
+        Frame {
+            s: self.u_axis,
+            t: self.pole.cross(self.u_axis),
+            n: self.pole,
         }
     }
 

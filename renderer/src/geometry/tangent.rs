@@ -38,7 +38,7 @@ pub fn dp_du(prim: &Primitive, attributes: &MeshAttributes, hit: &SurfaceHit) ->
             }
             (duv1.y * dp0 - duv0.y * dp1) / det
         }
-        Shape::Sphere(s) => s.frame.n.cross(hit.p - s.center),
+        Shape::Sphere(s) => s.pole.cross(hit.p - s.center),
         Shape::Disk(d) => hit.p - d.center,
         Shape::Cylinder(c) => c.dp_du(hit.p),
     }

@@ -111,11 +111,8 @@ fn spheres_turn_about_z_and_disks_point_outward() {
     assert_eq!(d, q);
     // A sphere whose pole is turned to +x (Mitsuba's `to_world` rotation): about +x.
     let turned = Sphere {
-        frame: crate::math::Frame {
-            s: Vec3::Y,
-            t: Vec3::Z,
-            n: Vec3::X,
-        },
+        pole: Vec3::X,
+        u_axis: Vec3::Y,
         ..s
     };
     let p = s.center + Vec3::new(0.5, 1.2, -1.6);

@@ -594,8 +594,7 @@ impl Scene {
                     let mut disk = Disk::new(v(*center), v(*normal).normalize(), *radius as f32);
                     if let Some(u) = u_axis {
                         let n = unit(*normal);
-                        let u = unit(*u - n * n.dot(*u));
-                        disk.axes = [v(u), v(n.cross(u))];
+                        disk.u_axis = Some(v(unit(*u - n * n.dot(*u))));
                     }
                     let light = push_light(Some(Light::Disk(DiskLight::new(disk, le))))?;
                     prims.push(Primitive {
@@ -618,11 +617,8 @@ impl Scene {
                     let sphere = Sphere {
                         center: v(*center),
                         radius: *radius as f32,
-                        frame: Frame {
-                            s: v(x),
-                            t: v(z.cross(x)),
-                            n: v(z),
-                        },
+                        pole: v(z),
+                        u_axis: v(x),
                     };
                     let light = push_light(Some(Light::Sphere(SphereLight {
                         sphere,

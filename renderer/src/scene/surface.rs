@@ -62,14 +62,14 @@ impl Scene {
         match point {
             SurfacePoint::Triangle { attr, b } => self.attributes.uv(attr, b),
             SurfacePoint::Sphere(s, p) => {
-                let d = s.frame.to_local((p - s.center) / s.radius);
+                let d = s.frame().to_local((p - s.center) / s.radius);
                 let phi = atan2(d.y, d.x);
                 let u = if phi < 0.0 { phi + TAU } else { phi } / TAU;
                 Vec2::new(u, d.z.clamp(-1.0, 1.0).acos() / PI)
             }
             SurfacePoint::Disk(d, p) => {
-                let rel = p - d.center;
-                let local = Vec2::new(rel.dot(d.axes[0]), rel.dot(d.axes[1]));
+                let (rel, [x, y]) = (p - d.center, d.uv_axes());
+                let local = Vec2::new(rel.dot(x), rel.dot(y));
                 let phi = atan2(local.y, local.x);
                 let v = if phi < 0.0 { phi + TAU } else { phi } / TAU;
                 Vec2::new((local.x.hypot(local.y) / d.radius).min(1.0), v)

@@ -152,17 +152,19 @@ pub(super) fn encode(
                 }
                 Light::Disk(k) => {
                     g.a = v4(k.disk.center, k.disk.radius);
-                    g.b = v4(k.disk.axes[0], 0.0);
-                    g.c = v4(k.disk.axes[1], 0.0);
+                    let [x, y] = k.disk.uv_axes();
+                    g.b = v4(x, 0.0);
+                    g.c = v4(y, 0.0);
                     g.d = v4(k.disk.n, 0.0);
                     g.le = v4(k.le, k.disk.area());
                 }
                 Light::Sphere(s) => {
                     g.a = v4(s.sphere.center, s.sphere.radius);
                     // The texture frame (`sphere_uv`).
-                    g.b = v4(s.sphere.frame.s, 0.0);
-                    g.c = v4(s.sphere.frame.t, 0.0);
-                    g.d = v4(s.sphere.frame.n, 0.0);
+                    let f = s.sphere.frame();
+                    g.b = v4(f.s, 0.0);
+                    g.c = v4(f.t, 0.0);
+                    g.d = v4(f.n, 0.0);
                     g.le = v4(s.le, s.sphere.area());
                 }
                 Light::Background(b) => {

@@ -57,8 +57,14 @@ pub(super) fn encode(scene: &Scene) -> Vec<GpuPrim> {
         .map(|p| {
             let (a, b, c, d) = match p.shape {
                 Shape::Triangle { v, n } => (v[0], v[1], v[2], v4(n, bits(p.attr))),
-                Shape::Disk(k) => (k.center, k.axes[0], k.axes[1], v4(k.n, k.radius)),
-                Shape::Sphere(s) => (s.center, s.frame.s, s.frame.t, v4(s.frame.n, s.radius)),
+                Shape::Disk(k) => {
+                    let [x, y] = k.uv_axes();
+                    (k.center, x, y, v4(k.n, k.radius))
+                }
+                Shape::Sphere(s) => {
+                    let f = s.frame();
+                    (s.center, f.s, f.t, v4(f.n, s.radius))
+                }
                 // The flip as the radius' sign.
                 Shape::Cylinder(c) => (
                     c.p0,
