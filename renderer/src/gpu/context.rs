@@ -2,8 +2,14 @@
 
 use super::GpuError;
 use super::progressive::PathPipelines;
-use std::collections::HashMap;
+use std::collections::VecDeque;
 use std::sync::{Arc, Mutex};
+
+/// How many compiled path tracers a context keeps. Each is a whole megakernel, and on lavapipe
+/// its JIT-compiled code costs about a hundred megabytes: kept without bound, the GPU test
+/// binary (one context, hundreds of scene variants) grew past 24 GB and was killed
+/// (2026-12-06). A viewer alternates between a few feature sets.
+pub const PIPELINE_CACHE: usize = 8;
 
 /// A device and its queue. Create one headless with [`GpuContext::new`], or wrap the viewer's
 /// (eframe's) device with [`GpuContext::from_device`] so the accumulation buffer can be drawn
@@ -16,8 +22,9 @@ pub struct GpuContext {
     pub queue: wgpu::Queue,
     /// What the adapter is ("llvmpipe (LLVM 15.0.6, 256 bits)" on Mesa's software driver).
     pub adapter_info: wgpu::AdapterInfo,
-    /// Compiled path tracers by their WGSL source (see [`GpuContext::pipeline`]).
-    pipelines: Mutex<HashMap<String, PathPipelines>>,
+    /// Compiled path tracers by their WGSL source, the most recently used last (see
+    /// [`GpuContext::pipeline`]).
+    pipelines: Mutex<VecDeque<(String, PathPipelines)>>,
 }
 
 impl GpuContext {
@@ -59,22 +66,34 @@ impl GpuContext {
         })
     }
 
-    /// The path tracer's pipelines for `source`, compiled by `compile` the first time only: a
-    /// viewer restarts renders with the same scene features again and again, and compiling the
-    /// path tracer takes about a second on lavapipe. (wgpu deduplicates equal bind group
-    /// layouts, so a cached pipeline accepts bind groups made from a later scene's equal layout.)
+    /// The path tracer's pipelines for `source`, compiled by `compile` unless one of the
+    /// [`PIPELINE_CACHE`] most recently used is for it: a viewer restarts renders with the same
+    /// scene features again and again, and compiling the path tracer takes about a second on
+    /// lavapipe. (wgpu deduplicates equal bind group layouts, so a cached pipeline accepts bind
+    /// groups made from a later scene's equal layout.)
     pub fn pipeline(
         &self,
         source: &str,
         compile: impl FnOnce() -> Result<PathPipelines, GpuError>,
     ) -> Result<PathPipelines, GpuError> {
         let mut cache = self.pipelines.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(p) = cache.get(source) {
-            return Ok(p.clone());
+        if let Some(i) = cache.iter().position(|(s, _)| s == source) {
+            let hit = cache.remove(i).expect("the position found");
+            let p = hit.1.clone();
+            cache.push_back(hit);
+            return Ok(p);
         }
         let p = compile()?;
-        cache.insert(source.to_owned(), p.clone());
+        if cache.len() == PIPELINE_CACHE {
+            cache.pop_front();
+        }
+        cache.push_back((source.to_owned(), p.clone()));
         Ok(p)
+    }
+
+    /// How many compiled path tracers the context holds.
+    pub fn cached_pipelines(&self) -> usize {
+        self.pipelines.lock().map_or(0, |c| c.len())
     }
 
     /// Copies `size` bytes of `buffer` (which needs `COPY_SRC`) to the CPU, waiting for the GPU.
