@@ -91,11 +91,6 @@ impl GpuContext {
         Ok(p)
     }
 
-    /// How many compiled path tracers the context holds.
-    pub fn cached_pipelines(&self) -> usize {
-        self.pipelines.lock().map_or(0, |c| c.len())
-    }
-
     /// Copies `size` bytes of `buffer` (which needs `COPY_SRC`) to the CPU, waiting for the GPU.
     pub fn read_buffer(&self, buffer: &wgpu::Buffer, size: u64) -> Result<Vec<u8>, GpuError> {
         let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
