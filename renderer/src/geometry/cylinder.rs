@@ -5,6 +5,7 @@
 //! WGSL twin: `geometry/cylinder.wgsl`.
 
 use super::ray::{Ray, gamma};
+use super::sphere::careful_roots;
 use glam::{Vec2, Vec3};
 use std::f32::consts::TAU;
 
@@ -53,17 +54,13 @@ impl Cylinder {
         let u = d2 * inv_len;
         let b = -o2.dot(u);
         let l = o2 + b * u;
-        let disc = self.radius * self.radius - l.length_squared();
-        if disc < 0.0 {
-            return None;
-        }
-        let c = o2.length_squared() - self.radius * self.radius;
-        let q = b + b.signum() * disc.sqrt();
-        let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (c / q, q) };
-        if t0 > t1 {
-            std::mem::swap(&mut t0, &mut t1);
-        }
-        let (t0, t1) = (t0 * inv_len, t1 * inv_len);
+        let (t0, t1) = careful_roots(
+            b,
+            l.length_squared(),
+            o2.length_squared(),
+            self.radius,
+            inv_len,
+        )?;
         // Distance uncertainty of a hit (the projection's rounding included), in the ray's
         // parameter.
         let slack = gamma(8) * (f.length() + self.radius) * inv_len;

@@ -21,25 +21,12 @@ fn cylinder_intersect(p0: vec3f, axis: vec3f, u_axis: vec3f, radius: f32, ray: R
     let u = d2 * inv_len;
     let b = -dot(o2, u);
     let l = o2 + b * u;
-    let disc = radius * radius - dot(l, l);
-    if disc < 0.0 {
+    let roots = careful_roots(b, dot(l, l), dot(o2, o2), radius, inv_len);
+    if !roots.found {
         return -1.0;
     }
-    let c = dot(o2, o2) - radius * radius;
-    let q = b + copysign(1.0, b) * sqrt(disc);
-    var t0 = 0.0;
-    var t1 = 0.0;
-    if q != 0.0 {
-        t0 = c / q;
-        t1 = q;
-    }
-    if t0 > t1 {
-        let tmp = t0;
-        t0 = t1;
-        t1 = tmp;
-    }
-    t0 *= inv_len;
-    t1 *= inv_len;
+    let t0 = roots.t0;
+    let t1 = roots.t1;
     let slack = gamma(8.0) * (length(f) + radius) * inv_len;
     let oz = dot(f, z);
     let dz = dot(ray.d, z);

@@ -55,18 +55,13 @@ impl Sphere {
         let b = -f.dot(d);
         // Distance² from the centre to the line, computed without cancellation.
         let l = f + b * d;
-        let disc = self.radius * self.radius - l.length_squared();
-        if disc < 0.0 {
-            return None;
-        }
-        let c = f.length_squared() - self.radius * self.radius;
-        let q = b + b.signum() * disc.sqrt();
-        let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (c / q, q) };
-        if t0 > t1 {
-            std::mem::swap(&mut t0, &mut t1);
-        }
-        // Parameters are along the unit direction; convert back.
-        let (t0, t1) = (t0 * inv_len, t1 * inv_len);
+        let (t0, t1) = careful_roots(
+            b,
+            l.length_squared(),
+            f.length_squared(),
+            self.radius,
+            inv_len,
+        )?;
         // Distance uncertainty of a hit, scaled to the ray's parameter.
         let slack = gamma(8) * (f.length() + self.radius) * inv_len;
         if t0 > slack && t0 < ray.t_max {
@@ -89,6 +84,25 @@ impl Sphere {
             n,
         )
     }
+}
+
+/// The roots, in order, of `|f + s·u|² = r²` along a unit direction `u`, given `b = −f·u`, the
+/// squared distance `l2 = |f + b·u|²` from the centre to the line (computed so, without
+/// cancellation: Haines et al.) and `f2 = |f|²`, each times `inv_len` (a ray parameter whose
+/// direction is `u / inv_len`); `None` where the line misses. The sphere's intersection, and the
+/// cylinder's in the plane across its axis.
+pub(super) fn careful_roots(b: f32, l2: f32, f2: f32, r: f32, inv_len: f32) -> Option<(f32, f32)> {
+    let disc = r * r - l2;
+    if disc < 0.0 {
+        return None;
+    }
+    let c = f2 - r * r;
+    let q = b + b.signum() * disc.sqrt();
+    let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (c / q, q) };
+    if t0 > t1 {
+        std::mem::swap(&mut t0, &mut t1);
+    }
+    Some((t0 * inv_len, t1 * inv_len))
 }
 
 #[cfg(test)]

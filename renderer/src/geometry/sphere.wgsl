@@ -7,11 +7,36 @@ fn sphere_intersect(center: vec3f, radius: f32, ray: Ray) -> f32 {
     let f = ray.o - center;
     let b = -dot(f, d);
     let l = f + b * d;
-    let disc = radius * radius - dot(l, l);
-    if disc < 0.0 {
+    let roots = careful_roots(b, dot(l, l), dot(f, f), radius, inv_len);
+    if !roots.found {
         return -1.0;
     }
-    let c = dot(f, f) - radius * radius;
+    let t0 = roots.t0;
+    let t1 = roots.t1;
+    let slack = gamma(8.0) * (length(f) + radius) * inv_len;
+    if t0 > slack && t0 < ray.t_max {
+        return t0;
+    } else if t1 > slack && t1 < ray.t_max {
+        return t1;
+    }
+    return -1.0;
+}
+
+struct Roots {
+    found: bool,
+    t0: f32,
+    t1: f32,
+}
+
+// `sphere::careful_roots`: the roots, in order, of |f + s·u|² = r² along a unit direction u from
+// b = −f·u, l2 = |f + b·u|² and f2 = |f|², each times inv_len; not found where the line misses.
+// The sphere's intersection, and the cylinder's in the plane across its axis.
+fn careful_roots(b: f32, l2: f32, f2: f32, r: f32, inv_len: f32) -> Roots {
+    let disc = r * r - l2;
+    if disc < 0.0 {
+        return Roots(false, 0.0, 0.0);
+    }
+    let c = f2 - r * r;
     // Rust's signum: ±1 by the sign bit, also for ±0.
     let q = b + copysign(1.0, b) * sqrt(disc);
     var t0 = 0.0;
@@ -25,15 +50,7 @@ fn sphere_intersect(center: vec3f, radius: f32, ray: Ray) -> f32 {
         t0 = t1;
         t1 = tmp;
     }
-    t0 *= inv_len;
-    t1 *= inv_len;
-    let slack = gamma(8.0) * (length(f) + radius) * inv_len;
-    if t0 > slack && t0 < ray.t_max {
-        return t0;
-    } else if t1 > slack && t1 < ray.t_max {
-        return t1;
-    }
-    return -1.0;
+    return Roots(true, t0 * inv_len, t1 * inv_len);
 }
 
 struct SpherePoint {

@@ -413,7 +413,8 @@ impl Features {
             "materials/dielectric.wgsl" => self.has_dielectric,
             // A disk light's ellipse samples find their point as a disk hit does.
             "geometry/disk.wgsl" => self.has_disk_shape || (lights && self.has_disk_light),
-            "geometry/sphere.wgsl" => self.has_sphere_shape,
+            // A cylinder's intersection solves the sphere's quadratic (`careful_roots`).
+            "geometry/sphere.wgsl" => self.has_sphere_shape || self.has_cylinder_shape,
             "gpu/bvh2.wgsl" => self.use_bvh && self.bvh2,
             // Texture coordinates of mesh triangles too.
             "geometry/mesh_attributes.wgsl" => {
