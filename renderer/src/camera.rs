@@ -160,21 +160,30 @@ impl Camera {
             .film_position(u, px, py, self.width, self.height)
     }
 
+    /// [`Camera::film_position`] and the sample's filter weight (1 but for a filter with negative
+    /// lobes, [`PixelFilter::film_sample`]).
+    #[inline]
+    pub fn film_sample(&self, u: Vec2, px: u32, py: u32) -> (Vec2, f32) {
+        self.filter.film_sample(u, px, py, self.width, self.height)
+    }
+
     /// The view basis as plain data: `(forward, right, up, half_x, half_y)`, the unit axes and
     /// the film's half-extents that [`Camera::ray`] combines (for the GPU).
     pub fn basis(&self) -> (Vec3, Vec3, Vec3, f32, f32) {
         (self.forward, self.right, self.up, self.half_x, self.half_y)
     }
 
-    /// The camera ray of one sample of pixel `(px, py)`: the film position from the sampler's
-    /// camera dimensions, and for a thin lens the lens point from its lens dimensions.
+    /// The camera ray of one sample of pixel `(px, py)` and the weight its radiance takes (the
+    /// filter's, [`Camera::film_sample`]): the film position from the sampler's camera
+    /// dimensions, and for a thin lens the lens point from its lens dimensions.
     #[inline]
-    pub fn sample_ray(&self, sampler: &mut Sampler, px: u32, py: u32) -> Ray {
-        let p = self.film_position(sampler.camera_2d(), px, py);
-        match self.projection {
+    pub fn sample_ray(&self, sampler: &mut Sampler, px: u32, py: u32) -> (Ray, f32) {
+        let (p, weight) = self.film_sample(sampler.camera_2d(), px, py);
+        let ray = match self.projection {
             Projection::ThinLens { .. } => self.lens_ray(p.x, p.y, sampler.lens_2d()),
             Projection::Perspective | Projection::Orthographic => self.ray(p.x, p.y),
-        }
+        };
+        (ray, weight)
     }
 
     /// Film coordinates `(x, y)` in pixels (0..width, 0..height, y down) as the signed image

@@ -375,7 +375,8 @@ impl Progressive {
                             width as u32,
                             s,
                         );
-                        let ray = scene.camera.sample_ray(&mut sampler, x as u32, y as u32);
+                        let (ray, weight) =
+                            scene.camera.sample_ray(&mut sampler, x as u32, y as u32);
                         let mut one = learn.then(|| OptimalSample {
                             alpha: optimal_row[x].alpha_for(s),
                             ..OptimalSample::default()
@@ -394,11 +395,16 @@ impl Progressive {
                         {
                             optimal_row[x].moments.add(&one.moments);
                         }
+                        // A filter with negative lobes weighs the sample (1 otherwise: the same
+                        // bits). The optimal-MIS moments stay unweighted: the weight's magnitude
+                        // is the pixel's constant, its sign does not change which α is best.
+                        let l = l * weight;
                         if !l.is_finite() {
                             bad += 1;
                             continue;
                         }
-                        if let Some(split) = &split {
+                        if let Some(split) = &mut split {
+                            split.parts.iter_mut().for_each(|p| *p *= weight);
                             technique_row[x].add(split);
                         }
                         let l = [l.x as f64, l.y as f64, l.z as f64];

@@ -38,7 +38,8 @@ pub fn preview_factors(width: u32, height: u32) -> Vec<u32> {
 /// The camera of `desc` at `width`×`height`: the same frustum as the scene's camera, so a
 /// preview pixel covers `factor`² pixels of the full image, with the scene's pixel filter
 /// `filter` (of the full film) in preview pixels: a gaussian's σ and radius divided by `factor`,
-/// so that it weights the same part of the image as on the full film (the box stays the box).
+/// so that it weights the same part of the image as on the full film (the box stays the box; a
+/// filter with negative lobes becomes a tent of its radius).
 pub fn camera_at(
     desc: &CameraDesc,
     filter: PixelFilter,
@@ -54,6 +55,11 @@ pub fn camera_at(
         },
         PixelFilter::Tent { radius } => PixelFilter::Tent {
             radius: radius / factor as f32,
+        },
+        // One sample per preview pixel with a signed weight would show negative pixels: a
+        // filter with negative lobes previews as a tent of its radius.
+        PixelFilter::Lanczos { .. } | PixelFilter::Mitchell { .. } => PixelFilter::Tent {
+            radius: filter.radius() / factor as f32,
         },
     };
     lumis::scene::build::camera_of(desc, width, height).with_filter(filter)

@@ -1,5 +1,5 @@
-//! Tests of the pixel filter: Mitsuba's weight, the sampler against its CDF and pdf, and a χ²
-//! test of sampled film positions against the filter.
+//! Tests of the pixel filter: Mitsuba's weight, the sampler against its CDF and pdf, a χ² test of
+//! sampled film positions against the filter, and the signed filters' pieces and sample weights.
 
 use super::*;
 use crate::rng::Rng;
@@ -31,6 +31,156 @@ const TENTS: [PixelFilter; 3] = [
     PixelFilter::Tent { radius: 0.4 },
     PixelFilter::Tent { radius: 16.0 },
 ];
+
+/// Filters with negative lobes: Mitsuba's default Lanczos (3 lobes), a 2-lobe one, the Mitchell
+/// filter at the B, C of tests/data/mitsuba/mitchell_edges.xml, Mitsuba's default (⅓, ⅓) and
+/// Catmull–Rom (0, ½).
+fn signed_filters() -> [PixelFilter; 5] {
+    [
+        PixelFilter::Lanczos { lobes: 3 },
+        PixelFilter::Lanczos { lobes: 2 },
+        PixelFilter::mitchell(0.4, 0.3),
+        PixelFilter::mitchell(1.0 / 3.0, 1.0 / 3.0),
+        PixelFilter::mitchell(0.0, 0.5),
+    ]
+}
+
+/// Mitsuba's `lanczos.cpp` and `mitchell.cpp` at hand-computed points: Lanczos(3) at ½ is
+/// sinc(½)·sinc(⅙) = (2/π)(3/π); Mitchell(⅓, ⅓) is 8/9 at 0, 1/18 at 1, 0 at 8/7 (a root of
+/// its outer cubic, (x − 2)(−7x² + 22x − 16)/18) and negative between 8/7 and 2; Catmull–Rom is
+/// 1 at 0 and 0 at 1.
+#[test]
+fn signed_weights_are_mitsubas() {
+    let pi = std::f64::consts::PI;
+    let l3 = PixelFilter::Lanczos { lobes: 3 };
+    for (x, want) in [
+        (0.0f32, 1.0f64),
+        (0.5, 6.0 / (pi * pi)),
+        (-0.5, 6.0 / (pi * pi)),
+    ] {
+        assert!(
+            (l3.eval(x) as f64 - want).abs() < 1e-6,
+            "lanczos({x}) = {}",
+            l3.eval(x)
+        );
+    }
+    // sinc(1.5)·sinc(0.5) = (−2/3π)(2/π) < 0; 0 at integers and beyond the radius.
+    assert!((l3.eval(1.5) as f64 + 4.0 / (3.0 * pi * pi)).abs() < 1e-6);
+    assert!(l3.eval(1.0).abs() < 1e-6 && l3.eval(3.5) == 0.0);
+    assert_eq!(l3.radius(), 3.0);
+    let m = PixelFilter::mitchell(1.0 / 3.0, 1.0 / 3.0);
+    for (x, want) in [
+        (0.0f32, 8.0 / 9.0),
+        (1.0, 1.0 / 18.0),
+        (8.0 / 7.0, 0.0),
+        (2.0, 0.0),
+    ] {
+        assert!(
+            (m.eval(x) as f64 - want).abs() < 1e-6,
+            "mitchell({x}) = {}",
+            m.eval(x)
+        );
+    }
+    assert!(m.eval(1.5) < 0.0 && m.eval(-1.5) == m.eval(1.5));
+    assert_eq!(m.radius(), 2.0);
+    let cr = PixelFilter::mitchell(0.0, 0.5);
+    assert!((cr.eval(0.0) - 1.0).abs() < 1e-7 && cr.eval(1.0).abs() < 1e-7);
+}
+
+/// A Mitchell filter's pieces end at 1, 2 and its cubics' sign changes: (⅓, ⅓) at 8/7,
+/// Catmull–Rom at none but 1 and 2 (its roots there are ends already); and for any B, C (here
+/// a grid with unusual ones, whose inner cubic also changes sign) the filter keeps one sign on
+/// each piece, which is what integrating |f| piece by piece needs.
+#[test]
+fn mitchell_pieces_keep_one_sign() {
+    let PixelFilter::Mitchell { breaks, .. } = PixelFilter::mitchell(1.0 / 3.0, 1.0 / 3.0) else {
+        unreachable!()
+    };
+    assert!((breaks[0] - 1.0).abs() < 1e-7 && (breaks[1] - 8.0 / 7.0).abs() < 1e-6);
+    assert!(breaks[2..].iter().all(|&b| b == 2.0), "{breaks:?}");
+    let PixelFilter::Mitchell { breaks, .. } = PixelFilter::mitchell(0.0, 0.5) else {
+        unreachable!()
+    };
+    assert_eq!(breaks[0], 1.0);
+    assert!(breaks[1..].iter().all(|&b| b == 2.0), "{breaks:?}");
+    let mut inner_changes = 0;
+    for b in [-1.0f32, -0.3, 0.0, 0.5, 1.0, 2.0, 4.0] {
+        for c in [-1.0f32, -0.2, 0.0, 0.5, 1.0, 3.0] {
+            let f = PixelFilter::mitchell(b, c);
+            let PixelFilter::Mitchell { breaks, .. } = f else {
+                unreachable!()
+            };
+            let mut start = 0.0f32;
+            for end in breaks {
+                let signs: Vec<f32> = (1..200)
+                    .map(|i| f.eval(start + (end - start) * i as f32 / 200.0))
+                    .filter(|v| v.abs() > 1e-5)
+                    .map(f32::signum)
+                    .collect();
+                assert!(
+                    signs.windows(2).all(|w| w[0] == w[1]),
+                    "B {b} C {c}: piece [{start}, {end}] changes sign"
+                );
+                if end < 1.0 {
+                    inner_changes += 1;
+                }
+                start = end;
+            }
+        }
+    }
+    assert!(
+        inner_changes > 0,
+        "no B, C of the grid makes the inner cubic change sign"
+    );
+}
+
+/// A signed filter's sample weight is `sign f(x) · A / S` on its interval, `A = ∫|f|` and
+/// `S = ∫f` there, computed here independently (midpoint rule in f64, 200,000 points): the
+/// magnitude within 1e-4, the sign f's wherever |f| is not tiny.
+#[test]
+fn signed_weights_are_sign_times_mass_ratio() {
+    let mut rng = Rng::new(2423, 0, 0);
+    for f in signed_filters() {
+        for (lo, hi) in intervals(&f) {
+            let (a, b) = (lo.max(-f.radius()), hi.min(f.radius()));
+            let n = 200_000;
+            let h = (b - a) as f64 / n as f64;
+            let (mut abs, mut signed) = (0.0, 0.0);
+            for i in 0..n {
+                let v = f.eval((a as f64 + (i as f64 + 0.5) * h) as f32) as f64 * h;
+                abs += v.abs();
+                signed += v;
+            }
+            for _ in 0..500 {
+                let (x, w) = f.sample_1d(rng.next_f32(), lo, hi);
+                assert!(
+                    ((w.abs() as f64) - abs / signed).abs() < 1e-4 * abs / signed,
+                    "{f:?} [{lo}, {hi}]: |w| = {w}, A/S = {}",
+                    abs / signed
+                );
+                let fx = f.eval(x);
+                if fx.abs() > 1e-3 {
+                    assert_eq!(w.signum(), fx.signum(), "{f:?} at {x}: w {w}, f {fx}");
+                }
+            }
+        }
+    }
+}
+
+/// A filter whose integral over some pixel's part of the film is not positive is refused:
+/// Mitchell with B = 10 (∫ over an edge pixel's [−½, 2] is −0.16); with C = −20 only a 1-pixel
+/// film is (∫ over [−½, ½] is −0.23, over [−½, 2] +0.39). The filters of the tests pass on a
+/// 1-pixel film and a large one.
+#[test]
+fn check_film_refuses_a_non_positive_pixel_integral() {
+    assert!(PixelFilter::mitchell(10.0, 0.0).check_film(8, 8).is_err());
+    assert!(PixelFilter::mitchell(0.0, -20.0).check_film(1, 1).is_err());
+    assert_eq!(PixelFilter::mitchell(0.0, -20.0).check_film(8, 8), Ok(()));
+    for f in signed_filters() {
+        assert_eq!(f.check_film(1, 1), Ok(()), "{f:?}");
+        assert_eq!(f.check_film(64, 48), Ok(()), "{f:?}");
+    }
+}
 
 /// Mitsuba's `tent.cpp`: `max(0, 1 − |x|/r)`.
 #[test]
@@ -78,7 +228,13 @@ fn intervals(f: &PixelFilter) -> Vec<(f32, f32)> {
 #[test]
 fn sample_inverts_the_cdf_and_stays_inside() {
     let mut rng = Rng::new(91, 0, 0);
-    for f in FILTERS.iter().chain(&TENTS).chain([&PixelFilter::Box]) {
+    let signed = signed_filters();
+    for f in FILTERS
+        .iter()
+        .chain(&TENTS)
+        .chain(&signed)
+        .chain([&PixelFilter::Box])
+    {
         for (lo, hi) in intervals(f) {
             for i in 0..2000 {
                 let u = if i < 3 {
@@ -86,7 +242,8 @@ fn sample_inverts_the_cdf_and_stays_inside() {
                 } else {
                     rng.next_f32()
                 };
-                let x = f.sample_1d(u, lo, hi);
+                let (x, w) = f.sample_1d(u, lo, hi);
+                assert!(f.is_signed() || w == 1.0, "{f:?}: weight {w}");
                 let r = f.radius();
                 assert!(
                     x >= lo.max(-r) && x <= hi.min(r),
@@ -104,7 +261,8 @@ fn sample_inverts_the_cdf_and_stays_inside() {
 
 #[test]
 fn pdf_is_the_cdfs_derivative_and_integrates_to_one() {
-    for f in FILTERS.iter().chain(&TENTS) {
+    let signed = signed_filters();
+    for f in FILTERS.iter().chain(&TENTS).chain(&signed) {
         for (lo, hi) in intervals(f) {
             let (a, b) = (lo.max(-f.radius()), hi.min(f.radius()));
             // Midpoint rule in f64 on the f32 pdf.
@@ -143,7 +301,7 @@ fn box_filter_is_the_original_jitter() {
 }
 
 /// χ² of `n` film positions of pixel `(px, py)` on a `w × h` film, drawn by `draw` from seeded
-/// uniforms, against `filter`'s weight restricted to the film (normalised by quadrature, not by
+/// uniforms, against `filter`'s |weight| restricted to the film (normalised by quadrature, not by
 /// the sampler's own CDF), over a 24 × 24 grid on the pixel's support. Returns the p-value.
 fn chi2_p(
     filter: &PixelFilter,
@@ -170,8 +328,9 @@ fn chi2_p(
                 );
                 (0..64)
                     .map(|k| {
-                        filter.eval((s + (e - s) * (k as f64 + 0.5) / 64.0 - c as f64) as f32)
-                            as f64
+                        filter
+                            .eval((s + (e - s) * (k as f64 + 0.5) / 64.0 - c as f64) as f32)
+                            .abs() as f64
                     })
                     .sum::<f64>()
                     * (e - s)
@@ -260,6 +419,44 @@ fn tent_film_positions_pass_chi_square() {
             case += 1;
         }
     }
+}
+
+/// The signed filters' film positions have density ∝ |f| (their weights carry the sign), inside
+/// the film and at its edges and corner, as [`film_positions_pass_chi_square`]: Lanczos (3
+/// lobes), Mitchell (0.4, 0.3) and Catmull–Rom. Significance: family-wise α = 0.01 over the 12
+/// cases (3 filters × 4 pixels), Šidák-corrected; 200,000 samples per case, seeds 2424 + case.
+/// Power: the control below (Mitchell's positions tested as Catmull–Rom's) is rejected.
+#[test]
+fn signed_film_positions_pass_chi_square() {
+    let alpha = sidak(0.01, 12);
+    let pixels = [(5, 4), (0, 4), (5, 1), (9, 7)];
+    let filters = signed_filters();
+    let mut case = 0;
+    for f in [&filters[0], &filters[2], &filters[4]] {
+        for &(px, py) in &pixels {
+            let draw = |u: Vec2| f.film_position(u, px, py, 10, 8);
+            let p = chi2_p(f, &draw, (px, py, 10, 8), 200_000, 2424 + case);
+            assert!(
+                p >= alpha,
+                "{f:?} pixel ({px}, {py}): χ² p = {p:.3e} < {alpha:.2e}"
+            );
+            case += 1;
+        }
+    }
+}
+
+/// Control of the signed filters' χ²: positions drawn from the Mitchell (⅓, ⅓) filter are
+/// rejected as Catmull–Rom's (p < 1e-6; the two differ by a few percent of a cell's mass near the
+/// centre), seed 2436.
+#[test]
+fn signed_chi_square_rejects_a_different_filter() {
+    let (mitchell, catmull) = (
+        PixelFilter::mitchell(1.0 / 3.0, 1.0 / 3.0),
+        PixelFilter::mitchell(0.0, 0.5),
+    );
+    let draw = |u: Vec2| mitchell.film_position(u, 5, 4, 10, 8);
+    let p = chi2_p(&catmull, &draw, (5, 4, 10, 8), 200_000, 2436);
+    assert!(p < 1e-6, "Mitchell not told from Catmull–Rom: p = {p:.3e}");
 }
 
 /// Control of the tents' χ²: samples of a tent 5% narrower than the filter tested are rejected

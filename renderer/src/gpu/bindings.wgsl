@@ -33,7 +33,7 @@ struct Params {
     cam_shift: vec4f,
     // Where the mesh attribute arrays start in `vertex_data` (triangles, meshes, normals, uvs).
     attr: vec4<u32>,
-    // The camera's pixel filter (FILTER_*) and the gaussian's σ and radius in pixels
+    // The camera's pixel filter (FILTER_*), the gaussian's σ and the radius in pixels
     // (`camera/filter.wgsl`).
     pixel_filter: u32,
     filter_stddev: f32,
@@ -50,11 +50,15 @@ struct Params {
     // The camera's projection (CAMERA_*, `camera.wgsl`, which fails an unknown one); it took the
     // slot that rounded the struct to 16 bytes.
     camera: u32,
+    // A Mitchell filter's B and C in xy, and its piece ends on [0, 2] (`camera/filter.wgsl`).
+    filter_shape: vec4f,
+    filter_breaks: array<vec4f, 2>,
 }
 
 // The camera's pixel filter (`film_position` in `camera/filter.wgsl`; an unknown tag fails there).
 fn params_filter() -> PixelFilter {
-    return PixelFilter(params.pixel_filter, params.filter_stddev, params.filter_radius);
+    return PixelFilter(params.pixel_filter, params.filter_stddev, params.filter_radius,
+        params.filter_shape.x, params.filter_shape.y, params.filter_breaks[0], params.filter_breaks[1]);
 }
 
 // Flags the sample when `p` holds a tag `gpu/scene/params.rs` never writes (the heuristic and the

@@ -68,10 +68,11 @@ fn render(@builtin(global_invocation_id) gid: vec3<u32>) {
     // flags the sample there.
     sampler_init(params.sampler, params.seed, gid.x, gid.y, params.width, s);
     check_param_tags(params);
-    // `Camera::film_position`: the box filter's jitter over the pixel or the gaussian's film
-    // position, from the camera's 2-D sample either way.
+    // `Camera::film_sample`: the box filter's jitter over the pixel or another filter's film
+    // position, from the camera's 2-D sample either way, and the sample's weight (1 but for a
+    // filter with negative lobes; the optimal-MIS moments stay unweighted, as the CPU's).
     let film = film_position(params_filter(), sampler_camera_2d(), gid.x, gid.y, params.width, params.height);
-    var x = radiance(camera_ray(film));
+    var x = radiance(camera_ray(film.xy)) * film.z;
     if unknown_tag_seen {
         // A record or parameter with a tag no `switch` knows (`gpu/prelude.wgsl`): a NaN sample.
         x = vec3f(unknown_tag());

@@ -170,6 +170,24 @@ pub enum FilterDesc {
         /// Support half-width in pixels (default 1, Mitsuba's).
         radius: f64,
     },
+    /// `{"type": "lanczos", "lobes"}`: Mitsuba's windowed sinc, radius `lobes` (default 3).
+    /// Validated: `1 ≤ lobes ≤` [`crate::camera::filter::MAX_FILTER_RADIUS`], and a positive
+    /// integral on every pixel's part of the film.
+    Lanczos {
+        /// Side lobes (an integer).
+        lobes: u32,
+    },
+    /// `{"type": "mitchell", "b", "c"}`: Mitsuba's Mitchell–Netravali cubic, radius 2 (defaults
+    /// ⅓, ⅓; Mitsuba's `B`, `C`). Validated: finite, and a positive integral on every pixel's
+    /// part of the film.
+    Mitchell {
+        /// B.
+        b: f64,
+        /// C.
+        c: f64,
+    },
+    /// `{"type": "catmullrom"}`: Mitsuba's Catmull–Rom, the Mitchell cubic with B = 0, C = ½.
+    CatmullRom,
 }
 
 impl FilterDesc {
@@ -184,6 +202,11 @@ impl FilterDesc {
             FilterDesc::Tent { radius } => crate::camera::PixelFilter::Tent {
                 radius: radius as f32,
             },
+            FilterDesc::Lanczos { lobes } => crate::camera::PixelFilter::Lanczos { lobes },
+            FilterDesc::Mitchell { b, c } => {
+                crate::camera::PixelFilter::mitchell(b as f32, c as f32)
+            }
+            FilterDesc::CatmullRom => crate::camera::PixelFilter::mitchell(0.0, 0.5),
         }
     }
 
@@ -195,6 +218,9 @@ impl FilterDesc {
                 json!({"type": "gaussian", "stddev": stddev, "radius": radius})
             }
             FilterDesc::Tent { radius } => json!({"type": "tent", "radius": radius}),
+            FilterDesc::Lanczos { lobes } => json!({"type": "lanczos", "lobes": lobes}),
+            FilterDesc::Mitchell { b, c } => json!({"type": "mitchell", "b": b, "c": c}),
+            FilterDesc::CatmullRom => json!({"type": "catmullrom"}),
         }
     }
 }

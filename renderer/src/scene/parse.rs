@@ -308,7 +308,15 @@ fn parse_camera(obj: &Obj) -> Result<CameraDesc, SceneError> {
     };
     let (width, height) = (size("width")?, size("height")?);
     let filter = match obj.get("filter") {
-        Some(v) => parse_filter(&Obj::new(v, obj.at("filter"))?)?,
+        Some(v) => {
+            let f = Obj::new(v, obj.at("filter"))?;
+            let filter = parse_filter(&f)?;
+            // A signed filter's weights divide by its integral over each pixel's part of the film.
+            if let Err(why) = filter.filter().check_film(width, height) {
+                return Err(SceneError::new(f.at("type"), why));
+            }
+            filter
+        }
         None => FilterDesc::Box,
     };
     Ok(CameraDesc {
@@ -396,7 +404,8 @@ fn parse_projection(obj: &Obj) -> Result<ProjectionDesc, SceneError> {
 
 /// `camera.filter` (a lumis addition): `{"type": "box"}`,
 /// `{"type": "gaussian", "stddev": σ, "radius": r}` (defaults 0.5 and 4σ, Mitsuba's) or
-/// `{"type": "tent", "radius": r}` (default 1, Mitsuba's).
+/// `{"type": "tent", "radius": r}` (default 1, Mitsuba's), `{"type": "lanczos", "lobes": n}`
+/// (default 3), `{"type": "mitchell", "b": B, "c": C}` (defaults ⅓, ⅓) or `{"type": "catmullrom"}`.
 fn parse_filter(obj: &Obj) -> Result<FilterDesc, SceneError> {
     match obj.string("type")? {
         "box" => {
@@ -437,9 +446,42 @@ fn parse_filter(obj: &Obj) -> Result<FilterDesc, SceneError> {
             }
             Ok(FilterDesc::Tent { radius })
         }
+        "lanczos" => {
+            obj.only_keys(&["type", "lobes"], false)?;
+            let max = crate::camera::filter::MAX_FILTER_RADIUS as i64;
+            let lobes = match obj.get("lobes") {
+                Some(v) => integer(v, &obj.at("lobes"), 1, max)? as u32,
+                None => 3,
+            };
+            Ok(FilterDesc::Lanczos { lobes })
+        }
+        "mitchell" => {
+            obj.only_keys(&["type", "b", "c"], false)?;
+            let param = |key: &str| -> Result<f64, SceneError> {
+                let v = obj.opt_number(key)?.unwrap_or(1.0 / 3.0);
+                if !v.is_finite() {
+                    return Err(SceneError::new(
+                        obj.at(key),
+                        format!("{key} {v} must be finite"),
+                    ));
+                }
+                Ok(v)
+            };
+            Ok(FilterDesc::Mitchell {
+                b: param("b")?,
+                c: param("c")?,
+            })
+        }
+        "catmullrom" => {
+            obj.only_keys(&["type"], false)?;
+            Ok(FilterDesc::CatmullRom)
+        }
         other => Err(SceneError::new(
             obj.at("type"),
-            format!("unknown filter type `{other}` (expected `box`, `gaussian` or `tent`)"),
+            format!(
+                "unknown filter type `{other}` (expected `box`, `gaussian`, `tent`, `lanczos`, \
+                 `mitchell` or `catmullrom`)"
+            ),
         )),
     }
 }

@@ -564,8 +564,61 @@ fn camera_filter_parses_round_trips_and_names_errors() {
     let t = parse_scene(&with(r#", "filter": {"type": "tent", "radius": 2.5}"#)).unwrap();
     let back = parse_scene(&t.to_json().to_string()).unwrap();
     assert_eq!(back.camera.filter, super::FilterDesc::Tent { radius: 2.5 });
+    // The signed filters: Mitsuba's defaults (3 lobes; B = C = ⅓), and round trips.
+    for (f, want) in [
+        (
+            r#"{"type": "lanczos"}"#,
+            super::FilterDesc::Lanczos { lobes: 3 },
+        ),
+        (
+            r#"{"type": "lanczos", "lobes": 5}"#,
+            super::FilterDesc::Lanczos { lobes: 5 },
+        ),
+        (
+            r#"{"type": "mitchell"}"#,
+            super::FilterDesc::Mitchell {
+                b: 1.0 / 3.0,
+                c: 1.0 / 3.0,
+            },
+        ),
+        (
+            r#"{"type": "mitchell", "b": 0.4, "c": 0.3}"#,
+            super::FilterDesc::Mitchell { b: 0.4, c: 0.3 },
+        ),
+        (r#"{"type": "catmullrom"}"#, super::FilterDesc::CatmullRom),
+    ] {
+        let d = parse_scene(&with(&format!(r#", "filter": {f}"#))).unwrap();
+        assert_eq!(d.camera.filter, want, "{f}");
+        let back = parse_scene(&d.to_json().to_string()).unwrap();
+        assert_eq!(back.camera.filter, want, "{f}");
+    }
     for (f, path) in [
-        (r#", "filter": {"type": "lanczos"}"#, "camera.filter.type"),
+        (r#", "filter": {"type": "sinc"}"#, "camera.filter.type"),
+        (
+            r#", "filter": {"type": "lanczos", "lobes": 0}"#,
+            "camera.filter.lobes",
+        ),
+        (
+            r#", "filter": {"type": "lanczos", "lobes": 17}"#,
+            "camera.filter.lobes",
+        ),
+        (
+            r#", "filter": {"type": "lanczos", "lobes": 2.5}"#,
+            "camera.filter.lobes",
+        ),
+        (
+            r#", "filter": {"type": "mitchell", "B": 0.5}"#,
+            "camera.filter.B",
+        ),
+        (
+            r#", "filter": {"type": "catmullrom", "c": 0.5}"#,
+            "camera.filter.c",
+        ),
+        // Negative lobes so deep that an edge pixel's filter integral is negative.
+        (
+            r#", "filter": {"type": "mitchell", "b": 10, "c": 0}"#,
+            "camera.filter.type",
+        ),
         (
             r#", "filter": {"type": "tent", "radius": 0}"#,
             "camera.filter.radius",

@@ -1,4 +1,4 @@
-//! The GPU's gaussian and tent pixel filters in whole images (issue 18; `camera/filter.wgsl` function by function
+//! The GPU's gaussian, tent and signed (lanczos, mitchell, catmullrom) pixel filters in whole images (issue 18; `camera/filter.wgsl` function by function
 //! in `renderer/tests/gpu/parity_filter.rs`): the imported `gaussian_edges.xml` (Mitsuba's default
 //! gaussian, σ = 0.5 px, r = 2 px, sample_border false: sharp tilted edges, one leaving the film)
 //! rendered on the GPU agrees with its Mitsuba 3.9.1 reference by the block z-test of the CPU's
@@ -167,4 +167,64 @@ fn gpu_tent_filter_renders_to_the_mitsuba_reference() {
         decision("gpu box-filtered tent_edges", &boxed).is_err(),
         "a box filter must fail against the tent reference"
     );
+}
+
+/// `NAME_edges.xml` under a filter with negative lobes on the GPU against its Mitsuba 3.9.1
+/// reference with `strategy` ([`SPP`] spp, `seed`, the z-test of [`against_reference`]), and, if
+/// `control`, the box filter must fail it (the lanczos test's control stands for the three: the
+/// same edges, the same z-test).
+fn signed_filter_matches(
+    name: &str,
+    filter: FilterDesc,
+    strategy: Strategy,
+    seed: u32,
+    control: bool,
+) {
+    if gpu_common::context().is_none() {
+        return;
+    }
+    let (desc, mut settings) = imported_as(&format!("{name}_edges"), filter);
+    settings.strategy = strategy;
+    let decision = |what: &str, desc: &SceneDesc| {
+        let scene = build(desc);
+        decide(what, seed, SPP, |seed, n, alpha| {
+            let film = gpu_render(&scene, settings, n, seed).expect("a GPU");
+            assert_eq!(film.nonfinite, 0, "{what}: non-finite samples");
+            against_reference(&format!("{name}_edges"), &film, alpha)
+        })
+    };
+    decision(&format!("gpu {name}_edges.xml"), &desc).unwrap_or_else(|msg| panic!("{msg}"));
+    if !control {
+        return;
+    }
+    let mut boxed = desc.clone();
+    boxed.camera.filter = FilterDesc::Box;
+    assert!(
+        decision(&format!("gpu box-filtered {name}_edges"), &boxed).is_err(),
+        "a box filter must fail against the {name} reference"
+    );
+}
+
+/// `lanczos_edges.xml` (2 lobes) on the GPU, MIS, seed 2440.
+#[test]
+fn gpu_lanczos_filter_renders_to_the_mitsuba_reference() {
+    let mis = Strategy::Mis {
+        heuristic: Heuristic::Power,
+    };
+    signed_filter_matches("lanczos", FilterDesc::Lanczos { lobes: 2 }, mis, 2440, true);
+}
+
+/// `mitchell_edges.xml` (B 0.4, C 0.3) on the GPU under optimal MIS, seed 2441.
+#[test]
+fn gpu_mitchell_filter_renders_to_the_mitsuba_reference() {
+    let mitchell = FilterDesc::Mitchell { b: 0.4, c: 0.3 };
+    signed_filter_matches("mitchell", mitchell, Strategy::MisOptimal, 2441, false);
+}
+
+/// `catmullrom_edges.xml` on the GPU under the one-sample mixture of light and BSDF sampling,
+/// seed 2442.
+#[test]
+fn gpu_catmullrom_filter_renders_to_the_mitsuba_reference() {
+    let mixture = Strategy::Mixture { light_weight: 0.5 };
+    signed_filter_matches("catmullrom", FilterDesc::CatmullRom, mixture, 2442, false);
 }

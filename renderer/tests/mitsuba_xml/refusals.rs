@@ -262,10 +262,22 @@ fn refusals_name_file_line_and_element() {
     };
     let film_cases = [
         (
-            r#"<film type="hdrfilm"><rfilter type="mitchell"/></film>"#,
+            r#"<film type="hdrfilm"><rfilter type="mitchell"><float name="A" value="0.3"/></rfilter></film>"#,
+            4,
+            "scene/sensor/film/rfilter/float",
+            "property `A` (a float) is not supported",
+        ),
+        (
+            r#"<film type="hdrfilm"><rfilter type="lanczos"><integer name="lobes" value="0"/></rfilter></film>"#,
+            4,
+            "scene/sensor/film/rfilter/integer",
+            "lobes 0 must be in [1, 16]",
+        ),
+        (
+            r#"<film type="hdrfilm"><rfilter type="sinc"/></film>"#,
             4,
             "scene/sensor/film/rfilter",
-            "negative lobes",
+            "reconstruction filter `sinc` is not supported",
         ),
         (
             r#"<film type="hdrfilm"><rfilter type="tent"><float name="radius" value="-1"/></rfilter></film>"#,

@@ -78,6 +78,11 @@ pub struct GpuParams {
     /// The camera's projection ([`CameraTag`]); it took the slot that rounded the struct to 16
     /// bytes, so the size is unchanged.
     pub camera: u32,
+    /// A Mitchell filter's B and C (then 0, 0); zeros for other filters.
+    pub filter_shape: [f32; 4],
+    /// A Mitchell filter's piece ends on `[0, 2]` (`PixelFilter::Mitchell::breaks`); zeros for
+    /// other filters.
+    pub filter_breaks: [[f32; 4]; 2],
 }
 
 /// Uniform slots are this far apart (the largest `min_uniform_buffer_offset_alignment` wgpu
@@ -198,16 +203,37 @@ gpu_tags! {
         Gaussian => "FILTER_GAUSSIAN",
         /// [`PixelFilter::Tent`].
         Tent => "FILTER_TENT",
+        /// [`PixelFilter::Lanczos`].
+        Lanczos => "FILTER_LANCZOS",
+        /// [`PixelFilter::Mitchell`].
+        Mitchell => "FILTER_MITCHELL",
     }
 }
 
 impl FilterTag {
-    /// The tag of `f` and its (σ, radius): the box's and the tent's σ is 0 (unused).
+    /// The tag of `f` and its (σ, radius): σ is 0 (unused) but for the gaussian.
     pub fn of(f: PixelFilter) -> (FilterTag, f32, f32) {
         match f {
             PixelFilter::Box => (FilterTag::Box, 0.0, f.radius()),
             PixelFilter::Gaussian { stddev, radius } => (FilterTag::Gaussian, stddev, radius),
             PixelFilter::Tent { radius } => (FilterTag::Tent, 0.0, radius),
+            PixelFilter::Lanczos { .. } => (FilterTag::Lanczos, 0.0, f.radius()),
+            PixelFilter::Mitchell { .. } => (FilterTag::Mitchell, 0.0, f.radius()),
+        }
+    }
+
+    /// A Mitchell filter's `(B, C, 0, 0)` and piece ends as two vec4s (`GpuParams::filter_shape`,
+    /// `filter_breaks`); zeros for the others.
+    pub fn shape(f: PixelFilter) -> ([f32; 4], [[f32; 4]; 2]) {
+        match f {
+            PixelFilter::Mitchell { b, c, breaks } => (
+                [b, c, 0.0, 0.0],
+                [
+                    [breaks[0], breaks[1], breaks[2], breaks[3]],
+                    [breaks[4], breaks[5], breaks[6], breaks[7]],
+                ],
+            ),
+            _ => ([0.0; 4], [[0.0; 4]; 2]),
         }
     }
 }
@@ -255,6 +281,7 @@ impl GpuScene {
             Strategy::MisOptimal => (StrategyTag::MisOptimal, balance, 0.0),
         };
         let (filter, filter_stddev, filter_radius) = FilterTag::of(cam.filter);
+        let (filter_shape, filter_breaks) = FilterTag::shape(cam.filter);
         GpuParams {
             width: cam.width,
             height: cam.height,
@@ -289,6 +316,8 @@ impl GpuScene {
             light_bvh: self.light_bvh,
             hide_emitters: u32::from(scene.hide_emitters),
             camera: camera.gpu_tag(),
+            filter_shape,
+            filter_breaks,
         }
     }
 }
@@ -354,6 +383,8 @@ mod tests {
             ("light_bvh", offset_of!(GpuParams, light_bvh)),
             ("hide_emitters", offset_of!(GpuParams, hide_emitters)),
             ("camera", offset_of!(GpuParams, camera)),
+            ("filter_shape", offset_of!(GpuParams, filter_shape)),
+            ("filter_breaks", offset_of!(GpuParams, filter_breaks)),
         ];
         let wgsl: Vec<(&str, usize)> = members
             .iter()

@@ -273,6 +273,21 @@ fn sensor(x: &mut Xml, desc: &SceneDesc, options: &ExportOptions) -> Result<(), 
             x.leaf("float", &[("name", "radius"), ("value", &num(radius))]);
             x.close("rfilter");
         }
+        FilterDesc::Lanczos { lobes } => {
+            x.open("rfilter", &[("type", "lanczos")]);
+            x.leaf(
+                "integer",
+                &[("name", "lobes"), ("value", &lobes.to_string())],
+            );
+            x.close("rfilter");
+        }
+        FilterDesc::Mitchell { b, c } => {
+            x.open("rfilter", &[("type", "mitchell")]);
+            x.leaf("float", &[("name", "B"), ("value", &num(b))]);
+            x.leaf("float", &[("name", "C"), ("value", &num(c))]);
+            x.close("rfilter");
+        }
+        FilterDesc::CatmullRom => x.leaf("rfilter", &[("type", "catmullrom")]),
     }
     x.close("film");
     x.close("sensor");

@@ -284,7 +284,8 @@ pub(super) fn fov_and_axis(plugin: &Plugin) -> Result<(f64, String, Pos), SceneE
 
 /// An `hdrfilm`'s size and lumis' `camera.filter` for its `rfilter`: `box`, `gaussian` (also
 /// when there is none, Mitsuba's default) with Mitsuba's stddev (default 0.5) and its fixed
-/// radius 4·stddev, or `tent` with its radius (default 1). lumis samples the film like
+/// radius 4·stddev, `tent` with its radius (default 1), `lanczos` with its lobes (default 3),
+/// `mitchell` with its B and C (default ⅓ each) or `catmullrom`. lumis samples the film like
 /// Mitsuba's default `sample_border = false`.
 fn film_size(ctx: &mut Ctx, film: &Plugin) -> Result<(i64, i64, Value), SceneError> {
     if film.ty != "hdrfilm" {
@@ -346,17 +347,32 @@ fn film_size(ctx: &mut Ctx, film: &Plugin) -> Result<(i64, i64, Value), SceneErr
                     f.finish("radius")?;
                     json!({"type": "tent", "radius": radius})
                 }
+                "lanczos" => {
+                    let lobes = f.int("lobes", 3)?;
+                    let max = crate::camera::filter::MAX_FILTER_RADIUS as i64;
+                    if !(1..=max).contains(&lobes) {
+                        return Err(f.get("lobes").map_or_else(
+                            || f.error("lobes"),
+                            |p| p.error(format!("lobes {lobes} must be in [1, {max}]")),
+                        ));
+                    }
+                    f.finish("lobes")?;
+                    json!({"type": "lanczos", "lobes": lobes})
+                }
+                "mitchell" => {
+                    // Mitsuba's plugin reads `B` and `C` (its documentation says `A` and `B`).
+                    let (b, c) = (f.float("B", 1.0 / 3.0)?, f.float("C", 1.0 / 3.0)?);
+                    f.finish("B and C")?;
+                    json!({"type": "mitchell", "b": b, "c": c})
+                }
+                "catmullrom" => {
+                    f.finish("nothing")?;
+                    json!({"type": "catmullrom"})
+                }
                 other => {
-                    let why = match other {
-                        "lanczos" | "mitchell" | "catmullrom" => {
-                            " (its negative lobes need signed sample weights, which lumis' film \
-                             does not carry yet)"
-                        }
-                        _ => "",
-                    };
                     return Err(f.error(format!(
-                        "reconstruction filter `{other}` is not supported{why}: lumis has \
-                         `box`, `gaussian` and `tent`"
+                        "reconstruction filter `{other}` is not supported: lumis has `box`, \
+                         `gaussian`, `tent`, `lanczos`, `mitchell` and `catmullrom`"
                     )));
                 }
             };
