@@ -503,7 +503,10 @@ fn signed_filters_round_trip() {
     use lumis::scene::FilterDesc;
     for (filter, name) in [
         (FilterDesc::Lanczos { lobes: 4 }, "lanczos_filter"),
-        (FilterDesc::Mitchell { b: 0.25, c: 0.375 }, "mitchell_filter"),
+        (
+            FilterDesc::Mitchell { b: 0.25, c: 0.375 },
+            "mitchell_filter",
+        ),
         (FilterDesc::CatmullRom, "catmullrom_filter"),
     ] {
         let mut desc = kitchen_sink();

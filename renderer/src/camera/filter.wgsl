@@ -5,9 +5,10 @@
 // inside a bisection bracket: at most FILTER_MAX_STEPS, stopping at FILTER_TOLERANCE (the Rust
 // constants, through the prelude). Lanczos and Mitchell have negative lobes: they are integrated
 // piece by piece (8-point Gauss–Legendre, FILTER_GL_*) and their samples carry the weight
-// sign f · A / S per axis (the Rust module's docs say why). The render kernel reads the filter
-// from `Params` (`params_filter`; tags FILTER_*, written by the uniform's encoder,
-// gpu/scene/params.rs).
+// sign f · A / S per axis (the Rust module's docs say why); their code is only in programs for a
+// scene with such a filter (HAS_SIGNED_FILTER; without it their tags fail as unknown ones). The
+// render kernel reads the filter from `Params` (`params_filter`; tags FILTER_*, written by the
+// uniform's encoder, gpu/scene/params.rs).
 
 // `PixelFilter`: its tag (FILTER_*), the gaussian's σ, the radius in pixels (the box ignores it),
 // a Mitchell filter's B and C and its piece ends on [0, 2] (`breaks`, 8 in two vec4s).
@@ -33,12 +34,14 @@ fn filter_radius(f: PixelFilter) -> f32 {
         case FILTER_TENT: {
             return f.radius;
         }
+// #if HAS_SIGNED_FILTER
         case FILTER_LANCZOS: {
             return f.radius;
         }
         case FILTER_MITCHELL: {
             return f.radius;
         }
+// #endif
         default: {
             return unknown_tag();
         }
@@ -58,6 +61,7 @@ fn filter_eval(f: PixelFilter, x: f32) -> f32 {
         case FILTER_TENT: {
             return max(1.0 - abs(x) / f.radius, 0.0);
         }
+// #if HAS_SIGNED_FILTER
         case FILTER_LANCZOS: {
             let ax = abs(x);
             if ax < F32_EPSILON {
@@ -77,12 +81,14 @@ fn filter_eval(f: PixelFilter, x: f32) -> f32 {
             }
             return mitchell_cubic(f.b, f.c, ax);
         }
+// #endif
         default: {
             return unknown_tag();
         }
     }
 }
 
+// #if HAS_SIGNED_FILTER
 // Mitchell–Netravali's cubic at x in [0, 2), as Mitsuba's `mitchell.cpp` writes it
 // (`mitchell_cubic`).
 fn mitchell_cubic(b: f32, c: f32, x: f32) -> f32 {
@@ -97,6 +103,7 @@ fn mitchell_cubic(b: f32, c: f32, x: f32) -> f32 {
     }
     return v / 6.0;
 }
+// #endif
 
 // ∫_{−r}^{x} eval, for x in [−r, r] (`integral`; box, gaussian and tent only: a signed filter is
 // integrated by pieces, and its tag reaching here fails like an unknown one).
@@ -135,9 +142,11 @@ fn filter_clip(f: PixelFilter, lo: f32, hi: f32) -> vec2f {
 fn filter_cdf_1d(f: PixelFilter, x: f32, lo: f32, hi: f32) -> f32 {
     let c = filter_clip(f, lo, hi);
     let xc = clamp(x, c.x, c.y);
+// #if HAS_SIGNED_FILTER
     if filter_is_signed(f) {
         return clamp(filter_masses(f, c.x, xc).x / filter_masses(f, c.x, c.y).x, 0.0, 1.0);
     }
+// #endif
     let base = filter_integral(f, c.x);
     return clamp((filter_integral(f, xc) - base) / (filter_integral(f, c.y) - base), 0.0, 1.0);
 }
@@ -151,9 +160,11 @@ fn filter_sample_1d(f: PixelFilter, u: f32, lo_in: f32, hi_in: f32) -> vec2f {
     if f.tag == FILTER_BOX {
         return vec2f(clamp(lo + u * (hi - lo), lo, hi), 1.0);
     }
+// #if HAS_SIGNED_FILTER
     if filter_is_signed(f) {
         return filter_sample_signed(f, u, lo, hi);
     }
+// #endif
     let base = filter_integral(f, lo);
     let goal = u * (filter_integral(f, hi) - base);
     // Newton on F(x) = goal inside a bracket [a, b] that always holds the root; a step leaving the
@@ -182,6 +193,7 @@ fn filter_sample_1d(f: PixelFilter, u: f32, lo_in: f32, hi_in: f32) -> vec2f {
     return vec2f(clamp(x, lo, hi), 1.0);
 }
 
+// #if HAS_SIGNED_FILTER
 // Whether the filter has negative lobes (`is_signed`).
 fn filter_is_signed(f: PixelFilter) -> bool {
     return f.tag == FILTER_LANCZOS || f.tag == FILTER_MITCHELL;
@@ -308,6 +320,7 @@ fn filter_invert_piece(f: PixelFilter, s: f32, t: f32, lo: f32, hi: f32, start: 
     }
     return clamp(x, lo, hi);
 }
+// #endif
 
 // One axis of a film position: the pixel centre plus an offset on the film [0, n], and its weight.
 fn filter_film_axis(f: PixelFilter, u: f32, p: u32, n: u32) -> vec2f {
@@ -339,12 +352,14 @@ fn film_position(f: PixelFilter, u: vec2f, px: u32, py: u32, width: u32, height:
         case FILTER_TENT: {
             return filter_film_both(f, u, px, py, width, height);
         }
+// #if HAS_SIGNED_FILTER
         case FILTER_LANCZOS: {
             return filter_film_both(f, u, px, py, width, height);
         }
         case FILTER_MITCHELL: {
             return filter_film_both(f, u, px, py, width, height);
         }
+// #endif
         default: {
             return vec3f(unknown_tag());
         }

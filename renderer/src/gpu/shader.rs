@@ -177,6 +177,9 @@ pub struct Features {
     /// Mixes of materials, resolved at each hit (`materials/mix.wgsl`; a textured weight also sets
     /// [`Features::has_textures`]).
     pub has_mixes: bool,
+    /// A pixel filter with negative lobes (Lanczos, Mitchell): its piecewise sampling in
+    /// `camera/filter.wgsl`, which programs without one leave out.
+    pub has_signed_filter: bool,
 }
 
 impl Features {
@@ -211,6 +214,7 @@ impl Features {
             has_shading_normals: true,
             has_textures: true,
             has_mixes: true,
+            has_signed_filter: true,
         }
     }
 
@@ -228,6 +232,7 @@ impl Features {
             has_textures: scene.material_textures.iter().any(Option::is_some)
                 || !scene.emission_textures.is_empty(),
             has_mixes: scene.mixes.iter().any(Option::is_some),
+            has_signed_filter: scene.camera.filter.is_signed(),
             ..Features::default()
         };
         // A mix's textured weight is looked up like a material's texture.
@@ -307,7 +312,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 33] {
+    fn defines(&self) -> [(&'static str, bool); 34] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -358,6 +363,7 @@ impl Features {
             ("HAS_SHADING_NORMALS", self.has_shading_normals),
             ("HAS_TEXTURES", self.has_textures),
             ("HAS_MIXES", self.has_mixes),
+            ("HAS_SIGNED_FILTER", self.has_signed_filter),
             // The mutation points of `crate::mutants` (only with the `mutants` feature).
             ("MUTANTS", cfg!(feature = "mutants")),
         ]

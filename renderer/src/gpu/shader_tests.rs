@@ -176,6 +176,38 @@ mod tests {
             .join("\n")
     }
 
+    /// Only a scene with a filter with negative lobes carries their piecewise sampling (it made
+    /// every lavapipe compile slower when all programs had it).
+    #[test]
+    fn only_signed_filters_carry_their_sampling_code() {
+        let signed = Features {
+            has_signed_filter: true,
+            ..Features::default()
+        };
+        let names = [
+            "fn filter_sample_signed",
+            "fn filter_quadrature",
+            "FILTER_LANCZOS: {",
+        ];
+        let with = program_body(&signed);
+        for name in names {
+            assert!(
+                with.contains(name),
+                "a signed filter's program lacks {name:?}"
+            );
+        }
+        let without = program_body(&Features {
+            has_signed_filter: false,
+            ..Features::all()
+        });
+        for name in names {
+            assert!(
+                !without.contains(name),
+                "{name:?} in a program without a signed filter"
+            );
+        }
+    }
+
     #[test]
     fn scenes_without_glass_carry_no_transmission_code() {
         let glass = Features {
