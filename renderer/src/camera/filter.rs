@@ -337,29 +337,29 @@ impl PixelFilter {
     /// [`PixelFilter::sample_1d`] of a signed filter on `[lo, hi]` (already clipped): the piece
     /// holding `u`'s share of `∫|f|`, then Newton inside it.
     fn sample_signed(&self, u: f32, lo: f32, hi: f32) -> (f32, f32) {
-        let (total, signed) = self.masses(lo, hi);
-        let target = u * total;
-        let mut below = 0.0;
+        // Each piece's integral once (0 for an empty piece), summed as `masses` sums them.
         let pieces = 2 * self.half_pieces();
-        // The last non-empty piece takes what rounding leaves past the others.
-        let last = (0..pieces)
-            .rev()
-            .find(|&i| {
-                let (a, b) = self.piece(i, lo, hi);
-                a < b && self.quadrature(a, b) != 0.0
-            })
-            .unwrap_or(0);
-        for i in 0..pieces {
+        let mut parts = [0.0f32; 2 * MAX_FILTER_RADIUS as usize];
+        debug_assert!(pieces <= parts.len(), "more pieces than the parser allows");
+        let (mut total, mut signed) = (0.0, 0.0);
+        for (i, part) in parts.iter_mut().enumerate().take(pieces) {
             let (a, b) = self.piece(i, lo, hi);
-            let nonempty = a < b;
-            if !nonempty {
-                continue;
+            if a < b {
+                *part = self.quadrature(a, b);
+                total += part.abs();
+                signed += *part;
             }
-            let v = self.quadrature(a, b);
+        }
+        let target = u * total;
+        // The last non-empty piece takes what rounding leaves past the others.
+        let last = (0..pieces).rev().find(|&i| parts[i] != 0.0).unwrap_or(0);
+        let mut below = 0.0;
+        for (i, &v) in parts.iter().enumerate().take(pieces) {
             if v == 0.0 {
                 continue;
             }
             if below + v.abs() >= target || i == last {
+                let (a, b) = self.piece(i, lo, hi);
                 let s = v.signum();
                 let t = (target - below).clamp(0.0, v.abs());
                 let start = a + (t / v.abs()) * (b - a);
