@@ -320,36 +320,39 @@ impl PixelFilter {
         s * h
     }
 
-    /// `(∫|f|, ∫f)` over `[lo, hi]` (inside `[−r, r]`), piece by piece.
-    fn masses(&self, lo: f32, hi: f32) -> (f32, f32) {
-        let (mut total, mut signed) = (0.0, 0.0);
-        for i in 0..2 * self.half_pieces() {
-            let (a, b) = self.piece(i, lo, hi);
-            if a < b {
-                let v = self.quadrature(a, b);
-                total += v.abs();
-                signed += v;
-            }
-        }
-        (total, signed)
-    }
-
-    /// [`PixelFilter::sample_1d`] of a signed filter on `[lo, hi]` (already clipped): the piece
-    /// holding `u`'s share of `∫|f|`, then Newton inside it.
-    fn sample_signed(&self, u: f32, lo: f32, hi: f32) -> (f32, f32) {
-        // Each piece's integral once (0 for an empty piece), summed as `masses` sums them.
+    /// Each piece's `∫f` over its part of `[lo, hi]` (0 for an empty part), and how many pieces
+    /// there are.
+    fn piece_integrals(&self, lo: f32, hi: f32) -> ([f32; 2 * MAX_FILTER_RADIUS as usize], usize) {
         let pieces = 2 * self.half_pieces();
         let mut parts = [0.0f32; 2 * MAX_FILTER_RADIUS as usize];
         debug_assert!(pieces <= parts.len(), "more pieces than the parser allows");
-        let (mut total, mut signed) = (0.0, 0.0);
         for (i, part) in parts.iter_mut().enumerate().take(pieces) {
             let (a, b) = self.piece(i, lo, hi);
             if a < b {
                 *part = self.quadrature(a, b);
-                total += part.abs();
-                signed += *part;
             }
         }
+        (parts, pieces)
+    }
+
+    /// `(∫|f|, ∫f)` of the pieces' integrals, summed left to right.
+    fn sums(parts: &[f32]) -> (f32, f32) {
+        parts.iter().fold((0.0, 0.0), |(total, signed), &v| {
+            (total + v.abs(), signed + v)
+        })
+    }
+
+    /// `(∫|f|, ∫f)` over `[lo, hi]` (inside `[−r, r]`), piece by piece.
+    fn masses(&self, lo: f32, hi: f32) -> (f32, f32) {
+        let (parts, pieces) = self.piece_integrals(lo, hi);
+        Self::sums(&parts[..pieces])
+    }
+
+    /// [`PixelFilter::sample_1d`] of a signed filter on `[lo, hi]` (already clipped): the piece
+    /// holding `u`'s share of `∫|f|`, then Newton inside it. Each piece is integrated once.
+    fn sample_signed(&self, u: f32, lo: f32, hi: f32) -> (f32, f32) {
+        let (parts, pieces) = self.piece_integrals(lo, hi);
+        let (total, signed) = Self::sums(&parts[..pieces]);
         let target = u * total;
         // The last non-empty piece takes what rounding leaves past the others.
         let last = (0..pieces).rev().find(|&i| parts[i] != 0.0).unwrap_or(0);

@@ -375,21 +375,17 @@ fn chi2_p(
     chi2_sf(stat, (dof - 1) as f64)
 }
 
-/// The sampled film positions have the filter's density, inside the film and at its edges and
-/// corner (truncated and renormalised, as Mitsuba's `sample_border = false` film weights).
-/// Significance: family-wise α = 0.01 over the 12 cases (3 filters × 4 pixels), Šidák-corrected
-/// (≈ 8.4e-4 per case); 400,000 samples per case, seeds 1800 + case. Detects a wrong σ or floor,
-/// an untruncated or wrongly truncated edge, and CDF inversion errors above ~1% of a cell's mass.
-#[test]
-fn film_positions_pass_chi_square() {
-    let alpha = sidak(0.01, 12);
-    // Interior, left edge, one pixel in from the top, bottom-right corner of a 10 × 8 film.
+/// [`chi2_p`] of `n` positions for each of `filters` at four pixels of a 10 × 8 film (interior,
+/// left edge, one pixel in from the top, bottom-right corner), case `k` at seed `seed + k`, each
+/// held to the family-wise α = 0.01 over all cases (Šidák).
+fn assert_film_positions_pass(filters: &[PixelFilter], n: usize, seed: u32) {
     let pixels = [(5, 4), (0, 4), (5, 1), (9, 7)];
+    let alpha = sidak(0.01, filters.len() * pixels.len());
     let mut case = 0;
-    for f in &FILTERS {
+    for f in filters {
         for &(px, py) in &pixels {
             let draw = |u: Vec2| f.film_position(u, px, py, 10, 8);
-            let p = chi2_p(f, &draw, (px, py, 10, 8), 400_000, 1800 + case);
+            let p = chi2_p(f, &draw, (px, py, 10, 8), n, seed + case);
             assert!(
                 p >= alpha,
                 "{f:?} pixel ({px}, {py}): χ² p = {p:.3e} < {alpha:.2e}"
@@ -399,26 +395,23 @@ fn film_positions_pass_chi_square() {
     }
 }
 
+/// The sampled film positions have the filter's density, inside the film and at its edges and
+/// corner (truncated and renormalised, as Mitsuba's `sample_border = false` film weights).
+/// Significance: family-wise α = 0.01 over the 12 cases (3 filters × 4 pixels), Šidák-corrected
+/// (≈ 8.4e-4 per case); 400,000 samples per case, seeds 1800 + case. Detects a wrong σ or floor,
+/// an untruncated or wrongly truncated edge, and CDF inversion errors above ~1% of a cell's mass.
+#[test]
+fn film_positions_pass_chi_square() {
+    assert_film_positions_pass(&FILTERS, 400_000, 1800);
+}
+
 /// The tents' film positions have the tent's density, inside the film and at its edges and
 /// corner, as [`film_positions_pass_chi_square`] for the gaussians. Significance: family-wise
 /// α = 0.01 over the 12 cases (3 tents × 4 pixels), Šidák-corrected; 400,000 samples per case,
 /// seeds 2120 + case. Power: a tent 5% narrower is rejected (the control below).
 #[test]
 fn tent_film_positions_pass_chi_square() {
-    let alpha = sidak(0.01, 12);
-    let pixels = [(5, 4), (0, 4), (5, 1), (9, 7)];
-    let mut case = 0;
-    for f in &TENTS {
-        for &(px, py) in &pixels {
-            let draw = |u: Vec2| f.film_position(u, px, py, 10, 8);
-            let p = chi2_p(f, &draw, (px, py, 10, 8), 400_000, 2120 + case);
-            assert!(
-                p >= alpha,
-                "{f:?} pixel ({px}, {py}): χ² p = {p:.3e} < {alpha:.2e}"
-            );
-            case += 1;
-        }
-    }
+    assert_film_positions_pass(&TENTS, 400_000, 2120);
 }
 
 /// The signed filters' film positions have density ∝ |f| (their weights carry the sign), inside
@@ -428,21 +421,8 @@ fn tent_film_positions_pass_chi_square() {
 /// Power: the control below (Mitchell's positions tested as Catmull–Rom's) is rejected.
 #[test]
 fn signed_film_positions_pass_chi_square() {
-    let alpha = sidak(0.01, 12);
-    let pixels = [(5, 4), (0, 4), (5, 1), (9, 7)];
-    let filters = signed_filters();
-    let mut case = 0;
-    for f in [&filters[0], &filters[2], &filters[4]] {
-        for &(px, py) in &pixels {
-            let draw = |u: Vec2| f.film_position(u, px, py, 10, 8);
-            let p = chi2_p(f, &draw, (px, py, 10, 8), 200_000, 2424 + case);
-            assert!(
-                p >= alpha,
-                "{f:?} pixel ({px}, {py}): χ² p = {p:.3e} < {alpha:.2e}"
-            );
-            case += 1;
-        }
-    }
+    let f = signed_filters();
+    assert_film_positions_pass(&[f[0], f[2], f[4]], 200_000, 2424);
 }
 
 /// Control of the signed filters' χ²: positions drawn from the Mitchell (⅓, ⅓) filter are
