@@ -414,7 +414,7 @@ fn dragging_the_image_orbits_the_camera_and_it_can_be_saved_and_reset() {
     let mut h = Harness::builder()
         .with_size([1200.0, 1400.0])
         .build_ui_state(|ui, app: &mut ViewerApp| app.show(ui), app);
-    h.run_steps(2);
+    settle(&mut h);
     let home = h.state().desc.as_ref().unwrap().camera.clone();
     let rect = h.state().pane_rects[0];
     assert_restarts(&mut h, "orbit", |h| {
@@ -590,7 +590,7 @@ fn editing_a_textured_colour_replaces_the_texture_by_that_constant() {
         .with_size([1200.0, 1400.0])
         .allow_missing_glyphs()
         .build_ui_state(|ui, app: &mut ViewerApp| app.show(ui), app);
-    h.run_steps(2);
+    settle(&mut h);
     // |mean of the left quarter − mean of the right quarter| of the image.
     let contrast = |h: &Harness<'static, ViewerApp>| {
         let lane = &h.state().output().lanes[0];

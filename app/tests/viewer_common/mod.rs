@@ -42,7 +42,7 @@ pub fn harness_at(scene: PathBuf, size: u32, dir: PathBuf) -> Harness<'static, V
     let mut h = Harness::builder()
         .with_size([1200.0, 1400.0])
         .build_ui_state(|ui, app: &mut ViewerApp| app.show(ui), app);
-    h.run_steps(2);
+    settle(&mut h);
     h
 }
 
@@ -108,8 +108,20 @@ pub fn harness_with(options: ViewerOptions, size: [f32; 2]) -> Harness<'static, 
         |ui, app: &mut ViewerApp| app.show(ui),
         ViewerApp::new(options),
     );
-    h.run_steps(2);
+    settle(&mut h);
     h
+}
+
+/// Runs the first frames, then waits until the render thread has published its lanes and draws
+/// one more frame: the panes (and `pane_rects`) exist only once the lanes do, which on a slow
+/// machine is later than the first two frames.
+pub fn settle(h: &mut Harness<'static, ViewerApp>) {
+    h.run_steps(2);
+    if h.state().desc.is_some() {
+        h.state_mut()
+            .wait_for(WAIT, |o| !o.lanes.is_empty() || o.error.is_some());
+        h.run_steps(1);
+    }
 }
 
 /// Presses the mouse `button` at `from`, moves to `to` in `steps` and releases it.
