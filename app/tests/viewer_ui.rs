@@ -21,6 +21,10 @@ use std::sync::Arc;
 mod viewer_common;
 use viewer_common::*;
 
+fn material_in(desc: &lumis::scene::SceneDesc, name: &str) -> usize {
+    desc.materials.iter().position(|m| m.name == name).unwrap()
+}
+
 fn material(h: &Harness<'static, ViewerApp>, name: &str) -> usize {
     let desc = h.state().desc.as_ref().unwrap();
     desc.materials.iter().position(|m| m.name == name).unwrap()
@@ -147,6 +151,60 @@ fn material_sliders_edit_the_selected_material() {
         panic!("plastic_red is plastic")
     };
     assert_eq!(ior, 2.0);
+}
+
+/// A material's normal map switched off and on again, and its two switches: each restarts with
+/// the edited description, which the render thread builds (the built scene's map follows).
+#[test]
+fn normal_map_switches_edit_the_selected_material() {
+    let dir = scratch("normal_map");
+    let mut desc = lumis::scene::load_scene(&asset("seed_cornell.json")).unwrap();
+    let i = material_in(&desc, "ggx05");
+    let map = lumis::scene::desc::NormalMapDesc {
+        texture: lumis::scene::TextureDesc {
+            texture: lumis::textures::Texture::Constant(glam::Vec3::new(0.6, 0.45, 0.9)),
+        },
+        flip_invalid_normals: true,
+        shadowing: true,
+    };
+    desc.materials[i].normal_map = Some(map.clone());
+    let file = dir.join("normal_map.json");
+    std::fs::write(&file, desc.to_json().to_string()).unwrap();
+    let mut h = harness_at(file, 24, dir);
+    h.state_mut().selected_material = Some(i);
+    h.run_steps(2);
+    let built_map = |h: &mut Harness<'static, ViewerApp>, what: &str| {
+        wait_for_current_scene(h, what);
+        let scene = h.state().output().scene.clone().unwrap();
+        scene.normal_maps.get(i).cloned().flatten()
+    };
+    let toggle = |label: &'static str| {
+        move |h: &mut Harness<'static, ViewerApp>| {
+            h.get_by_role_and_label(Role::CheckBox, label).click()
+        }
+    };
+    assert_restarts(
+        &mut h,
+        "shadowing off",
+        toggle("Shadowing term (normal map)"),
+    );
+    let m = built_map(&mut h, "shadowing off").expect("the map stays");
+    assert!(!m.shadowing && m.flip_invalid_normals);
+    assert_restarts(&mut h, "flip off", toggle("Flip invalid normals"));
+    let m = built_map(&mut h, "flip off").expect("the map stays");
+    assert!(!m.shadowing && !m.flip_invalid_normals);
+    assert_restarts(&mut h, "map off", toggle("Normal map"));
+    assert_eq!(
+        h.state().desc.as_ref().unwrap().materials[i].normal_map,
+        None
+    );
+    assert!(built_map(&mut h, "map off").is_none());
+    assert_restarts(&mut h, "map on", toggle("Normal map"));
+    let back = h.state().desc.as_ref().unwrap().materials[i]
+        .normal_map
+        .clone();
+    assert_eq!(back.map(|m| m.texture), Some(map.texture));
+    assert!(built_map(&mut h, "map on").is_some());
 }
 
 #[test]

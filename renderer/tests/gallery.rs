@@ -14,7 +14,8 @@
 //! environment map (`emitter_projector_textured`, a BMP), Mitsuba's rough plastic with Beckmann
 //! microfacets on the material preview under the map (`bsdf_roughplastic_beckmann`), a gold
 //! conductor (`bsdf_conductor_gold`), the Cornell box of OBJ meshes with an area light and
-//! unlimited depth (`integrator_depth_inf`) and the thin-lens camera (`sensor_thinlens`).
+//! unlimited depth (`integrator_depth_inf`), the thin-lens camera (`sensor_thinlens`) and a
+//! normal map (`bsdf_normalmap_with`: a JPEG map on the preview's rough plastic, issue 40).
 //! `tools/corpus.py` compares the whole gallery offline (docs/mitsuba.md).
 //!
 //! **Test:** as `tools/corpus.py` (whose first version, like a first version of this file,
@@ -51,13 +52,14 @@ const RENDERS: u32 = 8;
 const SCALE: f64 = 0.125;
 
 /// The subset, in order (scene `k` of the seeds).
-const SCENES: [&str; 6] = [
+const SCENES: [&str; 7] = [
     "emitter_spot_texture",
     "emitter_projector_textured",
     "bsdf_roughplastic_beckmann",
     "bsdf_conductor_gold",
     "integrator_depth_inf",
     "sensor_thinlens",
+    "bsdf_normalmap_with",
 ];
 
 /// Every failure of scene `k` against its reference.
@@ -333,6 +335,20 @@ fn a_mirrored_spot_texture_is_detected() {
     assert!(!f.is_empty(), "the mirrored texture went undetected");
 }
 
+/// Power: the normal map without Mitsuba's shadowing term (Estevez et al.; it darkens light
+/// arriving at grazing angles to the unperturbed surface where the map tilts the normal), MIS
+/// (power), must fail both stages (stage 1's seeds are scene 6's first strategy's, 3050–3057).
+#[test]
+fn a_normal_map_without_its_shadowing_term_is_detected() {
+    let mis = [STRATEGIES[3]];
+    let f = check_with(6, &mis, " (no shadowing term)", |scene| {
+        for map in scene.normal_maps.iter_mut().flatten() {
+            map.shadowing = false;
+        }
+    });
+    assert!(!f.is_empty(), "the missing shadowing term went undetected");
+}
+
 /// The t distribution's tail against values known to 4 digits: t = 2.0 with 10 degrees of
 /// freedom has two-sided p = 0.07339, t = 4.0 with 5 has 0.01032; a huge dof is the normal's.
 #[test]
@@ -376,5 +392,11 @@ fn integrator_depth_inf_agrees_with_mitsuba() {
 #[test]
 fn sensor_thinlens_agrees_with_mitsuba() {
     let f = check(5);
+    assert!(f.is_empty(), "{}", f.join("\n"));
+}
+
+#[test]
+fn bsdf_normalmap_with_agrees_with_mitsuba() {
+    let f = check(6);
     assert!(f.is_empty(), "{}", f.join("\n"));
 }

@@ -405,7 +405,13 @@ fn kitchen_sink() -> SceneDesc {
         "varnish": {"type": "plastic", "model": "mitsuba", "distribution": "beckmann",
                     "nonlinear": true, "albedo": [0.6, 0.4, 0.2], "alpha": 0.15, "ior": 1.5},
         "frosted": {"type": "dielectric", "ior": 1.33,
-                    "alpha": {"type": "bitmap", "file": "textured_mesh_albedo.png"}}
+                    "alpha": {"type": "bitmap", "file": "textured_mesh_albedo.png"}},
+        "bumpy": {"type": "plastic", "albedo": [0.5, 0.3, 0.2], "alpha": 0.2, "ior": 1.5,
+                  "model": "mitsuba", "two_sided": false,
+                  "normal_map": {"texture": {"type": "bitmap", "file": "textured_mesh_albedo.png",
+                                 "raw": true, "uv_scale": [3, 2]}, "shadowing": false}},
+        "tilted": {"type": "diffuse", "albedo": [0.6, 0.6, 0.5], "two_sided": false,
+                   "normal_map": {"texture": [0.65, 0.4, 0.9], "flip_invalid_normals": false}}
       },
       "shapes": [
         {"type": "quad", "corner": [-3, 0, -3], "edge_u": [6, 0, 0], "edge_v": [0, 0, 6],
@@ -437,7 +443,10 @@ fn kitchen_sink() -> SceneDesc {
          "material": "checker"},
         {"type": "cylinder", "p0": [0.9, 0.3, -2.2], "p1": [1.9, 0.5, -2.0], "radius": 0.25,
          "u_axis": [0, 1, 0.2], "flip_normals": true, "material": "carbon"},
-        {"type": "sphere", "center": [2.6, 0.3, 2.4], "radius": 0.3, "material": "image"}
+        {"type": "sphere", "center": [2.6, 0.3, 2.4], "radius": 0.3, "material": "image"},
+        {"type": "sphere", "center": [-2.4, 0.35, 0.4], "radius": 0.35, "material": "bumpy"},
+        {"type": "quad", "corner": [2.2, 0, -3], "edge_u": [0.8, 0, 0], "edge_v": [0, 1, 0.1],
+         "material": "tilted"}
       ],
       "lights": [
         {"type": "point", "position": [1.5, 2.0, -1.0], "intensity": [2, 1.5, 1]},
@@ -658,6 +667,16 @@ fn what_mitsuba_cannot_take_is_an_error_naming_the_json_path() {
             ),
             "materials.s",
             "scale",
+        ),
+        (
+            base(
+                r#""n": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5],
+                         "normal_map": {"texture": [0.6, 0.5, 0.9]}}"#,
+                r#"{"type": "quad", "corner": [0, 0, 0], "edge_u": [1, 0, 0],
+                    "edge_v": [0, 1, 0], "material": "n"}"#,
+            ),
+            "materials.n.normal_map",
+            "two-sided",
         ),
     ];
     // A light's bitmap with a `scale`, which Mitsuba's bitmap does not have.

@@ -51,6 +51,9 @@ pub struct ViewerApp {
     pub home_camera: Option<CameraDesc>,
     /// Selected material (index into `desc.materials`).
     pub selected_material: Option<usize>,
+    /// Normal maps switched off in the material controls, by material index, kept to switch
+    /// them back on.
+    pub normal_maps_off: std::collections::HashMap<usize, lumis::scene::desc::NormalMapDesc>,
     /// Selected light and its editor state.
     pub light: Option<LightEdit>,
     /// Selected delta light (index into `desc.lights`) for the delta-light controls.
@@ -115,6 +118,7 @@ impl ViewerApp {
             desc_version: 0,
             home_camera: None,
             selected_material: None,
+            normal_maps_off: Default::default(),
             light: None,
             selected_delta_light: None,
             reference: None,
@@ -160,6 +164,7 @@ impl ViewerApp {
                 self.desc = Some(desc);
                 self.scene_path = Some(path.to_path_buf());
                 self.selected_material = None;
+                self.normal_maps_off.clear();
                 self.light = None;
                 self.selected_delta_light = None;
                 self.error = None;

@@ -199,6 +199,25 @@ impl ViewerApp {
                 });
             }
         }
+        // A normal map: on or off (kept aside while off), and Mitsuba's two switches.
+        let off = &mut self.normal_maps_off;
+        let mut on = named.normal_map.is_some();
+        if (on || off.contains_key(&i)) && ui.checkbox(&mut on, "Normal map").changed() {
+            if on {
+                named.normal_map = off.remove(&i);
+            } else if let Some(map) = named.normal_map.take() {
+                off.insert(i, map);
+            }
+            changed = true;
+        }
+        if let Some(map) = &mut named.normal_map {
+            changed |= ui
+                .checkbox(&mut map.shadowing, "Shadowing term (normal map)")
+                .changed();
+            changed |= ui
+                .checkbox(&mut map.flip_invalid_normals, "Flip invalid normals")
+                .changed();
+        }
         if changed {
             self.scene_changed();
         }

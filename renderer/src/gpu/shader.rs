@@ -95,6 +95,7 @@ const MODULES: &[Module] = &[
     module!("geometry/tangent.wgsl"),
     module!("textures/mod.wgsl"),
     module!("materials/mix.wgsl"),
+    module!("materials/normal_map.wgsl"),
     module!("geometry/bvh.wgsl"),
     module!("gpu/bvh2.wgsl"),
     module!("gpu/bindings.wgsl"),
@@ -180,6 +181,9 @@ pub struct Features {
     /// A pixel filter with negative lobes (Lanczos, Mitchell): its piecewise sampling in
     /// `camera/filter.wgsl`, which programs without one leave out.
     pub has_signed_filter: bool,
+    /// Normal maps (`materials/normal_map.wgsl`): texture lookups (as with
+    /// [`Features::has_textures`]) and frames along ∂p/∂u (`geometry/tangent.wgsl`).
+    pub has_normal_maps: bool,
 }
 
 impl Features {
@@ -215,6 +219,7 @@ impl Features {
             has_textures: true,
             has_mixes: true,
             has_signed_filter: true,
+            has_normal_maps: true,
         }
     }
 
@@ -233,6 +238,7 @@ impl Features {
                 || !scene.emission_textures.is_empty(),
             has_mixes: scene.mixes.iter().any(Option::is_some),
             has_signed_filter: scene.camera.filter.is_signed(),
+            has_normal_maps: !scene.normal_maps.is_empty(),
             ..Features::default()
         };
         // A mix's textured weight is looked up like a material's texture.
@@ -303,6 +309,11 @@ impl Features {
         f
     }
 
+    /// Texture lookups: textured parameters or emission, or normal maps.
+    fn textures(&self) -> bool {
+        self.has_textures || self.has_normal_maps
+    }
+
     /// Whether the scene has a delta light (point, spot, directional, projector).
     pub fn has_delta_light(&self) -> bool {
         self.has_point_light
@@ -312,7 +323,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 34] {
+    fn defines(&self) -> [(&'static str, bool); 35] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -346,7 +357,7 @@ impl Features {
             ("HAS_GGX", self.has_ggx),
             ("HAS_BECKMANN", self.has_ggx && self.has_beckmann),
             ("HAS_ANISOTROPIC", self.has_anisotropic),
-            ("HAS_MESH_UVS", self.has_textures || self.has_anisotropic),
+            ("HAS_MESH_UVS", self.textures() || self.has_anisotropic),
             ("HAS_CONDUCTOR", self.has_conductor),
             ("HAS_COMPLEX_FRESNEL", self.has_complex_fresnel),
             ("HAS_PLASTIC", self.has_plastic),
@@ -361,9 +372,10 @@ impl Features {
             ("HAS_SPHERE_SHAPE", self.has_sphere_shape),
             ("HAS_CYLINDER_SHAPE", self.has_cylinder_shape),
             ("HAS_SHADING_NORMALS", self.has_shading_normals),
-            ("HAS_TEXTURES", self.has_textures),
+            ("HAS_TEXTURES", self.textures()),
             ("HAS_MIXES", self.has_mixes),
             ("HAS_SIGNED_FILTER", self.has_signed_filter),
+            ("HAS_NORMAL_MAPS", self.has_normal_maps),
             // The mutation points of `crate::mutants` (only with the `mutants` feature).
             ("MUTANTS", cfg!(feature = "mutants")),
         ]
@@ -424,10 +436,10 @@ impl Features {
             "gpu/bvh2.wgsl" => self.use_bvh && self.bvh2,
             // Texture coordinates of mesh triangles too.
             "geometry/mesh_attributes.wgsl" => {
-                self.has_shading_normals || self.has_textures || self.has_anisotropic
+                self.has_shading_normals || self.textures() || self.has_anisotropic
             }
-            "geometry/tangent.wgsl" => self.has_anisotropic,
-            "textures/mod.wgsl" => self.has_textures,
+            "geometry/tangent.wgsl" => self.has_anisotropic || self.has_normal_maps,
+            "textures/mod.wgsl" => self.textures(),
             "materials/mix.wgsl" => self.has_mixes,
             _ => true,
         }

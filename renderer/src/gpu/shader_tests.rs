@@ -209,6 +209,33 @@ mod tests {
     }
 
     #[test]
+    fn only_normal_maps_carry_their_code() {
+        let names = [
+            "fn normal_map_perturb",
+            "fn perturbation_factor",
+            "vertex_perturbation = pert.p",
+        ];
+        let with = program_body(&Features {
+            has_normal_maps: true,
+            has_textures: true,
+            ..Features::default()
+        });
+        for name in names {
+            assert!(with.contains(name), "a normal map's program lacks {name:?}");
+        }
+        let without = program_body(&Features {
+            has_normal_maps: false,
+            ..Features::all()
+        });
+        for name in names {
+            assert!(
+                !without.contains(name),
+                "{name:?} in a program without normal maps"
+            );
+        }
+    }
+
+    #[test]
     fn scenes_without_glass_carry_no_transmission_code() {
         let glass = Features {
             has_dielectric: true,
@@ -601,8 +628,10 @@ mod texture_specialisation {
         for f in [
             plain,
             Features::default(),
+            // Normal maps look textures up too.
             Features {
                 has_textures: false,
+                has_normal_maps: false,
                 ..Features::all()
             },
         ] {

@@ -27,6 +27,7 @@ use crate::geometry::SurfaceHit;
 use crate::geometry::primitive::NONE;
 use crate::geometry::ray::{Ray, spawn_ray, spawn_ray_to};
 use crate::geometry::tangent;
+use crate::materials::normal_map::VertexBsdf;
 use crate::math::{Frame, max_component};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
@@ -273,11 +274,25 @@ fn trace<const TRANSMISSION: bool>(
         }
         // An anisotropic lobe's α_u runs along the surface's ∂p/∂u; any frame about the normal
         // serves the others.
-        let frame = if material.is_anisotropic() {
+        let mut frame = if material.is_anisotropic() {
             let dp_du = tangent::dp_du(prim, &scene.attributes, &hit);
             tangent::tangent_frame(ns, dp_du)
         } else {
             Frame::from_normal(ns)
+        };
+        // A normal map tilts the frame the material sees, about the frame of ∂p/∂u
+        // (`materials/normal_map.rs`).
+        let mut perturbation = None;
+        if let Some((map, texel)) = scene.normal_map_at(&hit, prim.material) {
+            let base = || tangent::tangent_frame(ns, tangent::dp_du(prim, &scene.attributes, &hit));
+            if let Some((f, p)) = map.perturb(texel, base, wo_world) {
+                frame = f;
+                perturbation = Some(p);
+            }
+        }
+        let bsdf = VertexBsdf {
+            material,
+            perturbation,
         };
         let wo = frame.to_local(wo_world);
         // A reflecting surface is seen from its front only; a dielectric from either side.
@@ -342,8 +357,8 @@ fn trace<const TRANSMISSION: bool>(
             let u_light = sampler.light_select_1d(bounce);
             let u = sampler.light_2d(bounce);
             let (c, outcome) = direct_light::<TRANSMISSION>(
-                scene, settings, &hit, n, &frame, wo, material, u_light, u, nee_weight, cv,
-                transmits, shading,
+                scene, settings, &hit, n, &frame, wo, &bsdf, u_light, u, nee_weight, cv, transmits,
+                shading,
             );
             add(&mut l, &mut split, Technique::Light, beta * c);
             if let (true, Some(opt)) = (cv, optimal.as_deref_mut()) {
@@ -358,11 +373,9 @@ fn trace<const TRANSMISSION: bool>(
         }
 
         // Continue the path by BSDF sampling.
-        let Some(bs) = material.sample_specialised::<TRANSMISSION>(
-            wo,
-            sampler.bsdf_lobe_1d(bounce),
-            sampler.bsdf_2d(bounce),
-        ) else {
+        let Some(bs) =
+            bsdf.sample::<TRANSMISSION>(wo, sampler.bsdf_lobe_1d(bounce), sampler.bsdf_2d(bounce))
+        else {
             if let (true, Some(opt)) = (cv, optimal.as_deref_mut()) {
                 let cv = beta * opt.pure_bsdf(Vec3::ZERO);
                 add(&mut l, &mut split, Technique::ControlVariate, cv);
@@ -402,8 +415,8 @@ fn trace<const TRANSMISSION: bool>(
             break;
         }
         prev_p = hit.p;
-        prev_ns = ns;
-        prev_light_ns = settings.light_sampling.receiver_normal(ns, transmits);
+        prev_ns = frame.n;
+        prev_light_ns = settings.light_sampling.receiver_normal(frame.n, transmits);
         ray = spawn_ray(hit.p, hit.p_error, n, wi);
         if beta == Vec3::ZERO {
             // Traced only for the pending control variate.
@@ -557,7 +570,7 @@ fn direct_light<const TRANSMISSION: bool>(
     n: Vec3,
     frame: &Frame,
     wo: Vec3,
-    material: &crate::materials::Material,
+    bsdf: &VertexBsdf,
     u_light: f32,
     u: glam::Vec2,
     weight: NeeWeight,
@@ -580,13 +593,13 @@ fn direct_light<const TRANSMISSION: bool>(
     if wi_invalid || (shading && !same_side(ls.wi, n, wi.z)) {
         return PURE;
     }
-    let f = material.eval_specialised::<TRANSMISSION>(wo, wi);
+    let f = bsdf.eval::<TRANSMISSION>(wo, wi);
     if scene.lights[index].is_delta() {
         let h = delta_light(scene, hit, n, &ls, f, pmf, weight);
         return (h, NeeOutcome::Delta { h });
     }
     let p_bsdf_cv = if cv {
-        material.pdf_specialised::<TRANSMISSION>(wo, wi)
+        bsdf.pdf::<TRANSMISSION>(wo, wi)
     } else {
         0.0
     };
@@ -595,7 +608,7 @@ fn direct_light<const TRANSMISSION: bool>(
     }
     if scene.accel.occluded(&shadow_ray(hit, n, &ls)) {
         if cv && crate::mutants::optimal_occluded_combined() {
-            let p_bsdf = material.pdf_specialised::<TRANSMISSION>(wo, wi);
+            let p_bsdf = bsdf.pdf::<TRANSMISSION>(wo, wi);
             if let Some((rl, rb)) = balance_ratios(pmf * ls.pdf, p_bsdf) {
                 return (Vec3::ZERO, NeeOutcome::Combined { rl, rb });
             }
@@ -606,13 +619,11 @@ fn direct_light<const TRANSMISSION: bool>(
     let weight = match weight {
         NeeWeight::Mixture(w) => {
             // One-sample estimator: divide by the mixture pdf (selection probability included).
-            let p_mix = w * p_light + (1.0 - w) * material.pdf_specialised::<TRANSMISSION>(wo, wi);
+            let p_mix = w * p_light + (1.0 - w) * bsdf.pdf::<TRANSMISSION>(wo, wi);
             return (f * ls.le / p_mix, NeeOutcome::Pure);
         }
         NeeWeight::Mis(heuristic) if cv => heuristic.weight(p_light, p_bsdf_cv),
-        NeeWeight::Mis(heuristic) => {
-            heuristic.weight(p_light, material.pdf_specialised::<TRANSMISSION>(wo, wi))
-        }
+        NeeWeight::Mis(heuristic) => heuristic.weight(p_light, bsdf.pdf::<TRANSMISSION>(wo, wi)),
         NeeWeight::One => 1.0,
     };
     let contribution = f * ls.le * (weight / p_light);

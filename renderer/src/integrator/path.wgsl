@@ -120,7 +120,7 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
         return nee_pure();
     }
 // #endif
-    let f = material_eval(m, wo, wi);
+    let f = vertex_eval(m, wo, wi);
 // #if HAS_DELTA_LIGHT
     if light_is_delta(light) {
         return delta_light(hit, n, ls, f, choice.pmf, mixture_w);
@@ -128,7 +128,7 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
 // #endif
     var p_bsdf_cv = 0.0;
     if cv {
-        p_bsdf_cv = material_pdf(m, wo, wi);
+        p_bsdf_cv = vertex_pdf(m, wo, wi);
     }
     if all(f == vec3f(0.0)) && p_bsdf_cv <= 0.0 {
         return nee_pure();
@@ -138,14 +138,14 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
     }
     let p_light = choice.pmf * ls.pdf;
     if mixture_w >= 0.0 {
-        let p_mix = mixture_w * p_light + (1.0 - mixture_w) * material_pdf(m, wo, wi);
+        let p_mix = mixture_w * p_light + (1.0 - mixture_w) * vertex_pdf(m, wo, wi);
         return NeeResult(f * ls.le / p_mix, false, 0.0, 0.0);
     }
     var weight = 1.0;
     if mis_h != NONE {
         var pb = p_bsdf_cv;
         if !cv {
-            pb = material_pdf(m, wo, wi);
+            pb = vertex_pdf(m, wo, wi);
         }
         weight = mis_weight(mis_h, p_light, pb);
     }
@@ -344,7 +344,8 @@ fn radiance(camera_ray: Ray) -> vec3f {
 // #else
         if dot(n, wo_world) < 0.0 {
 // #endif
-            if m.h.y == 0u {
+            // Bit 0 of h.y: two-sided (`materials/normal_map.wgsl` has the others).
+            if (m.h.y & 1u) == 0u {
                 break;
             }
             n = -n;
@@ -361,6 +362,21 @@ fn radiance(camera_ray: Ray) -> vec3f {
         // An anisotropic lobe's α_u runs along the surface's ∂p/∂u (`geometry/tangent.wgsl`).
         if material_anisotropic(m) {
             frame = tangent_frame(frame.n, surface_dp_du(prim, hit));
+        }
+// #endif
+// #if HAS_NORMAL_MAPS
+        // A normal map tilts the frame the material sees, about the frame of ∂p/∂u
+        // (`materials/normal_map.wgsl`).
+        vertex_perturbation = no_perturbation();
+        let nm = normal_map_texture(m);
+        if nm != 0u {
+            let texel = texture_eval(nm - 1u, surface_uv(prim, hit));
+            let base = tangent_frame(frame.n, surface_dp_du(prim, hit));
+            let pert = normal_map_perturb(m.h.y, texel, base, wo_world);
+            if pert.ok {
+                frame = pert.frame;
+                vertex_perturbation = pert.p;
+            }
         }
 // #endif
         let wo = to_local(frame, wo_world);
@@ -459,7 +475,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
 
         // Continue the path by BSDF sampling.
         let u_lobe = sampler_bsdf_lobe_1d(bounce);
-        let bs = material_sample(m, wo, u_lobe, sampler_bsdf_2d(bounce));
+        let bs = vertex_sample(m, wo, u_lobe, sampler_bsdf_2d(bounce));
         if !bs.ok {
             if cv {
                 l += beta * opt_pure_bsdf(vec3f(0.0));

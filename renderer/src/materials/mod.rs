@@ -23,6 +23,7 @@ pub mod fresnel;
 pub mod ggx;
 pub mod microfacet;
 pub mod mix;
+pub mod normal_map;
 pub mod plastic;
 pub mod plastic_mitsuba;
 pub mod plastic_textured;

@@ -23,6 +23,7 @@ use crate::lights::{
     LightSampler, PointLight, PolygonLight, ProjectorLight, QuadLight, SphereLight, SpotLight,
     TriangleLight,
 };
+use crate::materials::normal_map::NormalMap;
 use crate::materials::textured::MaterialTextures;
 use crate::materials::{
     Conductor, ConductorFresnel, Dielectric, Diffuse, Distribution, Material, Microfacet, Mix,
@@ -73,6 +74,9 @@ pub struct Scene {
     /// scene has no mix. A mix's entry in `materials` is the material its mean weight favours
     /// (for code that reads one BSDF); [`Scene::material_at`] resolves the mix per hit.
     pub mixes: Vec<Option<Mix>>,
+    /// Per material, its normal map (`None`: none), parallel to `materials`; empty when no
+    /// material has one ([`Scene::normal_map_at`]).
+    pub normal_maps: Vec<Option<NormalMap>>,
 }
 
 fn v(d: DVec3) -> Vec3 {
@@ -422,6 +426,16 @@ impl Scene {
         }
         material_textures.push(None);
         let mixes = mixes(desc)?;
+        let mut normal_maps: Vec<Option<NormalMap>> = desc
+            .materials
+            .iter()
+            .map(|m| m.normal_map.as_ref().map(|n| n.normal_map()))
+            .collect();
+        if normal_maps.iter().all(Option::is_none) {
+            normal_maps.clear();
+        } else {
+            normal_maps.push(None);
+        }
         let black = materials.len() as u32;
         materials.push(Material::Diffuse(Diffuse { albedo: Vec3::ZERO }));
         two_sided.push(true);
@@ -743,6 +757,7 @@ impl Scene {
             material_textures,
             emission_textures,
             mixes,
+            normal_maps,
         })
     }
 

@@ -236,11 +236,35 @@ pub struct NamedMaterial {
     pub two_sided: bool,
     /// The parameters given as textures; an untextured material has none.
     pub textures: MaterialTextures,
+    /// Its normal map (`"normal_map"`; never on a mix).
+    pub normal_map: Option<NormalMapDesc>,
     /// `Some` for a mix of two other materials (`{"type": "mix"}`). `material` then holds the
     /// description of the material its mean weight favours (through nested mixes: the second
     /// at a weight ≥ ½), as a texture's mean stands in for it, for code that reads one BSDF;
     /// `textures` is empty and `two_sided` is its materials' (which agree).
     pub mix: Option<MixDesc>,
+}
+
+/// A material's normal map (Mitsuba's `normalmap`, [`crate::materials::normal_map`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NormalMapDesc {
+    /// The encoded normals `(n + 1)/2`, every channel in [0, 1].
+    pub texture: TextureDesc,
+    /// Mitsuba's `flip_invalid_normals` (default true).
+    pub flip_invalid_normals: bool,
+    /// Mitsuba's `use_shadowing_function` (default true).
+    pub shadowing: bool,
+}
+
+impl NormalMapDesc {
+    /// The renderer's normal map.
+    pub fn normal_map(&self) -> crate::materials::normal_map::NormalMap {
+        crate::materials::normal_map::NormalMap {
+            texture: self.texture.texture.clone(),
+            flip_invalid_normals: self.flip_invalid_normals,
+            shadowing: self.shadowing,
+        }
+    }
 }
 
 /// A mix of two materials (pbrt-v4's `MixMaterial`): each shading point sees one of them, the
@@ -865,6 +889,13 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
     }
     if !m.two_sided && !matches!(m.material, MaterialDesc::Dielectric { .. }) {
         obj["two_sided"] = json!(false);
+    }
+    if let Some(map) = &m.normal_map {
+        obj["normal_map"] = json!({
+            "texture": map.texture.to_json(),
+            "flip_invalid_normals": map.flip_invalid_normals,
+            "shadowing": map.shadowing,
+        });
     }
     obj
 }

@@ -2,7 +2,8 @@
 
 use super::desc::Distribution;
 use super::desc::{
-    FresnelDesc, MaterialDesc, MaterialTextures, MixDesc, NamedMaterial, PlasticModel, TextureDesc,
+    FresnelDesc, MaterialDesc, MaterialTextures, MixDesc, NamedMaterial, NormalMapDesc,
+    PlasticModel, TextureDesc,
 };
 use super::error::SceneError;
 use super::parse_texture::{TextureLoader, TextureUse, parse_texture, texture_at};
@@ -50,7 +51,7 @@ fn parse_material(
     let mut mix = None;
     let material = match kind {
         "diffuse" => {
-            obj.only_keys(&["type", "albedo", "two_sided"], true)?;
+            obj.only_keys(&["type", "albedo", "two_sided", "normal_map"], true)?;
             MaterialDesc::Diffuse {
                 albedo: albedo(obj, loader, &mut t.albedo)?,
             }
@@ -66,6 +67,7 @@ fn parse_material(
                     "reflectance",
                     "specular",
                     "two_sided",
+                    "normal_map",
                 ],
                 true,
             )?;
@@ -89,6 +91,7 @@ fn parse_material(
                     "model",
                     "distribution",
                     "nonlinear",
+                    "normal_map",
                 ],
                 true,
             )?;
@@ -122,7 +125,10 @@ fn parse_material(
                 let msg = "a dielectric is never two-sided: its two sides are its two media";
                 return Err(SceneError::new(obj.at("two_sided"), msg));
             }
-            obj.only_keys(&["type", "ior", "alpha", "distribution"], true)?;
+            obj.only_keys(
+                &["type", "ior", "alpha", "distribution", "normal_map"],
+                true,
+            )?;
             let ior = obj.opt_number("ior")?.unwrap_or(1.5);
             let max = crate::materials::dielectric::MAX_IOR as f64;
             if !(ior > 0.0 && ior != 1.0 && ior <= max) {
@@ -168,6 +174,7 @@ fn parse_material(
         material,
         two_sided,
         textures,
+        normal_map: normal_map(obj, loader)?,
         mix: None,
     };
     Ok((named, mix))
@@ -312,6 +319,34 @@ fn resolve_mixes(
 }
 
 /// The JSON path of a mix's `materials`.
+/// The optional `normal_map`: `{"texture": T, "flip_invalid_normals": b, "shadowing": b}`, T a
+/// texture object or a colour, every channel in [0, 1]; the flags default to Mitsuba's (true).
+fn normal_map(obj: &Obj, loader: &mut TextureLoader) -> Result<Option<NormalMapDesc>, SceneError> {
+    if obj.get("normal_map").is_none() {
+        return Ok(None);
+    }
+    let m = Obj::new(obj.get("normal_map").unwrap(), obj.at("normal_map"))?;
+    m.only_keys(&["texture", "flip_invalid_normals", "shadowing"], true)?;
+    let texture = match texture_at(&m, "texture", TextureUse::NormalMap, loader)? {
+        Some(t) => t,
+        None => {
+            let c = unit_color(&m, "texture")?;
+            if c == DVec3::splat(0.5) {
+                let msg = "(0.5, 0.5, 0.5) encodes the normal 2c − 1 = 0, which has no direction";
+                return Err(SceneError::new(m.at("texture"), msg));
+            }
+            TextureDesc {
+                texture: Texture::Constant(c.as_vec3()),
+            }
+        }
+    };
+    Ok(Some(NormalMapDesc {
+        texture,
+        flip_invalid_normals: m.opt_bool("flip_invalid_normals")?.unwrap_or(true),
+        shadowing: m.opt_bool("shadowing")?.unwrap_or(true),
+    }))
+}
+
 fn join_materials(obj: &Obj, name: &str) -> String {
     super::walk::join(&obj.at(name), "materials")
 }

@@ -34,6 +34,8 @@ pub(crate) enum TextureUse {
     Weight,
     /// Emitted radiance: RGB ≥ 0, at most [`MAX_RADIANCE`].
     Emission,
+    /// A normal map's encoded normals `(n + 1)/2`: RGB in [0, 1].
+    NormalMap,
 }
 
 impl TextureUse {
@@ -56,6 +58,8 @@ impl TextureUse {
             }
             TextureUse::Weight => (!(0.0..=1.0).contains(&x))
                 .then_some("is outside [0, 1]: a mix weight must lie in [0, 1]"),
+            TextureUse::NormalMap => (!(0.0..=1.0).contains(&x))
+                .then_some("is outside [0, 1]: a normal map encodes (n + 1)/2 in [0, 1]"),
             TextureUse::Emission => {
                 if x < 0.0 {
                     Some("is negative: radiance must be ≥ 0")
@@ -260,6 +264,14 @@ fn bitmap(
         channel,
     };
     check_texels(&image, &options, use_, &file, &file_path)?;
+    if use_ == TextureUse::NormalMap && image.data.iter().all(|t| t.x == t.y && t.y == t.z) {
+        let msg = format!(
+            "{}: a normal map must be RGB (x, y, z); this one is grey (R = G = B in every \
+             texel), which encodes no normal map",
+            file.display()
+        );
+        return Err(SceneError::new(file_path, msg));
+    }
     Ok(BitmapTexture::new(image, options).with_source(file, raw))
 }
 

@@ -14,6 +14,7 @@ use crate::geometry::sphere::Sphere;
 use crate::geometry::{Shape, SurfaceHit};
 use crate::lights::{Light, LightSample, LightSampling};
 use crate::materials::Material;
+use crate::materials::normal_map::NormalMap;
 use crate::math::atan2;
 use glam::{Vec2, Vec3};
 use std::borrow::Cow;
@@ -158,6 +159,17 @@ impl Scene {
             None => Cow::Borrowed(base),
             Some(t) => Cow::Owned(t.at(base, self.uv(hit))),
         }
+    }
+
+    /// The normal map of the material that `material` (a mix resolved) is at `hit`, and its
+    /// texel there; `None` without one (at once in a scene without normal maps).
+    #[inline]
+    pub fn normal_map_at(&self, hit: &SurfaceHit, material: u32) -> Option<(&NormalMap, Vec3)> {
+        if self.normal_maps.is_empty() {
+            return None;
+        }
+        let map = self.normal_maps[self.resolve_mix(hit, material) as usize].as_ref()?;
+        Some((map, map.texture.eval(self.uv(hit))))
     }
 
     /// The material a mix chooses at `hit`, through nested mixes (`material` itself when it is

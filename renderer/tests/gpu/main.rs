@@ -17,6 +17,7 @@ mod hide_emitters;
 mod images;
 mod mitsuba_refs;
 mod mix;
+mod normal_map;
 mod parity;
 mod parity_dielectric;
 mod parity_envmap;

@@ -107,11 +107,60 @@ fn json_validation_errors_name_the_xml() {
     );
 }
 
+/// Mitsuba's `normalmap` becomes its material's `normal_map`: the nested BSDF as it maps alone,
+/// the texture with its options, the two flags (defaults true); a constant `rgb` too.
+#[test]
+fn a_normalmap_maps_onto_the_materials_normal_map() {
+    let dir = Dir::new("normalmap");
+    let img = lumis::image_io::Image {
+        width: 2,
+        height: 2,
+        data: vec![glam::Vec3::new(0.6, 0.4, 0.9); 4],
+    };
+    img.write(&dir.0.join("n.png"), 0.0).unwrap();
+    let plastic =
+        r#"<bsdf type="roughplastic"><rgb name="diffuse_reflectance" value="0.3 0.2 0.1"/></bsdf>"#;
+    let body = format!(
+        r#"<shape type="rectangle"><bsdf type="normalmap" id="bumpy">
+    <texture name="normalmap" type="bitmap"><string name="filename" value="n.png"/>
+        <boolean name="raw" value="true"/></texture>
+    <boolean name="use_shadowing_function" value="false"/>{plastic}</bsdf></shape>
+<shape type="rectangle"><bsdf type="normalmap" id="flat"><rgb name="normalmap" value="0.5 0.6 1"/>
+    <boolean name="flip_invalid_normals" value="false"/><bsdf type="diffuse"/></bsdf></shape>"#
+    );
+    let m = ok(&dir, &body).desc;
+    let alone = ok(
+        &dir,
+        &format!(
+            r#"<shape type="rectangle">{}</shape>"#,
+            plastic.replace("<bsdf ", r#"<bsdf id="bumpy" "#)
+        ),
+    )
+    .desc;
+    let get =
+        |d: &SceneDesc, name: &str| d.materials.iter().find(|m| m.name == name).unwrap().clone();
+    let (bumpy, flat) = (get(&m, "bumpy"), get(&m, "flat"));
+    assert_eq!(bumpy.material, get(&alone, "bumpy").material);
+    assert!(!bumpy.two_sided);
+    let map = bumpy.normal_map.expect("bumpy has a normal map");
+    assert!(map.flip_invalid_normals && !map.shadowing);
+    let lumis::textures::Texture::Bitmap(b) = &map.texture.texture else {
+        panic!("{:?}", map.texture)
+    };
+    assert!(b.raw && b.file.ends_with("n.png"));
+    let map = flat.normal_map.expect("flat has a normal map");
+    assert!(!map.flip_invalid_normals && map.shadowing);
+    assert_eq!(
+        map.texture.texture,
+        lumis::textures::Texture::Constant(glam::Vec3::new(0.5, 0.6, 1.0))
+    );
+}
+
 /// Every unsupported feature is refused with its file, line and element path.
 #[test]
 fn refusals_name_file_line_and_element() {
     let dir = Dir::new("refusals");
-    let cases: [(&str, &str, &str, &str); 23] = [
+    let cases: [(&str, &str, &str, &str); 28] = [
         (
             r#"<emitter type="sunsky"/>"#,
             "sunsky",
@@ -134,13 +183,43 @@ fn refusals_name_file_line_and_element() {
             r#"<shape type="sphere"><bsdf type="bumpmap"/></shape>"#,
             "bumpmap",
             "scene/shape/bsdf",
-            "no bump or normal mapping",
+            "no bump mapping",
         ),
         (
             r#"<shape type="sphere"><bsdf type="normalmap"/></shape>"#,
             "normalmap",
             "scene/shape/bsdf",
-            "BSDF type `normalmap`",
+            "a normalmap needs a nested <bsdf>",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="normalmap"><bsdf type="diffuse"/></bsdf></shape>"#,
+            "normalmap",
+            "scene/shape/bsdf",
+            "a normalmap needs its `normalmap` texture",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="normalmap"><rgb name="normalmap" value="0.5 0.5 1"/><bsdf type="null"/></bsdf></shape>"#,
+            "normalmap",
+            "scene/shape/bsdf",
+            "nothing to shade",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="twosided"><bsdf type="normalmap"><rgb name="normalmap" value="0.5 0.5 1"/><bsdf type="diffuse"/></bsdf></bsdf></shape>"#,
+            "\"normalmap\"",
+            "scene/shape/bsdf/bsdf",
+            "a normalmap with a twosided BSDF is not supported",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="normalmap"><rgb name="normalmap" value="0.5 0.5 1"/><bsdf type="normalmap"><rgb name="normalmap" value="0.5 0.5 1"/><bsdf type="diffuse"/></bsdf></bsdf></shape>"#,
+            "<bsdf type=\"normalmap\"><rgb name=\"normalmap\" value=\"0.5 0.5 1\"/><bsdf type=\"diffuse",
+            "scene/shape/bsdf/bsdf",
+            "one normalmap, around its BSDF or its twosided",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="normalmap"><rgb name="normalmap" value="0.5 0.5 1"/><float name="strength" value="2"/><bsdf type="diffuse"/></bsdf></shape>"#,
+            "strength",
+            "scene/shape/bsdf/float",
+            "property `strength` (a float) is not supported in <bsdf type=\"normalmap\">",
         ),
         (
             r#"<shape type="sphere"><bsdf type="blendbsdf"/></shape>"#,

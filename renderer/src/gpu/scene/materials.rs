@@ -14,13 +14,15 @@
 //! record's `h.z`, the rough transmittance table ([`TRANSMITTANCE_SIZE`] entries, zeros for a
 //! smooth coat), then R, w and nonlinear (0 or 1); its record holds the albedo in `a`, the tint
 //! and η in `b`, the microfacet slot in `c`.
-//! WGSL twin: `materials/mod.wgsl` (the record layout and the `switch` on [`MaterialTag`]) and
-//! `materials/mix.wgsl` (a mix's record).
+//! WGSL twin: `materials/mod.wgsl` (the record layout and the `switch` on [`MaterialTag`]),
+//! `materials/mix.wgsl` (a mix's record) and `materials/normal_map.wgsl` (the normal map's bits
+//! of `h.y`, [`sides_word`]).
 
 use super::{bits, v4};
 use crate::geometry::primitive::NONE;
 use crate::gpu::prelude::gpu_tags;
 use crate::materials::coat_albedo::E_TABLE_SIZE;
+use crate::materials::normal_map::NormalMap;
 #[cfg(doc)]
 use crate::materials::plastic_mitsuba::TRANSMITTANCE_SIZE;
 use crate::materials::plastic_textured::{CoatGrid, GRID_SIZE};
@@ -143,6 +145,19 @@ pub(crate) fn push_grid(grid: &CoatGrid, tables: &mut Vec<f32>) -> u32 {
     offset
 }
 
+/// The bits a material's normal map adds to its record's `h.y` (bit 0: two-sided): bit 1 its
+/// `flip_invalid_normals`, bit 2 its shadowing term, bits 3… its texture's id + 1 (0: no map).
+fn sides_word(texture: u32, map: Option<&Option<NormalMap>>) -> u32 {
+    match map {
+        Some(Some(map)) => {
+            (map.flip_invalid_normals as u32) << 1
+                | (map.shadowing as u32) << 2
+                | (texture + 1) << 3
+        }
+        _ => 0,
+    }
+}
+
 /// The records of `scene`'s materials; a plastic's coat table (its coat grid, with a textured
 /// α) is appended to `tables` and its record holds the offset; `slots` are each material's
 /// texture ids and `mix_weights` each mix's weight texture id ([`super::textures`]).
@@ -151,6 +166,7 @@ pub(super) fn encode(
     tables: &mut Vec<f32>,
     slots: &[[u32; 3]],
     mix_weights: &[u32],
+    normal_maps: &[u32],
 ) -> Vec<GpuMaterial> {
     scene
         .materials
@@ -262,6 +278,7 @@ pub(super) fn encode(
             };
             r.a[3] = bits(colour);
             r.c[3] = bits(roughness_slot(alpha, alpha_v));
+            r.h[1] |= sides_word(normal_maps[index], scene.normal_maps.get(index));
             r
         })
         .collect()

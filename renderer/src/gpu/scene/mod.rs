@@ -105,6 +105,7 @@ impl Records {
             &mut tables,
             &scene_textures.slots,
             &scene_textures.mix_weights,
+            &scene_textures.normal_maps,
         );
         let lights = lights::encode(
             scene,

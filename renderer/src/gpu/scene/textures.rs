@@ -227,6 +227,9 @@ pub(crate) struct SceneTextures {
     /// Per material: the id of its weight's texture if it is a mix with a textured weight, else
     /// `NONE` (`materials/mix.wgsl`).
     pub(crate) mix_weights: Vec<u32>,
+    /// Per material: the id of its normal map's texture, else `NONE`
+    /// (`materials/normal_map.wgsl`).
+    pub(crate) normal_maps: Vec<u32>,
     /// Per emission texture ([`Scene::emission_textures`]): its id, after the materials'.
     pub(crate) emission: Vec<u32>,
     /// Per record: `material "wood" albedo`, for errors.
@@ -272,6 +275,7 @@ pub(crate) fn encode(scene: &Scene) -> SceneTextures {
         records: Vec::new(),
         slots: Vec::with_capacity(scene.materials.len()),
         mix_weights: vec![none; scene.materials.len()],
+        normal_maps: vec![none; scene.materials.len()],
         emission: Vec::with_capacity(scene.emission_textures.len()),
         names: Vec::new(),
         texels: TextureTexels {
@@ -316,6 +320,14 @@ pub(crate) fn encode(scene: &Scene) -> SceneTextures {
         out.mix_weights[i] = (out.records.len() as u32) / RECORD_VEC4S;
         out.records
             .extend(record(&mix.weight, &what, &mut out.texels, &mut stored));
+        out.names.push(what);
+    }
+    for (i, map) in scene.normal_maps.iter().enumerate() {
+        let Some(map) = map else { continue };
+        let what = format!("material \"{}\" normal_map", scene.material_names[i]);
+        out.normal_maps[i] = (out.records.len() as u32) / RECORD_VEC4S;
+        out.records
+            .extend(record(&map.texture, &what, &mut out.texels, &mut stored));
         out.names.push(what);
     }
     out

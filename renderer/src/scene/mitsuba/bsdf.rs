@@ -22,7 +22,7 @@ use serde_json::{Value as Json, json};
 
 /// The BSDF types lumis maps, for messages.
 const SUPPORTED: &str = "diffuse, conductor, roughconductor, plastic, roughplastic, dielectric, \
-                         roughdielectric, twosided, null";
+                         roughdielectric, twosided, normalmap, null";
 
 /// The scene format's material for BSDF element `el` (translated once, then named again),
 /// or `None` for a `null` BSDF.
@@ -30,30 +30,50 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
     if let Some(name) = ctx.material_names.get(&(el as *const Element)) {
         return Ok(name.clone());
     }
-    let plugin = ctx.plugin(el)?;
-    let (inner, two_sided) = if plugin.ty == "twosided" {
-        let nested = plugin.objects("bsdf");
-        let first = match nested.as_slice() {
-            [] => return Err(plugin.error("a twosided BSDF needs a nested <bsdf>")),
-            [one] => one,
-            [a, b] if std::ptr::eq(target(a), target(b)) => a,
-            [_, b, ..] => {
-                return Err(b.el.pos.error(
-                    "a twosided BSDF with different front and back BSDFs is not supported \
-                     (lumis' two-sided materials are the same on both sides)",
-                ));
+    // The wrappers, outermost first: `twosided` and `normalmap`, each at most once, in either
+    // order.
+    let mut inner = el;
+    let mut inner_plugin = ctx.plugin(el)?;
+    let mut two_sided = false;
+    let mut normal_map = None;
+    loop {
+        inner = match inner_plugin.ty {
+            "twosided" if !two_sided => {
+                two_sided = true;
+                let nested = inner_plugin.objects("bsdf");
+                let first = match nested.as_slice() {
+                    [] => return Err(inner_plugin.error("a twosided BSDF needs a nested <bsdf>")),
+                    [one] => *one,
+                    [a, b] if std::ptr::eq(target(a), target(b)) => *a,
+                    [_, b, ..] => {
+                        return Err(b.el.pos.error(
+                            "a twosided BSDF with different front and back BSDFs is not \
+                             supported (lumis' two-sided materials are the same on both sides)",
+                        ));
+                    }
+                };
+                inner_plugin.finish("one or two (identical) nested <bsdf>")?;
+                target(first)
             }
+            "normalmap" if normal_map.is_none() => {
+                let nested = match inner_plugin.object("bsdf")? {
+                    Some(b) => target(b),
+                    None => return Err(inner_plugin.error("a normalmap needs a nested <bsdf>")),
+                };
+                normal_map = Some(inner_plugin);
+                nested
+            }
+            _ => break,
         };
-        plugin.finish("one or two (identical) nested <bsdf>")?;
-        (target(first), true)
-    } else {
-        (el, false)
-    };
-    let inner_plugin = if two_sided {
-        ctx.plugin(inner)?
-    } else {
-        plugin
-    };
+        inner_plugin = ctx.plugin(inner)?;
+    }
+    if let (Some(map), true) = (&normal_map, two_sided) {
+        return Err(map.error(
+            "a normalmap with a twosided BSDF is not supported: lumis reads the map in the \
+             flipped frame on the back side, which Mitsuba's nesting of the two is not known to \
+             match (one-sided normal maps are)",
+        ));
+    }
     if two_sided
         && matches!(
             inner_plugin.ty,
@@ -66,6 +86,9 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
         )));
     }
     if inner_plugin.ty == "null" {
+        if let Some(map) = &normal_map {
+            return Err(map.error("a normalmap around a null BSDF has nothing to shade"));
+        }
         inner_plugin.finish("nothing")?;
         ctx.material_names.insert(el as *const Element, None);
         return Ok(None);
@@ -78,10 +101,37 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
     if !matches!(inner_plugin.ty, "dielectric" | "roughdielectric") {
         m["two_sided"] = json!(two_sided);
     }
+    if let Some(map) = &normal_map {
+        m["normal_map"] = normal_map_json(ctx, map, &format!("{path}.normal_map"))?;
+    }
     ctx.materials.insert(name.clone(), m);
     ctx.material_names
         .insert(el as *const Element, Some(name.clone()));
     Ok(Some(name))
+}
+
+/// A `normalmap`'s parameters as the material's `normal_map` object (its nested BSDF is read
+/// by the caller).
+fn normal_map_json(
+    ctx: &mut Ctx,
+    map: &super::plugin::Plugin,
+    path: &str,
+) -> Result<Json, SceneError> {
+    if !map.has("normalmap") {
+        return Err(map.error("a normalmap needs its `normalmap` texture"));
+    }
+    let texture = color_param(
+        ctx,
+        map,
+        "normalmap",
+        0.5,
+        Slot::Reflectance,
+        &format!("{path}.texture"),
+    )?;
+    let flip = map.bool("flip_invalid_normals", true)?;
+    let shadowing = map.bool("use_shadowing_function", true)?;
+    map.finish("normalmap, flip_invalid_normals, use_shadowing_function, one nested <bsdf>")?;
+    Ok(json!({"texture": texture, "flip_invalid_normals": flip, "shadowing": shadowing}))
 }
 
 /// One non-wrapper BSDF as a material object.
@@ -178,7 +228,10 @@ fn bsdf(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, Sc
         other => {
             let why = match other {
                 "thindielectric" => " (lumis' dielectric is a boundary between two media)",
-                "bumpmap" | "normalmap" => " (lumis has no bump or normal mapping)",
+                "bumpmap" => " (lumis has no bump mapping)",
+                "normalmap" => {
+                    " here (a material has one normalmap, around its BSDF or its twosided)"
+                }
                 "blendbsdf" | "mask" => " (lumis has no BSDF mixtures or opacity masks)",
                 _ => "",
             };

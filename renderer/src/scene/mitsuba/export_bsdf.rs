@@ -1,6 +1,7 @@
 //! Export of materials and textures: each material a shape uses becomes one `<bsdf>` declared
 //! with the material's name as its `id` (the importer names a material by its id), wrapped in
-//! `twosided` (id on the wrapper) unless it is one-sided or a dielectric; the inverse of
+//! `twosided` (id on the wrapper) unless it is one-sided or a dielectric, and in `normalmap`
+//! (outermost, with the id) where it has a normal map; the inverse of
 //! [`super::bsdf`] and [`super::texture`]: lumis' `ior` becomes `int_ior` with `ext_ior` 1,
 //! a reflectance conductor Mitsuba's `material="none"` (Fresnel 1) times
 //! `specular_reflectance`, α > 0 or a textured α the rough variant with `distribution="ggx"`,
@@ -75,11 +76,48 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
     let dielectric = matches!(m.material, MaterialDesc::Dielectric { .. });
     let wrap = m.two_sided && !dielectric;
     let ty = bsdf_type(m);
+    // The wrappers, outermost first, the id on the first.
+    let mut wrappers = 0;
+    if let Some(map) = &m.normal_map {
+        if wrap {
+            return Err(SceneError::new(
+                format!("{path}.normal_map"),
+                "a normal map on a two-sided material cannot be exported: lumis reads the map \
+                 in the flipped frame on the back side, which neither of Mitsuba's nestings of \
+                 normalmap and twosided is known to match",
+            ));
+        }
+        x.open("bsdf", &[("type", "normalmap"), ("id", &m.name)]);
+        texture_xml(
+            x,
+            "normalmap",
+            &map.texture,
+            false,
+            folder,
+            &format!("{path}.normal_map.texture"),
+        )?;
+        for (name, value) in [
+            ("flip_invalid_normals", map.flip_invalid_normals),
+            ("use_shadowing_function", map.shadowing),
+        ] {
+            if !value {
+                x.leaf("boolean", &[("name", name), ("value", "false")]);
+            }
+        }
+        wrappers += 1;
+    }
     if wrap {
-        x.open("bsdf", &[("type", "twosided"), ("id", &m.name)]);
-        x.open("bsdf", &[("type", ty)]);
-    } else {
+        if wrappers == 0 {
+            x.open("bsdf", &[("type", "twosided"), ("id", &m.name)]);
+        } else {
+            x.open("bsdf", &[("type", "twosided")]);
+        }
+        wrappers += 1;
+    }
+    if wrappers == 0 {
         x.open("bsdf", &[("type", ty), ("id", &m.name)]);
+    } else {
+        x.open("bsdf", &[("type", ty)]);
     }
     let t = &m.textures;
     let tex = |slot: &Option<TextureDesc>| slot.clone().filter(|d| !d.texture.is_constant());
@@ -192,7 +230,7 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
         }
     }
     x.close("bsdf");
-    if wrap {
+    for _ in 0..wrappers {
         x.close("bsdf");
     }
     Ok(())

@@ -252,8 +252,8 @@ impl<'a> Ctx<'a> {
         }
     }
 
-    /// A fresh material name for BSDF `el`, whose BSDF proper is `inner` (a `twosided`'s nested
-    /// one, else `el`): its id, `twosided(ID)` for an anonymous wrapper of `inner` with an id,
+    /// A fresh material name for BSDF `el`, whose BSDF proper is `inner` (a wrapper's nested
+    /// one, else `el`): its id, `WRAPPER(ID)` for an anonymous wrapper of `inner` with an id,
     /// or `TYPE@LINE:COL`.
     fn material_name(&mut self, el: &Element, inner: &Element) -> String {
         let at = |e: &Element| {
@@ -266,7 +266,9 @@ impl<'a> Ctx<'a> {
         };
         let base = match (el.value("id"), inner.value("id")) {
             (Some(id), _) => id.to_owned(),
-            (None, Some(id)) if !std::ptr::eq(el, inner) => format!("twosided({id})"),
+            (None, Some(id)) if !std::ptr::eq(el, inner) => {
+                format!("{}({id})", el.value("type").unwrap_or("bsdf"))
+            }
             _ => at(el),
         };
         let n = self.used_names.entry(base.clone()).or_insert(0);
