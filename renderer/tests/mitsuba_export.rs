@@ -410,7 +410,7 @@ fn kitchen_sink() -> SceneDesc {
                   "model": "mitsuba", "two_sided": false,
                   "normal_map": {"texture": {"type": "bitmap", "file": "textured_mesh_albedo.png",
                                  "raw": true, "uv_scale": [3, 2]}, "shadowing": false}},
-        "tilted": {"type": "diffuse", "albedo": [0.6, 0.6, 0.5], "two_sided": false,
+        "tilted": {"type": "diffuse", "albedo": [0.6, 0.6, 0.5],
                    "normal_map": {"texture": [0.65, 0.4, 0.9], "flip_invalid_normals": false}}
       },
       "shapes": [
@@ -667,16 +667,6 @@ fn what_mitsuba_cannot_take_is_an_error_naming_the_json_path() {
             ),
             "materials.s",
             "scale",
-        ),
-        (
-            base(
-                r#""n": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5],
-                         "normal_map": {"texture": [0.6, 0.5, 0.9]}}"#,
-                r#"{"type": "quad", "corner": [0, 0, 0], "edge_u": [1, 0, 0],
-                    "edge_v": [0, 1, 0], "material": "n"}"#,
-            ),
-            "materials.n.normal_map",
-            "two-sided",
         ),
     ];
     // A light's bitmap with a `scale`, which Mitsuba's bitmap does not have.

@@ -27,7 +27,7 @@ use crate::geometry::SurfaceHit;
 use crate::geometry::primitive::NONE;
 use crate::geometry::ray::{Ray, spawn_ray, spawn_ray_to};
 use crate::geometry::tangent;
-use crate::materials::normal_map::VertexBsdf;
+use crate::materials::normal_map::{self, VertexBsdf};
 use crate::math::{Frame, max_component};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
@@ -265,7 +265,8 @@ fn trace<const TRANSMISSION: bool>(
         let shading = shading_normal.is_some();
         let mut ns = shading_normal.unwrap_or(n);
         let transmits = TRANSMISSION && material.transmits();
-        if n.dot(wo_world) < 0.0 && !transmits {
+        let back = n.dot(wo_world) < 0.0 && !transmits;
+        if back {
             if !scene.two_sided[prim.material as usize] {
                 break;
             }
@@ -284,7 +285,10 @@ fn trace<const TRANSMISSION: bool>(
         // (`materials/normal_map.rs`).
         let mut perturbation = None;
         if let Some((map, texel)) = scene.normal_map_at(&hit, prim.material) {
-            let base = || tangent::tangent_frame(ns, tangent::dp_du(prim, &scene.attributes, &hit));
+            let base = || {
+                let f = tangent::tangent_frame(ns, tangent::dp_du(prim, &scene.attributes, &hit));
+                normal_map::seen_from(f, back)
+            };
             if let Some((f, p)) = map.perturb(texel, base, wo_world) {
                 frame = f;
                 perturbation = Some(p);

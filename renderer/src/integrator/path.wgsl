@@ -332,6 +332,10 @@ fn radiance(camera_ray: Ray) -> vec3f {
         // `n`: the geometric normal, which decides sides and ray offsets; the BSDF lives in the
         // frame of the shading normal `ns` (the geometric one where the mesh has none).
         var n = hit.n;
+// #if HAS_NORMAL_MAPS
+        // The path sees the back of a two-sided material (`normal_map_seen_from`).
+        var back = false;
+// #endif
 // #if HAS_SHADING_NORMALS
         let sn = shading_normal(prim_attr(prim), hit.b, n);
         let shading = sn.found;
@@ -348,6 +352,9 @@ fn radiance(camera_ray: Ray) -> vec3f {
             if (m.h.y & 1u) == 0u {
                 break;
             }
+// #if HAS_NORMAL_MAPS
+            back = true;
+// #endif
             n = -n;
 // #if HAS_SHADING_NORMALS
             ns = -ns;
@@ -371,7 +378,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
         let nm = normal_map_texture(m);
         if nm != 0u {
             let texel = texture_eval(nm - 1u, surface_uv(prim, hit));
-            let base = tangent_frame(frame.n, surface_dp_du(prim, hit));
+            let base = normal_map_seen_from(tangent_frame(frame.n, surface_dp_du(prim, hit)), back);
             let pert = normal_map_perturb(m.h.y, texel, base, wo_world);
             if pert.ok {
                 frame = pert.frame;

@@ -16,6 +16,8 @@
 //!   perturbed normal than of the unperturbed one, the perturbed normal is mirrored about the
 //!   unperturbed one (its tangent components negated), so that the surface faces the viewer.
 //!
+//! On the back of a two-sided material the map is read in the front's frame mirrored through the
+//! surface ([`seen_from`]), which is what Mitsuba's `twosided` around a `normalmap` renders.
 //! The perturbed frame's first axis is the unperturbed first axis made orthogonal to `n`
 //! (Gram–Schmidt), as Mitsuba's. Where Mitsuba's construction is undefined (a texel `(½, ½, ½)`,
 //! `n` of length 0, or `n` along the first axis) lumis keeps the unperturbed normal, resp. any
@@ -90,6 +92,24 @@ impl NormalMap {
                 alpha2: if self.shadowing { alpha2 } else { 0.0 },
             },
         ))
+    }
+}
+
+/// The frame a normal map is read in: `frame`, the shading frame of the side the path sees
+/// (first axis along ∂p/∂u), except on the back of a two-sided material (`back`), where
+/// `frame`'s normal and second axis are the front's negated: there its second axis is turned
+/// back, so that the map is read in the front's frame mirrored through the surface, as Mitsuba's
+/// `twosided` around a `normalmap` does (it mirrors the directions it hands in): a map tilted
+/// towards +t tilts towards +t on both sides. A left-handed frame, which no BSDF here minds
+/// (each is even in its second tangent axis).
+pub fn seen_from(frame: Frame, back: bool) -> Frame {
+    if back {
+        Frame {
+            t: -frame.t,
+            ..frame
+        }
+    } else {
+        frame
     }
 }
 

@@ -75,6 +75,15 @@ fn normal_map_perturb(word: u32, texel: vec3f, base: Frame, wo_world: vec3f) -> 
     return Perturbed(true, frame, Perturbation(up, alpha2, true));
 }
 
+// `normal_map::seen_from`: the frame the map is read in; on the back of a two-sided material the
+// turned frame's second axis turned back (the front's frame mirrored through the surface).
+fn normal_map_seen_from(f: Frame, back: bool) -> Frame {
+    if back {
+        return Frame(f.s, -f.t, f.n);
+    }
+    return f;
+}
+
 // `Perturbation::factor`: 0 on the wrong side of the unperturbed frame, else the shadowing term.
 fn perturbation_factor(p: Perturbation, wi: vec3f) -> f32 {
     let cos = dot(wi, p.up);

@@ -204,10 +204,10 @@ fn refusals_name_file_line_and_element() {
             "nothing to shade",
         ),
         (
-            r#"<shape type="sphere"><bsdf type="twosided"><bsdf type="normalmap"><rgb name="normalmap" value="0.5 0.5 1"/><bsdf type="diffuse"/></bsdf></bsdf></shape>"#,
+            r#"<shape type="sphere"><bsdf type="normalmap"><rgb name="normalmap" value="0.5 0.5 1"/><bsdf type="twosided"><bsdf type="diffuse"/></bsdf></bsdf></shape>"#,
             "\"normalmap\"",
-            "scene/shape/bsdf/bsdf",
-            "a normalmap with a twosided BSDF is not supported",
+            "scene/shape/bsdf",
+            "a normalmap around a twosided BSDF is not supported",
         ),
         (
             r#"<shape type="sphere"><bsdf type="normalmap"><rgb name="normalmap" value="0.5 0.5 1"/><bsdf type="normalmap"><rgb name="normalmap" value="0.5 0.5 1"/><bsdf type="diffuse"/></bsdf></bsdf></shape>"#,

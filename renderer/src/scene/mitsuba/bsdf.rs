@@ -36,6 +36,7 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
     let mut inner_plugin = ctx.plugin(el)?;
     let mut two_sided = false;
     let mut normal_map = None;
+    let mut map_outside = false;
     loop {
         inner = match inner_plugin.ty {
             "twosided" if !two_sided => {
@@ -60,6 +61,8 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
                     Some(b) => target(b),
                     None => return Err(inner_plugin.error("a normalmap needs a nested <bsdf>")),
                 };
+                // Inside a twosided (read first) is what lumis renders on the back side.
+                map_outside = !two_sided;
                 normal_map = Some(inner_plugin);
                 nested
             }
@@ -67,11 +70,10 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
         };
         inner_plugin = ctx.plugin(inner)?;
     }
-    if let (Some(map), true) = (&normal_map, two_sided) {
+    if let (Some(map), true) = (&normal_map, two_sided && map_outside) {
         return Err(map.error(
-            "a normalmap with a twosided BSDF is not supported: lumis reads the map in the \
-             flipped frame on the back side, which Mitsuba's nesting of the two is not known to \
-             match (one-sided normal maps are)",
+            "a normalmap around a twosided BSDF is not supported: its back side is not what \
+             lumis renders (a twosided around the normalmap is)",
         ));
     }
     if two_sided

@@ -1,7 +1,7 @@
 //! Export of materials and textures: each material a shape uses becomes one `<bsdf>` declared
 //! with the material's name as its `id` (the importer names a material by its id), wrapped in
 //! `twosided` (id on the wrapper) unless it is one-sided or a dielectric, and in `normalmap`
-//! (outermost, with the id) where it has a normal map; the inverse of
+//! (inside the twosided) where it has a normal map; the inverse of
 //! [`super::bsdf`] and [`super::texture`]: lumis' `ior` becomes `int_ior` with `ext_ior` 1,
 //! a reflectance conductor Mitsuba's `material="none"` (Fresnel 1) times
 //! `specular_reflectance`, α > 0 or a textured α the rough variant with `distribution="ggx"`,
@@ -76,18 +76,20 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
     let dielectric = matches!(m.material, MaterialDesc::Dielectric { .. });
     let wrap = m.two_sided && !dielectric;
     let ty = bsdf_type(m);
-    // The wrappers, outermost first, the id on the first.
+    // The wrappers, outermost first, the id on the first: twosided around normalmap, the
+    // nesting whose back side lumis renders.
     let mut wrappers = 0;
+    if wrap {
+        x.open("bsdf", &[("type", "twosided"), ("id", &m.name)]);
+        wrappers += 1;
+    }
     if let Some(map) = &m.normal_map {
-        if wrap {
-            return Err(SceneError::new(
-                format!("{path}.normal_map"),
-                "a normal map on a two-sided material cannot be exported: lumis reads the map \
-                 in the flipped frame on the back side, which neither of Mitsuba's nestings of \
-                 normalmap and twosided is known to match",
-            ));
+        if wrappers == 0 {
+            x.open("bsdf", &[("type", "normalmap"), ("id", &m.name)]);
+        } else {
+            x.open("bsdf", &[("type", "normalmap")]);
         }
-        x.open("bsdf", &[("type", "normalmap"), ("id", &m.name)]);
+        wrappers += 1;
         texture_xml(
             x,
             "normalmap",
@@ -104,15 +106,6 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
                 x.leaf("boolean", &[("name", name), ("value", "false")]);
             }
         }
-        wrappers += 1;
-    }
-    if wrap {
-        if wrappers == 0 {
-            x.open("bsdf", &[("type", "twosided"), ("id", &m.name)]);
-        } else {
-            x.open("bsdf", &[("type", "twosided")]);
-        }
-        wrappers += 1;
     }
     if wrappers == 0 {
         x.open("bsdf", &[("type", ty), ("id", &m.name)]);
