@@ -1,7 +1,7 @@
 //! Normal maps, as Mitsuba 3.9.1's `normalmap` defines them (`src/bsdfs/normalmap.cpp`,
 //! `normalmap_helpers.h`): an RGB texture whose value `c` at a hit encodes the shading normal
 //! `n = 2c − 1` in the hit's shading frame, whose first axis runs along ∂p/∂u
-//! (`geometry/tangent.rs`); the material then sees the *perturbed* frame about `n`, with two
+//! (`geometry/tangent.rs`); the material then sees the *perturbed* frame about `n`, with three
 //! rules of Mitsuba's on top:
 //!
 //! - **Sides** (always): a light direction counts only where the unperturbed and the perturbed
@@ -18,6 +18,7 @@
 //!
 //! On the back of a two-sided material the map is read in the front's frame mirrored through the
 //! surface ([`seen_from`]), which is what Mitsuba's `twosided` around a `normalmap` renders.
+//!
 //! The perturbed frame's first axis is the unperturbed first axis made orthogonal to `n`
 //! (Gram–Schmidt), as Mitsuba's. Where Mitsuba's construction is undefined (a texel `(½, ½, ½)`,
 //! `n` of length 0, or `n` along the first axis) lumis keeps the unperturbed normal, resp. any
