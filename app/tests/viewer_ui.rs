@@ -166,6 +166,7 @@ fn normal_map_switches_edit_the_selected_material() {
         },
         flip_invalid_normals: true,
         shadowing: true,
+        height_scale: None,
     };
     desc.materials[i].normal_map = Some(map.clone());
     let file = dir.join("normal_map.json");
@@ -205,6 +206,63 @@ fn normal_map_switches_edit_the_selected_material() {
         .clone();
     assert_eq!(back.map(|m| m.texture), Some(map.texture));
     assert!(built_map(&mut h, "map on").is_some());
+}
+
+/// A bump map is switched off and on under its own name and keeps its scale, which the built
+/// scene's map follows. (The scale's drag value itself is not driven here.)
+#[test]
+fn a_bump_map_switches_under_its_own_name() {
+    let dir = scratch("bump_map");
+    let heights = lumis::image_io::Image {
+        width: 2,
+        height: 2,
+        data: vec![
+            glam::Vec3::ZERO,
+            glam::Vec3::ONE,
+            glam::Vec3::splat(0.5),
+            glam::Vec3::ZERO,
+        ],
+    };
+    heights.write(&dir.join("heights.exr"), 0.0).unwrap();
+    let mut json = lumis::scene::load_scene(&asset("seed_cornell.json"))
+        .unwrap()
+        .to_json();
+    // The first quad's material: a bump map needs a triangle shape.
+    let name = json["shapes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["type"] == "quad" && s.get("material").is_some())
+        .map(|s| s["material"].as_str().unwrap().to_owned())
+        .expect("a quad with a material");
+    json["materials"][&name]["bump_map"] =
+        serde_json::json!({"texture": {"type": "bitmap", "file": "heights.exr"}, "scale": 0.02});
+    let file = dir.join("bump_map.json");
+    std::fs::write(&file, json.to_string()).unwrap();
+    let desc = lumis::scene::load_scene(&file).unwrap();
+    let i = material_in(&desc, &name);
+    let mut h = harness_at(file, 24, dir);
+    h.state_mut().selected_material = Some(i);
+    h.run_steps(2);
+    let scale = |h: &mut Harness<'static, ViewerApp>, what: &str| {
+        wait_for_current_scene(h, what);
+        let scene = h.state().output().scene.clone().unwrap();
+        scene
+            .normal_maps
+            .get(i)
+            .cloned()
+            .flatten()
+            .and_then(|m| m.height_scale)
+    };
+    assert_eq!(scale(&mut h, "loaded"), Some(0.02));
+    assert_restarts(&mut h, "bump off", |h| {
+        h.get_by_role_and_label(Role::CheckBox, "Bump map").click()
+    });
+    assert_eq!(scale(&mut h, "bump off"), None);
+    assert_restarts(&mut h, "bump on", |h| {
+        h.get_by_role_and_label(Role::CheckBox, "Bump map").click()
+    });
+    assert_eq!(scale(&mut h, "bump on"), Some(0.02));
 }
 
 #[test]

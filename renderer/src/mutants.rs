@@ -273,7 +273,7 @@ pub fn scale_albedo(
         MaterialDesc::Conductor { .. } => {
             return Err(format!("conductor {name} has a complex IOR, no albedo"));
         }
-        MaterialDesc::Dielectric { .. } => {
+        MaterialDesc::Dielectric { .. } | MaterialDesc::ThinDielectric { .. } => {
             return Err(format!("dielectric {name} has no albedo"));
         }
     }

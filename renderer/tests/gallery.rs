@@ -14,8 +14,9 @@
 //! environment map (`emitter_projector_textured`, a BMP), Mitsuba's rough plastic with Beckmann
 //! microfacets on the material preview under the map (`bsdf_roughplastic_beckmann`), a gold
 //! conductor (`bsdf_conductor_gold`), the Cornell box of OBJ meshes with an area light and
-//! unlimited depth (`integrator_depth_inf`), the thin-lens camera (`sensor_thinlens`) and a
-//! normal map (`bsdf_normalmap_with`: a JPEG map on the preview's rough plastic, issue 40).
+//! unlimited depth (`integrator_depth_inf`), the thin-lens camera (`sensor_thinlens`), a
+//! normal map (`bsdf_normalmap_with`: a JPEG map on the preview's rough plastic, issue 40) and a
+//! bump map (`bsdf_bumpmap_with`: a PNG of heights, scale 0.02, on the same plastic).
 //! `tools/corpus.py` compares the whole gallery offline (docs/mitsuba.md).
 //!
 //! **Test:** as `tools/corpus.py` (whose first version, like a first version of this file,
@@ -52,7 +53,7 @@ const RENDERS: u32 = 8;
 const SCALE: f64 = 0.125;
 
 /// The subset, in order (scene `k` of the seeds).
-const SCENES: [&str; 7] = [
+const SCENES: [&str; 8] = [
     "emitter_spot_texture",
     "emitter_projector_textured",
     "bsdf_roughplastic_beckmann",
@@ -60,6 +61,7 @@ const SCENES: [&str; 7] = [
     "integrator_depth_inf",
     "sensor_thinlens",
     "bsdf_normalmap_with",
+    "bsdf_bumpmap_with",
 ];
 
 /// Every failure of scene `k` against its reference.
@@ -349,6 +351,21 @@ fn a_normal_map_without_its_shadowing_term_is_detected() {
     assert!(!f.is_empty(), "the missing shadowing term went undetected");
 }
 
+/// Power: the bump map at half its scale (a gradient off by a factor of 2: what a lookup that
+/// missed the resolution's factor on one axis of a 2:1 texture, or a scale read twice, would
+/// give), MIS (power), must fail both stages (stage 1's seeds are scene 7's first strategy's,
+/// 3150–3157).
+#[test]
+fn a_bump_map_at_half_its_scale_is_detected() {
+    let mis = [STRATEGIES[3]];
+    let f = check_with(7, &mis, " (half the bump scale)", |scene| {
+        for map in scene.normal_maps.iter_mut().flatten() {
+            map.height_scale = map.height_scale.map(|s| 0.5 * s);
+        }
+    });
+    assert!(!f.is_empty(), "half the bump scale went undetected");
+}
+
 /// The t distribution's tail against values known to 4 digits: t = 2.0 with 10 degrees of
 /// freedom has two-sided p = 0.07339, t = 4.0 with 5 has 0.01032; a huge dof is the normal's.
 #[test]
@@ -398,5 +415,11 @@ fn sensor_thinlens_agrees_with_mitsuba() {
 #[test]
 fn bsdf_normalmap_with_agrees_with_mitsuba() {
     let f = check(6);
+    assert!(f.is_empty(), "{}", f.join("\n"));
+}
+
+#[test]
+fn bsdf_bumpmap_with_agrees_with_mitsuba() {
+    let f = check(7);
     assert!(f.is_empty(), "{}", f.join("\n"));
 }

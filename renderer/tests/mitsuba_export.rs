@@ -411,7 +411,12 @@ fn kitchen_sink() -> SceneDesc {
                   "normal_map": {"texture": {"type": "bitmap", "file": "textured_mesh_albedo.png",
                                  "raw": true, "uv_scale": [3, 2]}, "shadowing": false}},
         "tilted": {"type": "diffuse", "albedo": [0.6, 0.6, 0.5],
-                   "normal_map": {"texture": [0.65, 0.4, 0.9], "flip_invalid_normals": false}}
+                   "normal_map": {"texture": [0.65, 0.4, 0.9], "flip_invalid_normals": false}},
+        "dented": {"type": "diffuse", "albedo": [0.5, 0.6, 0.6],
+                   "bump_map": {"texture": {"type": "bitmap", "file": "textured_mesh_albedo.png",
+                                "raw": true, "uv_scale": [2, 2]}, "scale": -0.004,
+                                "shadowing": false}},
+        "sheet": {"type": "thin_dielectric", "ior": 1.33}
       },
       "shapes": [
         {"type": "quad", "corner": [-3, 0, -3], "edge_u": [6, 0, 0], "edge_v": [0, 0, 6],
@@ -446,7 +451,11 @@ fn kitchen_sink() -> SceneDesc {
         {"type": "sphere", "center": [2.6, 0.3, 2.4], "radius": 0.3, "material": "image"},
         {"type": "sphere", "center": [-2.4, 0.35, 0.4], "radius": 0.35, "material": "bumpy"},
         {"type": "quad", "corner": [2.2, 0, -3], "edge_u": [0.8, 0, 0], "edge_v": [0, 1, 0.1],
-         "material": "tilted"}
+         "material": "tilted"},
+        {"type": "quad", "corner": [-3, 0, -3], "edge_u": [0.8, 0, 0], "edge_v": [0, 1, 0.1],
+         "material": "dented"},
+        {"type": "quad", "corner": [-0.6, 0.2, -2.5], "edge_u": [1.2, 0, 0.1],
+         "edge_v": [0, 1.2, 0], "material": "sheet"}
       ],
       "lights": [
         {"type": "point", "position": [1.5, 2.0, -1.0], "intensity": [2, 1.5, 1]},

@@ -530,7 +530,8 @@ fn bsdfs_map_onto_lumis_materials() {
 <shape type="sphere"><bsdf type="roughdielectric" id="beckglass"><string name="distribution" value="beckmann"/></bsdf></shape>
 <shape type="sphere"><bsdf type="conductor" id="tinted"><string name="material" value="Au"/><rgb name="specular_reflectance" value="0.9 0.8 0.7"/></bsdf></shape>
 <shape type="sphere"><bsdf type="roughplastic" id="varnish"><boolean name="nonlinear" value="true"/></bsdf></shape>
-<shape type="rectangle"><bsdf type="roughconductor" id="brushed"><float name="alpha_u" value="0.05"/><float name="alpha_v" value="0.3"/></bsdf></shape>"#;
+<shape type="rectangle"><bsdf type="roughconductor" id="brushed"><float name="alpha_u" value="0.05"/><float name="alpha_v" value="0.3"/></bsdf></shape>
+<shape type="sphere"><bsdf type="thindielectric" id="sheet"><string name="int_ior" value="water"/></bsdf></shape>"#;
     let m = ok(&dir, body);
     let (au_eta, au_k) = conductor_preset("Au").unwrap();
     let shapes: Vec<Value> = [
@@ -551,6 +552,7 @@ fn bsdfs_map_onto_lumis_materials() {
     .chain([
         json!({"type": "quad", "corner": [-1, -1, 0], "edge_u": [2, 0, 0],
                    "edge_v": [0, 2, 0], "material": "brushed"}),
+        json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "sheet"}),
     ])
     .collect();
     // Mitsuba keeps indices of refraction in single precision.
@@ -586,6 +588,8 @@ fn bsdfs_map_onto_lumis_materials() {
                 // alpha_u ≠ alpha_v: [α_u, α_v].
                 "brushed": {"type": "conductor", "alpha": [0.05, 0.3], "distribution": "beckmann",
                             "reflectance": [1, 1, 1], "two_sided": false},
+                // Mitsuba's thindielectric: no sides.
+                "sheet": {"type": "thin_dielectric", "ior": f(1.333) / f(1.000277)},
             },
             "shapes": shapes,
         }),
@@ -593,6 +597,21 @@ fn bsdfs_map_onto_lumis_materials() {
     assert_same(&m.desc, &want);
     // Mitsuba's plastics are imported exactly: no warning.
     assert!(m.desc.warnings.is_empty(), "{:?}", m.desc.warnings);
+    // A thin sheet takes no twosided (Mitsuba refuses transmitting BSDFs there) and no tint.
+    refused(
+        &dir,
+        r#"<shape type="sphere"><bsdf type="twosided"><bsdf type="thindielectric"/></bsdf></shape>"#,
+        "<bsdf type=\"thindielectric",
+        "scene/shape/bsdf/bsdf",
+        "a `thindielectric` cannot be nested in twosided",
+    );
+    refused(
+        &dir,
+        r#"<shape type="sphere"><bsdf type="thindielectric"><float name="specular_transmittance" value="0.5"/></bsdf></shape>"#,
+        "specular_transmittance",
+        "scene/shape/bsdf/float",
+        "specular_transmittance other than 1 is not supported",
+    );
     // A null BSDF without an emitter is invisible: the shape is left out.
     let m = ok(&dir, r#"<shape type="sphere"><bsdf type="null"/></shape>"#);
     assert!(m.desc.shapes.is_empty());

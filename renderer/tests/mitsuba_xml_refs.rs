@@ -388,6 +388,23 @@ fn xml_cylinder_tangent_along_the_axis_is_detected() {
     assert_detected("xml_cylinder", &m, 2371, "with alpha_u and alpha_v swapped");
 }
 
+/// `xml_thin.xml` (Mitsuba's `thindielectric`: a tilted pane between a rectangle light and the
+/// floor, which it lights only through its delta transmission, and a water bubble with the box
+/// and the sky seen through it) against its reference, seeds 2530–2534.
+#[test]
+fn xml_thin_matches_its_mitsuba_reference() {
+    every_strategy("xml_thin", [256, 256, 256, 256, 256], 2530);
+}
+
+/// Power: `xml_thin.xml` with `-D ior=1.6` (the pane's index 1.6 for 1.9: its reflectance at
+/// normal incidence 0.10 for 0.17, the light it passes 0.90 for 0.83) fails, MIS 256 spp, seed
+/// 2540.
+#[test]
+fn xml_thin_wrong_index_is_detected() {
+    let m = import("xml_thin", &[("ior", "1.6")]);
+    assert_detected("xml_thin", &m, 2540, "with ior=1.6");
+}
+
 /// `xml_textured_shapes.xml` (Mitsuba's texture coordinates on spheres and disks turned by
 /// their `to_world`: a checkered sphere with a tilted pole, a checkered disk turned about its
 /// normal, a sphere light with a checkered radiance, anisotropic gold about a tilted pole)

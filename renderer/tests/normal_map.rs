@@ -50,6 +50,7 @@ fn with_constant_map(name: &str, texel: Option<Vec3>) -> Arc<Scene> {
             },
             flip_invalid_normals: true,
             shadowing: true,
+            height_scale: None,
         });
     }
     Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}")))

@@ -23,7 +23,7 @@ pub fn alpha(m: &MaterialDesc) -> Option<f64> {
         MaterialDesc::Conductor { alpha, .. }
         | MaterialDesc::Plastic { alpha, .. }
         | MaterialDesc::Dielectric { alpha, .. } => Some(*alpha),
-        MaterialDesc::Diffuse { .. } => None,
+        MaterialDesc::Diffuse { .. } | MaterialDesc::ThinDielectric { .. } => None,
     }
 }
 
@@ -47,7 +47,7 @@ pub fn set_alpha(m: &mut MaterialDesc, value: f64) {
             *alpha = value;
         }
         MaterialDesc::Plastic { alpha, .. } => *alpha = value,
-        MaterialDesc::Diffuse { .. } => {}
+        MaterialDesc::Diffuse { .. } | MaterialDesc::ThinDielectric { .. } => {}
     }
 }
 
@@ -134,7 +134,9 @@ pub fn colour(m: &MaterialDesc) -> Option<DVec3> {
             fresnel: FresnelDesc::Reflectance(r),
             ..
         } => Some(*r),
-        MaterialDesc::Conductor { .. } | MaterialDesc::Dielectric { .. } => None,
+        MaterialDesc::Conductor { .. }
+        | MaterialDesc::Dielectric { .. }
+        | MaterialDesc::ThinDielectric { .. } => None,
     }
 }
 
@@ -147,14 +149,18 @@ pub fn set_colour(m: &mut MaterialDesc, value: DVec3) {
             fresnel: FresnelDesc::Reflectance(r),
             ..
         } => *r = value,
-        MaterialDesc::Conductor { .. } | MaterialDesc::Dielectric { .. } => {}
+        MaterialDesc::Conductor { .. }
+        | MaterialDesc::Dielectric { .. }
+        | MaterialDesc::ThinDielectric { .. } => {}
     }
 }
 
-/// The index of refraction of a plastic's coating or of a dielectric's inside.
+/// The index of refraction of a plastic's coating, of a dielectric's inside or of a thin sheet.
 pub fn ior(m: &MaterialDesc) -> Option<f64> {
     match m {
-        MaterialDesc::Plastic { ior, .. } | MaterialDesc::Dielectric { ior, .. } => Some(*ior),
+        MaterialDesc::Plastic { ior, .. }
+        | MaterialDesc::Dielectric { ior, .. }
+        | MaterialDesc::ThinDielectric { ior } => Some(*ior),
         _ => None,
     }
 }
@@ -162,7 +168,8 @@ pub fn ior(m: &MaterialDesc) -> Option<f64> {
 /// Sets the IOR, kept valid for the format: a plastic's above 1; a dielectric's in
 /// [1/10, 10] (the format's upper bound, and its inverse) and never within
 /// [`DIELECTRIC_IOR_GAP`] of 1 (snapped to 1 ± the gap, on the side it came from; exactly 1
-/// goes up). A non-finite value changes nothing.
+/// goes up); a thin sheet's in [1/10, 10], 1 included (a sheet that lets everything through).
+/// A non-finite value changes nothing.
 pub fn set_ior(m: &mut MaterialDesc, value: f64) {
     if !value.is_finite() {
         return;
@@ -170,6 +177,10 @@ pub fn set_ior(m: &mut MaterialDesc, value: f64) {
     match m {
         MaterialDesc::Plastic { ior, .. } => *ior = value.max(1.0001),
         MaterialDesc::Dielectric { ior, .. } => *ior = dielectric_ior(value),
+        MaterialDesc::ThinDielectric { ior } => {
+            let max = f64::from(lumis::materials::dielectric::MAX_IOR);
+            *ior = value.clamp(1.0 / max, max);
+        }
         _ => {}
     }
 }
@@ -191,16 +202,19 @@ fn dielectric_ior(value: f64) -> f64 {
 /// it shows and a loaded IOR outside the range would otherwise change on mere selection.
 pub fn ior_slider_range(m: &MaterialDesc, current: f64) -> RangeInclusive<f64> {
     let lo: f64 = match m {
-        MaterialDesc::Dielectric { .. } => 1.0,
+        MaterialDesc::Dielectric { .. } | MaterialDesc::ThinDielectric { .. } => 1.0,
         _ => 1.01,
     };
     lo.min(current)..=current.max(3.0)
 }
 
-/// The IOR presets of a material: [`DIELECTRIC_PRESETS`] for a dielectric, none otherwise.
+/// The IOR presets of a material: [`DIELECTRIC_PRESETS`] for a dielectric or a thin sheet,
+/// none otherwise.
 pub fn ior_presets(m: &MaterialDesc) -> &'static [(&'static str, f64)] {
     match m {
-        MaterialDesc::Dielectric { .. } => &DIELECTRIC_PRESETS,
+        MaterialDesc::Dielectric { .. } | MaterialDesc::ThinDielectric { .. } => {
+            &DIELECTRIC_PRESETS
+        }
         _ => &[],
     }
 }

@@ -199,10 +199,17 @@ impl ViewerApp {
                 });
             }
         }
-        // A normal map: on or off (kept aside while off), and Mitsuba's two switches.
+        // A normal or bump map: on or off (kept aside while off), a bump map's scale, and
+        // Mitsuba's two switches.
         let off = &mut self.normal_maps_off;
         let mut on = named.normal_map.is_some();
-        if (on || off.contains_key(&i)) && ui.checkbox(&mut on, "Normal map").changed() {
+        let bump = named
+            .normal_map
+            .as_ref()
+            .or(off.get(&i))
+            .is_some_and(|m| m.height_scale.is_some());
+        let label = if bump { "Bump map" } else { "Normal map" };
+        if (on || off.contains_key(&i)) && ui.checkbox(&mut on, label).changed() {
             if on {
                 named.normal_map = off.remove(&i);
             } else if let Some(map) = named.normal_map.take() {
@@ -211,6 +218,17 @@ impl ViewerApp {
             changed = true;
         }
         if let Some(map) = &mut named.normal_map {
+            if let Some(scale) = &mut map.height_scale {
+                // The height's scale: its sign turns bumps into dents; 0 is a flat surface.
+                let speed = (scale.abs() * 0.01).max(1e-4);
+                changed |= ui
+                    .horizontal(|ui| {
+                        ui.label("Bump scale");
+                        ui.add(egui::DragValue::new(scale).speed(speed).max_decimals(5))
+                    })
+                    .inner
+                    .changed();
+            }
             changed |= ui
                 .checkbox(&mut map.shadowing, "Shadowing term (normal map)")
                 .changed();

@@ -44,6 +44,35 @@ pub fn dp_du(prim: &Primitive, attributes: &MeshAttributes, hit: &SurfaceHit) ->
     }
 }
 
+/// Both partials (∂p/∂u, ∂p/∂v) of a mesh triangle's parameterisation, Mitsuba's
+/// (`Mesh::compute_surface_interaction`): of its UV map, from its edges and their UV differences
+/// (a degenerate map: the two tangent axes of the geometric normal's frame), or without texture
+/// coordinates the edges p1 − p0 and p2 − p0; `None` for the analytic shapes, whose ∂p/∂v
+/// lumis does not give (a bump map needs both). ∂p/∂u is [`dp_du`]'s, bit for bit.
+pub fn dp_duv(
+    prim: &Primitive,
+    attributes: &MeshAttributes,
+    hit: &SurfaceHit,
+) -> Option<(Vec3, Vec3)> {
+    let Shape::Triangle { v, .. } = &prim.shape else {
+        return None;
+    };
+    let (dp0, dp1) = (v[1] - v[0], v[2] - v[0]);
+    let Some([t0, t1, t2]) = attributes.triangle_uvs(prim.attr) else {
+        return Some((dp0, dp1));
+    };
+    let (duv0, duv1) = (t1 - t0, t2 - t0);
+    let det = duv0.x * duv1.y - duv0.y * duv1.x;
+    if det == 0.0 {
+        let f = Frame::from_normal(hit.n);
+        return Some((f.s, f.t));
+    }
+    Some((
+        (duv1.y * dp0 - duv0.y * dp1) / det,
+        (duv0.x * dp1 - duv1.x * dp0) / det,
+    ))
+}
+
 /// The frame of unit normal `n` whose first axis is `dp_du` made orthogonal to `n`.
 pub fn tangent_frame(n: Vec3, dp_du: Vec3) -> Frame {
     let s = dp_du - n * n.dot(dp_du);

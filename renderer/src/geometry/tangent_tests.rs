@@ -80,6 +80,53 @@ fn a_triangles_dp_du_moves_along_u_only() {
     }
 }
 
+/// Both partials from the definition: the barycentric step that moves the UVs by (0, 1) moves
+/// p by ∂p/∂v; ∂p/∂u is `dp_du`'s bit for bit; without UVs the two edges; analytic shapes none.
+#[test]
+fn a_triangles_dp_dv_moves_along_v_only() {
+    let mut r = Rng::new(4, 0, 0);
+    let mut rv = || Vec3::new(r.next_f32(), r.next_f32(), r.next_f32()) * 2.0 - 1.0;
+    let mut checked = 0;
+    for _ in 0..200 {
+        let v = [rv(), rv(), rv()];
+        let uvs = [rv().truncate(), rv().truncate(), rv().truncate()];
+        let attrs = one_triangle(uvs);
+        let Some(shape) = Shape::triangle(v) else {
+            continue;
+        };
+        let Shape::Triangle { n, .. } = shape else {
+            unreachable!()
+        };
+        let h = hit(v[0], n);
+        let (du, dv) = dp_duv(&prim(shape, 0), &attrs, &h).unwrap();
+        assert_eq!(du, dp_du(&prim(shape, 0), &attrs, &h));
+        let (duv0, duv1) = (uvs[1] - uvs[0], uvs[2] - uvs[0]);
+        let m = glam::Mat2::from_cols(duv0, duv1);
+        if m.determinant().abs() < 1e-3 {
+            continue;
+        }
+        let db = m.inverse() * Vec2::Y;
+        let want = db.x * (v[1] - v[0]) + db.y * (v[2] - v[0]);
+        assert!(
+            (dv - want).length() <= 1e-3 * want.length().max(1.0),
+            "{dv} vs {want}"
+        );
+        checked += 1;
+        let none = dp_duv(&prim(shape, NONE), &attrs, &h).unwrap();
+        assert_eq!(none, (v[1] - v[0], v[2] - v[0]));
+    }
+    assert!(checked > 100, "{checked}");
+    let sphere = Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0));
+    assert_eq!(
+        dp_duv(
+            &prim(sphere, NONE),
+            &one_triangle([Vec2::ZERO; 3]),
+            &hit(Vec3::Z, Vec3::Z)
+        ),
+        None
+    );
+}
+
 #[test]
 fn a_degenerate_uv_map_falls_back_to_the_normals_frame() {
     let v = [Vec3::ZERO, Vec3::X, Vec3::Y];

@@ -70,6 +70,7 @@ const MODULES: &[Module] = &[
     module!("materials/plastic.wgsl"),
     module!("materials/plastic_mitsuba.wgsl"),
     module!("materials/dielectric.wgsl"),
+    module!("materials/thin_dielectric.wgsl"),
     module!("lights/mod.wgsl"),
     module!("lights/light_sampler.wgsl"),
     module!("lights/light_bvh.wgsl"),
@@ -159,8 +160,10 @@ pub struct Features {
     pub has_plastic: bool,
     /// Plastics with Mitsuba's coupling (`materials/plastic_mitsuba.wgsl`).
     pub has_mitsuba_plastic: bool,
-    /// Dielectrics (glass): transmission in the path tracer.
+    /// Dielectrics (glass).
     pub has_dielectric: bool,
+    /// Thin dielectric sheets (`materials/thin_dielectric.wgsl`).
+    pub has_thin_dielectric: bool,
     /// Disk shapes.
     pub has_disk_shape: bool,
     /// Sphere shapes.
@@ -212,6 +215,7 @@ impl Features {
             has_plastic: true,
             has_mitsuba_plastic: true,
             has_dielectric: true,
+            has_thin_dielectric: true,
             has_disk_shape: true,
             has_sphere_shape: true,
             has_cylinder_shape: true,
@@ -288,6 +292,7 @@ impl Features {
                     f.has_ggx |= !d.is_delta();
                     f.has_beckmann |= d.microfacet.distribution == Distribution::Beckmann;
                 }
+                Material::ThinDielectric(_) => f.has_thin_dielectric = true,
             }
         }
         // A textured α may be rough where the material's constant (its mean) is smooth; a
@@ -314,6 +319,11 @@ impl Features {
         self.has_textures || self.has_normal_maps
     }
 
+    /// A material that light passes through ([`Material::transmits`]).
+    pub fn has_transmission(&self) -> bool {
+        self.has_dielectric || self.has_thin_dielectric
+    }
+
     /// Whether the scene has a delta light (point, spot, directional, projector).
     pub fn has_delta_light(&self) -> bool {
         self.has_point_light
@@ -323,7 +333,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 35] {
+    fn defines(&self) -> [(&'static str, bool); 37] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -363,10 +373,13 @@ impl Features {
             ("HAS_PLASTIC", self.has_plastic),
             ("HAS_MITSUBA_PLASTIC", self.has_mitsuba_plastic),
             ("HAS_DIELECTRIC", self.has_dielectric),
-            // The exact dielectric Fresnel: glass and Mitsuba's plastic coat.
+            ("HAS_THIN_DIELECTRIC", self.has_thin_dielectric),
+            // A material that light passes through: the path tracer's transmission code.
+            ("HAS_TRANSMISSION", self.has_transmission()),
+            // The exact dielectric Fresnel: glass, thin sheets and Mitsuba's plastic coat.
             (
                 "HAS_DIELECTRIC_FRESNEL",
-                self.has_dielectric || self.has_mitsuba_plastic,
+                self.has_dielectric || self.has_thin_dielectric || self.has_mitsuba_plastic,
             ),
             ("HAS_DISK_SHAPE", self.has_disk_shape),
             ("HAS_SPHERE_SHAPE", self.has_sphere_shape),
@@ -419,6 +432,7 @@ impl Features {
                     || self.has_plastic
                     || self.has_mitsuba_plastic
                     || self.has_dielectric
+                    || self.has_thin_dielectric
             }
             "materials/ggx.wgsl" => self.has_ggx,
             "materials/beckmann.wgsl" => self.has_ggx && self.has_beckmann,
@@ -429,6 +443,7 @@ impl Features {
             "materials/plastic.wgsl" => self.has_plastic,
             "materials/plastic_mitsuba.wgsl" => self.has_mitsuba_plastic,
             "materials/dielectric.wgsl" => self.has_dielectric,
+            "materials/thin_dielectric.wgsl" => self.has_thin_dielectric,
             // A disk light's ellipse samples find their point as a disk hit does.
             "geometry/disk.wgsl" => self.has_disk_shape || (lights && self.has_disk_light),
             // A cylinder's intersection solves the sphere's quadratic (`careful_roots`).

@@ -27,7 +27,8 @@ use crate::geometry::SurfaceHit;
 use crate::geometry::primitive::NONE;
 use crate::geometry::ray::{Ray, spawn_ray, spawn_ray_to};
 use crate::geometry::tangent;
-use crate::materials::normal_map::{self, VertexBsdf};
+use crate::materials::bump_map;
+use crate::materials::normal_map::{self, NormalMap, VertexBsdf};
 use crate::math::{Frame, max_component};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
@@ -281,15 +282,25 @@ fn trace<const TRANSMISSION: bool>(
         } else {
             Frame::from_normal(ns)
         };
-        // A normal map tilts the frame the material sees, about the frame of ∂p/∂u
-        // (`materials/normal_map.rs`).
+        // A normal or bump map tilts the frame the material sees, about the frame of ∂p/∂u
+        // (`materials/normal_map.rs`, `materials/bump_map.rs`).
         let mut perturbation = None;
-        if let Some((map, texel)) = scene.normal_map_at(&hit, prim.material) {
+        if let Some((map, uv)) = scene.normal_map_at(&hit, prim.material) {
+            let tilt = match map.height_scale {
+                None => Some(NormalMap::decode(map.texture.eval(uv))),
+                // In the front's frame, which `seen_from` mirrors on the back as for a texel.
+                Some(scale) => map.texture.eval_1_grad(uv).and_then(|g| {
+                    let (dp_du, dp_dv) = tangent::dp_duv(prim, &scene.attributes, &hit)?;
+                    let ns_front = if back { -ns } else { ns };
+                    let front = tangent::tangent_frame(ns_front, dp_du);
+                    bump_map::local_normal(scale * g, dp_du, dp_dv, ns_front, hit.n, &front)
+                }),
+            };
             let base = || {
                 let f = tangent::tangent_frame(ns, tangent::dp_du(prim, &scene.attributes, &hit));
                 normal_map::seen_from(f, back)
             };
-            if let Some((f, p)) = map.perturb(texel, base, wo_world) {
+            if let Some((f, p)) = tilt.and_then(|n| map.perturb(n, base, wo_world)) {
                 frame = f;
                 perturbation = Some(p);
             }

@@ -1,6 +1,6 @@
 // The unidirectional path tracer, the twin of `integrator/path.rs` (one loop, five direct-light
 // strategies, Mitsuba's max_depth, Russian roulette from rr_depth, transmission through
-// dielectrics under HAS_DIELECTRIC only, so a scene without glass runs the reflection-only
+// dielectrics under HAS_TRANSMISSION only, so a scene without glass runs the reflection-only
 // program, shading normals under HAS_SHADING_NORMALS only, textured materials and emission under
 // HAS_TEXTURES only, every random number from its named sampler dimension, `sampler/mod.wgsl`).
 // The render kernel that calls `radiance` is `gpu/film.wgsl`.
@@ -55,7 +55,7 @@ fn same_side(w: vec3f, n: vec3f, local_z: f32) -> bool {
 
 // `LightSampling::receiver_normal` of a vertex with material m and shading normal ns.
 fn light_receiver_normal(m: Material, ns: vec3f) -> vec3f {
-// #if HAS_DIELECTRIC
+// #if HAS_TRANSMISSION
     return light_sampling_receiver_normal(params.light_sampling, ns, material_transmits(m));
 // #else
     return ns;
@@ -107,7 +107,7 @@ fn direct_light(hit: SurfaceHit, n: vec3f, frame: Frame, wo: vec3f, m: Material,
         return nee_pure();
     }
     let wi = to_local(frame, ls.wi);
-// #if HAS_DIELECTRIC
+// #if HAS_TRANSMISSION
     // A dielectric's lights may lie on either side.
     if select(wi.z <= 0.0, wi.z == 0.0, material_transmits(m)) {
 // #else
@@ -235,7 +235,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
     let max_depth = params.max_depth;
     var l = vec3f(0.0);
     var beta = vec3f(1.0);
-// #if HAS_DIELECTRIC
+// #if HAS_TRANSMISSION
     // Product of η'² over the refractions so far: Russian roulette sees beta·eta_scale.
     var eta_scale = 1.0;
 // #endif
@@ -341,7 +341,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
         let shading = sn.found;
         var ns = sn.n;
 // #endif
-// #if HAS_DIELECTRIC
+// #if HAS_TRANSMISSION
         // A dielectric's frame is never flipped: wo below it means the viewer is inside.
         let transmits = material_transmits(m);
         if dot(n, wo_world) < 0.0 && !transmits {
@@ -372,22 +372,35 @@ fn radiance(camera_ray: Ray) -> vec3f {
         }
 // #endif
 // #if HAS_NORMAL_MAPS
-        // A normal map tilts the frame the material sees, about the frame of ∂p/∂u
+        // A normal or bump map tilts the frame the material sees, about the frame of ∂p/∂u
         // (`materials/normal_map.wgsl`).
         vertex_perturbation = no_perturbation();
         let nm = normal_map_texture(m);
         if nm != 0u {
-            let texel = texture_eval(nm - 1u, surface_uv(prim, hit));
-            let base = normal_map_seen_from(tangent_frame(frame.n, surface_dp_du(prim, hit)), back);
-            let pert = normal_map_perturb(m.h.y, texel, base, wo_world);
-            if pert.ok {
-                frame = pert.frame;
-                vertex_perturbation = pert.p;
+            let uv = surface_uv(prim, hit);
+            var tilt = vec4f(0.0);
+            if normal_map_is_bump(m) {
+                // In the front's frame, which `seen_from` mirrors on the back as for a texel.
+                let scale = texture_record(nm - 1u).c1.x;
+                let d = triangle_dp_duv(prim, hit);
+                let ns_front = select(frame.n, -frame.n, back);
+                let front = tangent_frame(ns_front, d.du);
+                tilt = bump_normal(scale * texture_eval_1_grad(nm - 1u, uv), d.du, d.dv, ns_front, hit.n, front);
+            } else {
+                tilt = vec4f(2.0 * texture_eval(nm - 1u, uv) - vec3f(1.0), 1.0);
+            }
+            if tilt.w != 0.0 {
+                let base = normal_map_seen_from(tangent_frame(frame.n, surface_dp_du(prim, hit)), back);
+                let pert = normal_map_perturb(m.h.y, tilt.xyz, base, wo_world);
+                if pert.ok {
+                    frame = pert.frame;
+                    vertex_perturbation = pert.p;
+                }
             }
         }
 // #endif
         let wo = to_local(frame, wo_world);
-// #if HAS_DIELECTRIC
+// #if HAS_TRANSMISSION
         // A reflecting surface is seen from its front only; a dielectric from either side.
         if select(wo.z <= 0.0, wo.z == 0.0, transmits) {
 // #else
@@ -511,7 +524,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
             p_bsdf = bs.pdf;
         }
         beta *= bs.weight;
-// #if HAS_DIELECTRIC
+// #if HAS_TRANSMISSION
         eta_scale *= bs.eta * bs.eta;
 // #endif
         if !wi_ok || (all(beta == vec3f(0.0)) && !pending) {
@@ -528,7 +541,7 @@ fn radiance(camera_ray: Ray) -> vec3f {
         }
 
         if u32(depth) >= params.rr_depth {
-// #if HAS_DIELECTRIC
+// #if HAS_TRANSMISSION
             let q = min(max_component(beta * eta_scale), 0.95);
 // #else
             let q = min(max_component(beta), 0.95);

@@ -53,7 +53,7 @@ fn light_sampling_projects(method: u32, ns: vec3f) -> bool {
     return method == LIGHT_SAMPLING_PROJECTED_SOLID_ANGLE && any(ns != vec3f(0.0));
 }
 
-// #if HAS_DIELECTRIC
+// #if HAS_TRANSMISSION
 // `LightSampling::receiver_normal`: the normal a receiver gives the light sampler (none from a
 // transmitting one under projected-solid-angle sampling, which sees only the upper hemisphere).
 fn light_sampling_receiver_normal(method: u32, ns: vec3f, transmitting: bool) -> vec3f {

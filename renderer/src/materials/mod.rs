@@ -1,10 +1,11 @@
-//! Materials (BSDFs): Lambertian diffuse, GGX conductor, a rough plastic and a dielectric.
+//! Materials (BSDFs): Lambertian diffuse, GGX conductor, a rough plastic, a dielectric and a thin
+//! dielectric sheet.
 //!
 //! Everything works in the local shading frame: normal = +z, `wo` points towards the viewer and
 //! `wi` towards the light, both unit and pointing away from the surface. The integrator flips the
 //! frame of two-sided materials so that `wo.z > 0`; the reflection-only materials give zero for
-//! `wo.z <= 0` or `wi.z <= 0`. The dielectric alone ([`Material::transmits`]) sees both sides:
-//! its frame is never flipped, `wo.z < 0` means the viewer is inside, and `wi` may lie on either
+//! `wo.z <= 0` or `wi.z <= 0`. The dielectrics alone ([`Material::transmits`]) see both sides:
+//! their frame is never flipped, `wo.z < 0` means the viewer is inside, and `wi` may lie on either
 //! side.
 //!
 //! Conventions (Mitsuba 3): `eval` returns f·cosθi of the non-delta lobes; `pdf` is the solid-angle
@@ -15,6 +16,7 @@
 //! resolves it to one of them per hit ([`mix`]), before any of this code runs (CPU only).
 
 pub mod beckmann;
+pub mod bump_map;
 pub mod coat_albedo;
 pub mod conductor;
 pub mod dielectric;
@@ -30,6 +32,7 @@ pub mod plastic_textured;
 #[cfg(test)]
 mod testing;
 pub mod textured;
+pub mod thin_dielectric;
 
 pub use conductor::{Conductor, ConductorFresnel};
 pub use dielectric::Dielectric;
@@ -37,6 +40,7 @@ pub use diffuse::Diffuse;
 pub use microfacet::{Distribution, Microfacet};
 pub use mix::Mix;
 pub use plastic::Plastic;
+pub use thin_dielectric::ThinDielectric;
 
 use glam::{Vec2, Vec3};
 
@@ -99,6 +103,8 @@ pub enum Material {
     Plastic(Plastic),
     /// Glass: smooth or rough reflection and refraction between index 1 and `ior`.
     Dielectric(Dielectric),
+    /// A thin sheet of glass: mirror reflection or straight transmission, both delta.
+    ThinDielectric(ThinDielectric),
 }
 
 impl Material {
@@ -117,7 +123,10 @@ impl Material {
             Material::Conductor(m) => m.eval(wo, wi),
             Material::Plastic(m) => m.eval(wo, wi),
             Material::Dielectric(m) if TRANSMISSION => Vec3::splat(m.eval_pdf(wo, wi).0),
-            Material::Dielectric(_) => no_transmission(),
+            Material::Dielectric(_) | Material::ThinDielectric(_) if !TRANSMISSION => {
+                no_transmission()
+            }
+            Material::Dielectric(_) | Material::ThinDielectric(_) => Vec3::ZERO,
         }
     }
 
@@ -134,7 +143,10 @@ impl Material {
             Material::Conductor(m) => m.pdf(wo, wi),
             Material::Plastic(m) => m.pdf(wo, wi),
             Material::Dielectric(m) if TRANSMISSION => m.eval_pdf(wo, wi).1,
-            Material::Dielectric(_) => no_transmission(),
+            Material::Dielectric(_) | Material::ThinDielectric(_) if !TRANSMISSION => {
+                no_transmission()
+            }
+            Material::Dielectric(_) | Material::ThinDielectric(_) => 0.0,
         };
         pdf * crate::mutants::bsdf_pdf(self.kind_tag())
     }
@@ -163,7 +175,8 @@ impl Material {
             Material::Conductor(m) => m.sample(wo, u),
             Material::Plastic(m) => m.sample(wo, u_lobe, u),
             Material::Dielectric(m) if TRANSMISSION => m.sample(wo, u_lobe, u),
-            Material::Dielectric(_) => no_transmission(),
+            Material::ThinDielectric(m) if TRANSMISSION => m.sample(wo, u_lobe, u),
+            Material::Dielectric(_) | Material::ThinDielectric(_) => no_transmission(),
         }?;
         if cfg!(feature = "mutants") && !s.delta {
             let k = crate::mutants::bsdf_pdf(self.kind_tag());
@@ -180,6 +193,7 @@ impl Material {
             Material::Conductor(m) => !m.is_delta(),
             Material::Plastic(m) => m.has_smooth_part(),
             Material::Dielectric(m) => !m.is_delta(),
+            Material::ThinDielectric(_) => false,
         }
     }
 
@@ -190,7 +204,7 @@ impl Material {
         match self {
             Material::Conductor(c) => !c.is_delta() && c.microfacet.is_anisotropic(),
             Material::Dielectric(d) => !d.is_delta() && d.microfacet.is_anisotropic(),
-            Material::Diffuse(_) | Material::Plastic(_) => false,
+            Material::Diffuse(_) | Material::Plastic(_) | Material::ThinDielectric(_) => false,
         }
     }
 
@@ -198,7 +212,7 @@ impl Material {
     /// flipped, and two-sidedness does not apply.
     #[inline]
     pub fn transmits(&self) -> bool {
-        matches!(self, Material::Dielectric(_))
+        matches!(self, Material::Dielectric(_) | Material::ThinDielectric(_))
     }
 
     /// Purely specular: `eval` is always 0 and every sample is a delta sample.
@@ -212,7 +226,7 @@ impl Material {
             Material::Diffuse(m) => m.albedo,
             Material::Conductor(m) => m.normal_reflectance(),
             Material::Plastic(m) => m.albedo_hint(),
-            Material::Dielectric(_) => Vec3::ONE,
+            Material::Dielectric(_) | Material::ThinDielectric(_) => Vec3::ONE,
         }
     }
 }

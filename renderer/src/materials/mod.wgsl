@@ -1,5 +1,6 @@
 // The closed set of materials, the twin of `materials/mod.rs`: one record per material, a `switch`
-// on the same variant order as `Material` (Diffuse, Conductor, Plastic, Dielectric); and, under
+// on the same variant order as `Material` (Diffuse, Conductor, Plastic, Dielectric,
+// ThinDielectric); and, under
 // HAS_TEXTURES, `material_at`, the twin of `materials/textured.rs`, which evaluates a material's
 // textures at a hit.
 //
@@ -17,6 +18,7 @@
 //   Mix:        (MATERIAL_MIX) resolved by `materials/mix.wgsl` before anything here sees the material.
 //   Dielectric: a.x ior, c.xyz the microfacet slot as a conductor's; never two-sided (its two
 //               sides are its two media).
+//   ThinDielectric: a.x ior; never two-sided (it is the same from both sides).
 //   Every kind: a.w, c.w = bits of the ids of its colour texture (a diffuse's or plastic's albedo,
 //       a conductor's reflectance: replaces a.xyz) and its roughness textures (α, or α_u in the
 //       low 16 bits and α_v in the high 16, 0xFFFF for none: replace a conductor's or
@@ -31,13 +33,14 @@ struct Material {
 }
 
 // `BsdfSample`; `ok` = false stands for `None`. `eta` (η' of a refraction, 1 for a reflection)
-// exists only in programs with a dielectric, so the others are the reflection-only program.
+// exists only in programs with a transmitting material, so the others are the reflection-only
+// program.
 struct BsdfSample {
     wi: vec3f,
     weight: vec3f,
     pdf: f32,
     delta: bool,
-// #if HAS_DIELECTRIC
+// #if HAS_TRANSMISSION
     eta: f32,
 // #endif
     ok: bool,
@@ -45,7 +48,7 @@ struct BsdfSample {
 
 // A valid sample of a reflection (η' = 1).
 fn reflection_sample(wi: vec3f, weight: vec3f, pdf: f32, delta: bool) -> BsdfSample {
-// #if HAS_DIELECTRIC
+// #if HAS_TRANSMISSION
     return BsdfSample(wi, weight, pdf, delta, 1.0, true);
 // #else
     return BsdfSample(wi, weight, pdf, delta, true);
@@ -58,10 +61,10 @@ fn no_bsdf_sample() -> BsdfSample {
     return s;
 }
 
-// #if HAS_DIELECTRIC
+// #if HAS_TRANSMISSION
 // `Material::transmits`: wo and wi may lie on either side, the frame is never flipped.
 fn material_transmits(m: Material) -> bool {
-    return m.h.x == MATERIAL_DIELECTRIC;
+    return m.h.x == MATERIAL_DIELECTRIC || m.h.x == MATERIAL_THIN_DIELECTRIC;
 }
 // #endif
 
@@ -88,6 +91,12 @@ fn material_eval(m: Material, wo: vec3f, wi: vec3f) -> vec3f {
 // #if HAS_DIELECTRIC
         case MATERIAL_DIELECTRIC: {
             return vec3f(dielectric_eval_pdf(m, wo, wi).x);
+        }
+// #endif
+// #if HAS_THIN_DIELECTRIC
+        // Both lobes delta.
+        case MATERIAL_THIN_DIELECTRIC: {
+            return vec3f(0.0);
         }
 // #endif
         default: {
@@ -128,6 +137,11 @@ fn material_pdf_unmutated(m: Material, wo: vec3f, wi: vec3f) -> f32 {
             return dielectric_eval_pdf(m, wo, wi).y;
         }
 // #endif
+// #if HAS_THIN_DIELECTRIC
+        case MATERIAL_THIN_DIELECTRIC: {
+            return 0.0;
+        }
+// #endif
         default: {
             return unknown_tag();
         }
@@ -161,6 +175,11 @@ fn material_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample 
             s = dielectric_sample(m, wo, u_lobe, u);
         }
 // #endif
+// #if HAS_THIN_DIELECTRIC
+        case MATERIAL_THIN_DIELECTRIC: {
+            s = thin_dielectric_sample(m, wo, u_lobe);
+        }
+// #endif
         default: {
             s.pdf = unknown_tag();
         }
@@ -171,7 +190,7 @@ fn material_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample 
         s.weight /= MUTANT_FACTOR;
     }
 // #endif
-// #if HAS_DIELECTRIC
+// #if HAS_TRANSMISSION
     // A transmitting material may send wi below the surface (never into the tangent plane).
     let side_ok = select(s.wi.z > 0.0, s.wi.z != 0.0, material_transmits(m));
     let ok = s.ok && s.pdf > 0.0 && is_finite_f(s.pdf) && is_finite3(s.weight) && is_finite_f(s.eta) && side_ok;
@@ -232,6 +251,8 @@ fn material_at(m_in: Material, uv: vec2f) -> Material {
                 m.c = vec4f(textured_alphas(alpha, alpha_v, uv), m.c.zw);
             }
         }
+        // Nothing of it is texturable (`MaterialTextures::check`).
+        case MATERIAL_THIN_DIELECTRIC: {}
         default: {
             m.a = vec4f(unknown_tag());
         }
@@ -278,6 +299,11 @@ fn material_smooth_part(m: Material) -> bool {
 // #if HAS_DIELECTRIC
         case MATERIAL_DIELECTRIC: {
             return !dielectric_is_delta(m);
+        }
+// #endif
+// #if HAS_THIN_DIELECTRIC
+        case MATERIAL_THIN_DIELECTRIC: {
+            return false;
         }
 // #endif
         default: {

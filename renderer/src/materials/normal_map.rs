@@ -19,6 +19,9 @@
 //! On the back of a two-sided material the map is read in the front's frame mirrored through the
 //! surface ([`seen_from`]), which is what Mitsuba's `twosided` around a `normalmap` renders.
 //!
+//! A bump map (Mitsuba's `bumpmap`, [`super::bump_map`]) is the same map with another source of
+//! the normal: a height texture's gradient instead of a texel ([`NormalMap::height_scale`]).
+//!
 //! The perturbed frame's first axis is the unperturbed first axis made orthogonal to `n`
 //! (Gram–Schmidt), as Mitsuba's. Where Mitsuba's construction is undefined (a texel `(½, ½, ½)`,
 //! `n` of length 0, or `n` along the first axis) lumis keeps the unperturbed normal, resp. any
@@ -41,20 +44,31 @@ pub struct NormalMap {
     pub flip_invalid_normals: bool,
     /// Mitsuba's `use_shadowing_function`.
     pub shadowing: bool,
+    /// `Some(scale)`: the texture is a height field whose gradient times `scale` tilts the
+    /// normal (Mitsuba's `bumpmap` and its `scale`), not encoded normals.
+    pub height_scale: Option<f32>,
 }
 
 impl NormalMap {
-    /// The frame the material sees at a hit whose normal map reads `texel`, and the perturbation
-    /// that goes with it; `None` where the map leaves the normal as it is (the path then keeps
-    /// its usual frame). `base` gives the unperturbed shading frame, first axis along ∂p/∂u
-    /// (only asked for where the map tilts the normal); `wo_world` points towards the viewer.
+    /// The normal a texel encodes, `2c − 1` (not normalised).
+    #[inline]
+    pub fn decode(texel: Vec3) -> Vec3 {
+        2.0 * texel - Vec3::ONE
+    }
+
+    /// The frame the material sees at a hit where the map gives the normal `n` (in the
+    /// unperturbed frame, not necessarily unit: [`NormalMap::decode`] of a texel, or a bump
+    /// map's [`super::bump_map::local_normal`]), and the perturbation that goes with it; `None`
+    /// where the map leaves the normal as it is (the path then keeps its usual frame). `base`
+    /// gives the unperturbed shading frame, first axis along ∂p/∂u (only asked for where the map
+    /// tilts the normal); `wo_world` points towards the viewer.
     pub fn perturb(
         &self,
-        texel: Vec3,
+        n: Vec3,
         base: impl FnOnce() -> Frame,
         wo_world: Vec3,
     ) -> Option<(Frame, Perturbation)> {
-        let mut n = 2.0 * texel - Vec3::ONE;
+        let mut n = n;
         if n.x == 0.0 && n.y == 0.0 && n.z > 0.0 {
             return None;
         }

@@ -1,12 +1,13 @@
-// Normal maps (Mitsuba's `normalmap`), the twin of `materials/normal_map.rs`: the perturbed frame
-// (`normal_map_perturb`) and the BSDF of a path vertex under it (`VertexBsdf`: `vertex_eval`,
+// Normal and bump maps (Mitsuba's `normalmap` and `bumpmap`), the twin of
+// `materials/normal_map.rs` and `materials/bump_map.rs`: the bumped normal (`bump_normal`), the
+// perturbed frame (`normal_map_perturb`) and the BSDF of a path vertex under it (`VertexBsdf`: `vertex_eval`,
 // `vertex_pdf`, `vertex_sample`). The current vertex's perturbation is a private variable that
 // `path_trace` sets where it builds the frame, so that the BSDF calls keep the arguments they have
 // (the CPU passes it in `VertexBsdf`); without HAS_NORMAL_MAPS the calls are the material's own.
 //
 // A material record's `h.y` (`gpu/scene/materials.rs` `sides_word`): bit 0 two-sided, bit 1
-// `flip_invalid_normals`, bit 2 the shadowing term, bits 3… the normal map texture's id + 1
-// (0: none).
+// `flip_invalid_normals`, bit 2 the shadowing term, bit 3 a bump map (the texture is heights,
+// its record's c1.x the scale), bits 4… the map texture's id + 1 (0: none).
 
 // #if HAS_NORMAL_MAPS
 // `Perturbation`; `on` = false stands for `None`.
@@ -29,9 +30,33 @@ fn no_perturbation() -> Perturbation {
     return Perturbation(vec3f(0.0, 0.0, 1.0), 0.0, false);
 }
 
-// The id + 1 of material `m`'s normal map texture, 0 for none.
+// The id + 1 of material `m`'s normal or bump map texture, 0 for none.
 fn normal_map_texture(m: Material) -> u32 {
-    return m.h.y >> 3u;
+    return m.h.y >> 4u;
+}
+
+// Whether material `m`'s map is a bump map.
+fn normal_map_is_bump(m: Material) -> bool {
+    return (m.h.y & 8u) != 0u;
+}
+
+// `bump_map::local_normal`: the bumped normal in `front`'s coordinates (xyz), w = 0 for no tilt.
+fn bump_normal(grad: vec2f, dp_du: vec3f, dp_dv: vec3f, ns: vec3f, ng: vec3f, front: Frame) -> vec4f {
+    if grad.x == 0.0 && grad.y == 0.0 {
+        return vec4f(0.0);
+    }
+    let du = dp_du + ns * (grad.x - dot(ns, dp_du));
+    let dv = dp_dv + ns * (grad.y - dot(ns, dp_dv));
+    let c = cross(du, dv);
+    let len = length(c);
+    if !(len > 0.0 && is_finite_f(len)) {
+        return vec4f(0.0);
+    }
+    var n = c / len;
+    if dot(ng, n) < 0.0 {
+        n = -n;
+    }
+    return vec4f(to_local(front, n), 1.0);
 }
 
 fn nm_tan2(cos: f32) -> f32 {
@@ -39,11 +64,11 @@ fn nm_tan2(cos: f32) -> f32 {
 }
 
 // `NormalMap::perturb`: the frame the material sees where material word `word` (its `h.y`) has a
-// map reading `texel`, about the unperturbed frame `base` (first axis along ∂p/∂u), seen from
-// `wo_world`.
-fn normal_map_perturb(word: u32, texel: vec3f, base: Frame, wo_world: vec3f) -> Perturbed {
+// map giving the normal `n_in` (`NormalMap::decode` of a texel, or `bump_normal`) about the
+// unperturbed frame `base` (first axis along ∂p/∂u), seen from `wo_world`.
+fn normal_map_perturb(word: u32, n_in: vec3f, base: Frame, wo_world: vec3f) -> Perturbed {
     let none = Perturbed(false, base, no_perturbation());
-    var n = 2.0 * texel - vec3f(1.0);
+    var n = n_in;
     if n.x == 0.0 && n.y == 0.0 && n.z > 0.0 {
         return none;
     }

@@ -8,6 +8,7 @@ fn map(flip: bool, shadowing: bool) -> NormalMap {
         texture: Texture::Constant(Vec3::new(0.5, 0.5, 1.0)),
         flip_invalid_normals: flip,
         shadowing,
+        height_scale: None,
     }
 }
 
@@ -17,9 +18,9 @@ fn base() -> Frame {
     crate::geometry::tangent::tangent_frame(n, Vec3::new(1.0, 2.0, 0.5))
 }
 
-/// The texel that encodes local normal `n` (unit or not).
+/// What [`NormalMap::perturb`] gets from the texel that encodes local normal `n` (unit or not).
 fn texel(n: Vec3) -> Vec3 {
-    (n + Vec3::ONE) * 0.5
+    NormalMap::decode((n + Vec3::ONE) * 0.5)
 }
 
 fn assert_orthonormal(f: &Frame) {
@@ -37,7 +38,7 @@ fn a_texel_along_the_normal_changes_nothing() {
     // (½, ½, z) for any z > ½ encodes the unperturbed normal: no frame is even asked for.
     for z in [0.51, 0.75, 1.0] {
         let got = map(true, true).perturb(
-            Vec3::new(0.5, 0.5, z),
+            NormalMap::decode(Vec3::new(0.5, 0.5, z)),
             || panic!("no frame needed"),
             Vec3::Z,
         );
@@ -88,7 +89,7 @@ fn undefined_texels_give_no_nan() {
     // Length 0: the unperturbed normal is kept.
     assert!(
         map(true, true)
-            .perturb(Vec3::splat(0.5), || b, b.n)
+            .perturb(NormalMap::decode(Vec3::splat(0.5)), || b, b.n)
             .is_none()
     );
     // Along the first axis: any tangent.

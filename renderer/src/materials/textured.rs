@@ -69,6 +69,9 @@ impl MaterialTextures {
                     self.reflectance.is_none() && (self.alpha.is_none() || p.coat().is_some())
                 }
                 Material::Dielectric(_) => self.albedo.is_none() && self.reflectance.is_none(),
+                Material::ThinDielectric(_) => {
+                    self.albedo.is_none() && self.reflectance.is_none() && self.alpha.is_none()
+                }
             };
         if ok {
             Ok(())
@@ -112,6 +115,7 @@ impl MaterialTextures {
                     d.microfacet = self.microfacet_at(d.microfacet, t, uv);
                 }
             }
+            Material::ThinDielectric(_) => {}
         }
         m
     }

@@ -27,7 +27,7 @@ use crate::materials::normal_map::NormalMap;
 use crate::materials::textured::MaterialTextures;
 use crate::materials::{
     Conductor, ConductorFresnel, Dielectric, Diffuse, Distribution, Material, Microfacet, Mix,
-    Plastic,
+    Plastic, ThinDielectric,
 };
 use crate::math::Frame;
 use crate::textures::Texture;
@@ -141,6 +141,9 @@ fn material(desc: &MaterialDesc) -> Material {
             ior: *ior as f32,
             microfacet: microfacet(*distribution, *alpha, *alpha_v),
         }),
+        MaterialDesc::ThinDielectric { ior } => {
+            Material::ThinDielectric(ThinDielectric { ior: *ior as f32 })
+        }
     }
 }
 

@@ -254,6 +254,9 @@ pub struct NormalMapDesc {
     pub flip_invalid_normals: bool,
     /// Mitsuba's `use_shadowing_function` (default true).
     pub shadowing: bool,
+    /// `Some(scale)` for a bump map (`"bump_map"`, Mitsuba's `bumpmap`): the texture is a height
+    /// field, its gradient times `scale` tilts the normal ([`crate::materials::bump_map`]).
+    pub height_scale: Option<f64>,
 }
 
 impl NormalMapDesc {
@@ -263,6 +266,7 @@ impl NormalMapDesc {
             texture: self.texture.texture.clone(),
             flip_invalid_normals: self.flip_invalid_normals,
             shadowing: self.shadowing,
+            height_scale: self.height_scale.map(|s| s as f32),
         }
     }
 }
@@ -416,6 +420,23 @@ pub enum MaterialDesc {
         /// The microfacet distribution of a rough interface.
         distribution: Distribution,
     },
+    /// A thin sheet of index `ior` (Mitsuba's `thindielectric`): mirror reflection or straight
+    /// transmission. The same from both sides, so it has no `two_sided`.
+    ThinDielectric {
+        /// Index of refraction of the sheet, in (0, 10].
+        ior: f64,
+    },
+}
+
+impl MaterialDesc {
+    /// True for a material light passes through: its two sides are its two media (or, for a
+    /// thin sheet, alike), so `two_sided` does not apply.
+    pub fn transmits(&self) -> bool {
+        matches!(
+            self,
+            MaterialDesc::Dielectric { .. } | MaterialDesc::ThinDielectric { .. }
+        )
+    }
 }
 
 /// How a plastic couples its base to its coat (`materials/plastic.rs`).
@@ -857,6 +878,7 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
             microfacet_keys(&mut obj, *alpha, *alpha_v, *distribution);
             obj
         }
+        MaterialDesc::ThinDielectric { ior } => json!({"type": "thin_dielectric", "ior": ior}),
     };
     let t = &m.textures;
     for (key, slot) in [
@@ -887,15 +909,22 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
         };
         obj["alpha"] = json!([element(u, cu), element(v, cv)]);
     }
-    if !m.two_sided && !matches!(m.material, MaterialDesc::Dielectric { .. }) {
+    if !m.two_sided && !m.material.transmits() {
         obj["two_sided"] = json!(false);
     }
     if let Some(map) = &m.normal_map {
-        obj["normal_map"] = json!({
+        let mut v = json!({
             "texture": map.texture.to_json(),
             "flip_invalid_normals": map.flip_invalid_normals,
             "shadowing": map.shadowing,
         });
+        match map.height_scale {
+            Some(scale) => {
+                v["scale"] = json!(scale);
+                obj["bump_map"] = v;
+            }
+            None => obj["normal_map"] = v,
+        }
     }
     obj
 }

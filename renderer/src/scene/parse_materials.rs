@@ -51,7 +51,10 @@ fn parse_material(
     let mut mix = None;
     let material = match kind {
         "diffuse" => {
-            obj.only_keys(&["type", "albedo", "two_sided", "normal_map"], true)?;
+            obj.only_keys(
+                &["type", "albedo", "two_sided", "normal_map", "bump_map"],
+                true,
+            )?;
             MaterialDesc::Diffuse {
                 albedo: albedo(obj, loader, &mut t.albedo)?,
             }
@@ -68,6 +71,7 @@ fn parse_material(
                     "specular",
                     "two_sided",
                     "normal_map",
+                    "bump_map",
                 ],
                 true,
             )?;
@@ -92,6 +96,7 @@ fn parse_material(
                     "distribution",
                     "nonlinear",
                     "normal_map",
+                    "bump_map",
                 ],
                 true,
             )?;
@@ -126,7 +131,14 @@ fn parse_material(
                 return Err(SceneError::new(obj.at("two_sided"), msg));
             }
             obj.only_keys(
-                &["type", "ior", "alpha", "distribution", "normal_map"],
+                &[
+                    "type",
+                    "ior",
+                    "alpha",
+                    "distribution",
+                    "normal_map",
+                    "bump_map",
+                ],
                 true,
             )?;
             let ior = obj.opt_number("ior")?.unwrap_or(1.5);
@@ -146,6 +158,20 @@ fn parse_material(
                 distribution: distribution(obj)?,
             }
         }
+        "thin_dielectric" => {
+            if obj.get("two_sided").is_some() {
+                let msg = "a thin dielectric has no two_sided: it is the same from both sides";
+                return Err(SceneError::new(obj.at("two_sided"), msg));
+            }
+            obj.only_keys(&["type", "ior"], true)?;
+            let ior = obj.opt_number("ior")?.unwrap_or(1.5);
+            let max = crate::materials::dielectric::MAX_IOR as f64;
+            if !(ior > 0.0 && ior <= max) {
+                let msg = format!("ior {ior} must be positive and at most {max}");
+                return Err(SceneError::new(obj.at("ior"), msg));
+            }
+            MaterialDesc::ThinDielectric { ior }
+        }
         "mix" => {
             if obj.get("two_sided").is_some() {
                 let msg = "a mix has no sides of its own: its materials' `two_sided` apply";
@@ -163,18 +189,21 @@ fn parse_material(
                 obj.at("type"),
                 format!(
                     "unknown material type `{other}` (expected diffuse, conductor, plastic, \
-                     dielectric or mix)"
+                     dielectric, thin_dielectric or mix)"
                 ),
             ));
         }
     };
-    let two_sided = kind != "dielectric" && obj.opt_bool("two_sided")?.unwrap_or(true);
+    let two_sided = !material.transmits() && obj.opt_bool("two_sided")?.unwrap_or(true);
     let named = NamedMaterial {
         name: name.to_owned(),
         material,
         two_sided,
         textures,
-        normal_map: normal_map(obj, loader)?,
+        normal_map: match bump_map(obj, loader)? {
+            Some(b) => Some(b),
+            None => normal_map(obj, loader)?,
+        },
         mix: None,
     };
     Ok((named, mix))
@@ -284,7 +313,7 @@ fn resolve_mixes(
             stack.pop();
             state[m] = 2;
             sides[m] = match &materials[m].mix {
-                None if matches!(materials[m].material, MaterialDesc::Dielectric { .. }) => None,
+                None if materials[m].material.transmits() => None,
                 None => Some(materials[m].two_sided),
                 Some(mix) => {
                     let [a, b] = mix.materials;
@@ -344,6 +373,40 @@ fn normal_map(obj: &Obj, loader: &mut TextureLoader) -> Result<Option<NormalMapD
         texture,
         flip_invalid_normals: m.opt_bool("flip_invalid_normals")?.unwrap_or(true),
         shadowing: m.opt_bool("shadowing")?.unwrap_or(true),
+        height_scale: None,
+    }))
+}
+
+/// The optional `bump_map`: `{"texture": T, "scale": s, "flip_invalid_normals": b,
+/// "shadowing": b}`, T a bitmap of finite heights (a checkerboard has no gradient), `scale` a
+/// finite number (default 1, Mitsuba's); the flags as a normal map's. Not beside a `normal_map`.
+fn bump_map(obj: &Obj, loader: &mut TextureLoader) -> Result<Option<NormalMapDesc>, SceneError> {
+    let Some(v) = obj.get("bump_map") else {
+        return Ok(None);
+    };
+    if obj.get("normal_map").is_some() {
+        let msg = "a material has one normal_map or one bump_map, not both";
+        return Err(SceneError::new(obj.at("bump_map"), msg));
+    }
+    let m = Obj::new(v, obj.at("bump_map"))?;
+    m.only_keys(
+        &["texture", "scale", "flip_invalid_normals", "shadowing"],
+        true,
+    )?;
+    let texture = match texture_at(&m, "texture", TextureUse::Height, loader)? {
+        Some(t) if matches!(t.texture, Texture::Bitmap(_)) => t,
+        _ => {
+            let msg = "a bump map's texture must be a bitmap: heights are differentiated, \
+                       and a constant or a checkerboard has no gradient";
+            return Err(SceneError::new(m.at("texture"), msg));
+        }
+    };
+    let scale = m.opt_number("scale")?.unwrap_or(1.0);
+    Ok(Some(NormalMapDesc {
+        texture,
+        flip_invalid_normals: m.opt_bool("flip_invalid_normals")?.unwrap_or(true),
+        shadowing: m.opt_bool("shadowing")?.unwrap_or(true),
+        height_scale: Some(scale),
     }))
 }
 
@@ -856,6 +919,31 @@ mod tests {
         }
         let s = glass(json!({"type": "dielectric", "albedo": [1, 1, 1]}));
         expect_err(&s, &format!("{p}.albedo"), "unknown key `albedo`");
+    }
+
+    #[test]
+    fn thin_dielectric_defaults_and_rules() {
+        let sheet = |v: Value| with("white", v);
+        let d = parse_scene_value(&sheet(json!({"type": "thin_dielectric"}))).unwrap();
+        let m = &d.materials[3];
+        assert_eq!(m.material, MaterialDesc::ThinDielectric { ior: 1.5 });
+        assert!(!m.two_sided, "a sheet is the same from both sides");
+        for ok in [0.7, 1.0, 10.0] {
+            let s = sheet(json!({"type": "thin_dielectric", "ior": ok}));
+            assert!(parse_scene_value(&s).is_ok(), "ior {ok}");
+        }
+        let p = "materials.white";
+        for bad in [0.0, -1.5, 10.5] {
+            let s = sheet(json!({"type": "thin_dielectric", "ior": bad}));
+            expect_err(&s, &format!("{p}.ior"), "must be positive and at most 10");
+        }
+        let s = sheet(json!({"type": "thin_dielectric", "two_sided": true}));
+        expect_err(&s, &format!("{p}.two_sided"), "same from both sides");
+        let s = sheet(json!({"type": "thin_dielectric", "alpha": 0.1}));
+        expect_err(&s, &format!("{p}.alpha"), "unknown key `alpha`");
+        // The description writes back what it read.
+        let back = parse_scene_value(&d.to_json()).unwrap();
+        assert_eq!(back.materials[3].material, m.material);
     }
 
     #[test]

@@ -121,6 +121,17 @@ fn parse_shape(
         "cylinder" => cylinder(obj, emits)?,
         _ => boxed(obj)?,
     };
+    let analytic = matches!(
+        geometry,
+        GeometryDesc::Disk { .. } | GeometryDesc::Sphere { .. } | GeometryDesc::Cylinder { .. }
+    );
+    if analytic && material.is_some_and(|m| bump_mapped(materials, m, 0)) {
+        let msg = format!(
+            "a bump map on a {kind}: lumis has ∂p/∂v only for triangles (meshes, quads, \
+             polygons, boxes), and a bump map needs both partials"
+        );
+        return Err(SceneError::new(obj.at("material"), msg));
+    }
     Ok(ShapeDesc {
         geometry,
         material,
@@ -128,6 +139,23 @@ fn parse_shape(
         emission_texture,
         json_path: obj.path.clone(),
     })
+}
+
+/// Whether material `m`, or one a mix may choose through it, has a bump map (mix chains were
+/// checked for cycles with the materials; `depth` bounds the walk all the same).
+fn bump_mapped(materials: &[NamedMaterial], m: usize, depth: usize) -> bool {
+    let named = &materials[m];
+    match &named.mix {
+        Some(mix) if depth < materials.len() => mix
+            .materials
+            .iter()
+            .any(|&c| bump_mapped(materials, c, depth + 1)),
+        Some(_) => false,
+        None => named
+            .normal_map
+            .as_ref()
+            .is_some_and(|n| n.height_scale.is_some()),
+    }
 }
 
 fn material_index(obj: &Obj, materials: &[NamedMaterial]) -> Result<usize, SceneError> {

@@ -36,6 +36,8 @@ pub(crate) enum TextureUse {
     Emission,
     /// A normal map's encoded normals `(n + 1)/2`: RGB in [0, 1].
     NormalMap,
+    /// A bump map's heights: any finite values, differentiated through their luminance.
+    Height,
 }
 
 impl TextureUse {
@@ -60,6 +62,7 @@ impl TextureUse {
                 .then_some("is outside [0, 1]: a mix weight must lie in [0, 1]"),
             TextureUse::NormalMap => (!(0.0..=1.0).contains(&x))
                 .then_some("is outside [0, 1]: a normal map encodes (n + 1)/2 in [0, 1]"),
+            TextureUse::Height => (!x.is_finite()).then_some("is not finite"),
             TextureUse::Emission => {
                 if x < 0.0 {
                     Some("is negative: radiance must be ≥ 0")

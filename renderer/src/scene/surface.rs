@@ -161,15 +161,15 @@ impl Scene {
         }
     }
 
-    /// The normal map of the material that `material` (a mix resolved) is at `hit`, and its
-    /// texel there; `None` without one (at once in a scene without normal maps).
+    /// The normal or bump map of the material that `material` (a mix resolved) is at `hit`, and
+    /// the hit's texture coordinates; `None` without one (at once in a scene without maps).
     #[inline]
-    pub fn normal_map_at(&self, hit: &SurfaceHit, material: u32) -> Option<(&NormalMap, Vec3)> {
+    pub fn normal_map_at(&self, hit: &SurfaceHit, material: u32) -> Option<(&NormalMap, Vec2)> {
         if self.normal_maps.is_empty() {
             return None;
         }
         let map = self.normal_maps[self.resolve_mix(hit, material) as usize].as_ref()?;
-        Some((map, map.texture.eval(self.uv(hit))))
+        Some((map, self.uv(hit)))
     }
 
     /// The material a mix chooses at `hit`, through nested mixes (`material` itself when it is

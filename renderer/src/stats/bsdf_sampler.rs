@@ -60,7 +60,8 @@ impl BsdfSampler {
     fn alpha(&self) -> Option<f32> {
         let widest = |m: &crate::materials::Microfacet| m.alpha_u.max(m.alpha_v);
         match &self.material {
-            Material::Diffuse(_) => None,
+            // A thin sheet is delta: χ² has nothing to see.
+            Material::Diffuse(_) | Material::ThinDielectric(_) => None,
             Material::Conductor(c) => Some(widest(&c.microfacet)),
             Material::Plastic(p) => Some(p.alpha()),
             Material::Dielectric(d) => Some(widest(&d.microfacet)),

@@ -173,6 +173,35 @@ impl BitmapTexture {
         out * self.options.scale
     }
 
+    /// The gradient (∂/∂u, ∂/∂v) of the filtered value's luminance at `uv`, Mitsuba 3.9.1's
+    /// `bitmap::eval_1_grad` (what its `bumpmap` differentiates): the bilinear interpolant of the
+    /// four corner texels' luminances, differentiated within its cell, through the uv transform
+    /// (its scale, per axis) and times the resolution (texel coordinates per unit of uv').
+    /// WGSL twin: `texture_eval_1_grad` in `textures/mod.wgsl`.
+    #[inline]
+    pub fn eval_1_grad(&self, uv: Vec2) -> Vec2 {
+        let p = self.options.uv.apply(uv);
+        let img = &*self.image;
+        let wrap = self.options.wrap;
+        let (xs, wx) = axis_lookup(p.x, img.width, wrap);
+        let (ys, wy) = axis_lookup(p.y, img.height, wrap);
+        let w = img.width as usize;
+        let f = |i: u32, j: u32| {
+            super::luminance(img.data[j as usize * w + i as usize] * self.options.scale)
+        };
+        let (f00, f10, f01, f11) = (
+            f(xs[0], ys[0]),
+            f(xs[1], ys[0]),
+            f(xs[0], ys[1]),
+            f(xs[1], ys[1]),
+        );
+        // ∂/∂x and ∂/∂y in texels, weights [1 − f, f] as in `eval`.
+        let dx = wy[0] * (f10 - f00) + wy[1] * (f11 - f01);
+        let dy = wx[0] * (f01 - f00) + wx[1] * (f11 - f10);
+        let s = self.options.uv.scale;
+        Vec2::new(dx * s.x * img.width as f32, dy * s.y * img.height as f32)
+    }
+
     /// The average of [`BitmapTexture::eval`] over the unit square of `uv`, exact.
     pub fn mean(&self) -> Vec3 {
         self.mean

@@ -268,3 +268,51 @@ fn axis_weights_sum_to_one_and_handle_huge_intervals() {
         "{w:?}"
     );
 }
+
+/// `eval_1_grad` against central differences of the luminance of `eval` inside bilinear cells
+/// (where the interpolant is smooth: away from texel centres, which its derivative jumps at), on
+/// a non-square image with distinct texels, through a uv transform that scales u and v
+/// differently and flips v, in each wrap mode. Catches swapped axes, a missing resolution or
+/// transform factor, the wrong weights and a wrong sign.
+#[test]
+fn the_luminance_gradient_is_the_derivative_of_the_lookup() {
+    let image = numbered(5, 3);
+    let uv = UvTransform {
+        scale: Vec2::new(1.7, -0.6),
+        offset: Vec2::new(0.1, 0.2),
+    };
+    let mut checked = 0;
+    for wrap in [WrapMode::Repeat, WrapMode::Mirror, WrapMode::Clamp] {
+        let t = texture(image.clone(), wrap, uv);
+        let lum = |p: Vec2| luminance(t.eval(p)) as f64;
+        for i in 0..40 {
+            for j in 0..40 {
+                let p = Vec2::new(i as f32 / 40.0 + 0.003, j as f32 / 40.0 + 0.007);
+                // Skip points within the step of a cell edge (texel centres) on either axis.
+                let q = uv.apply(p) * Vec2::new(5.0, 3.0) - 0.5;
+                let near = |x: f32, s: f32| (x - x.round()).abs() < 2e-3 * s;
+                if near(q.x, 5.0 * 1.7) || near(q.y, 3.0 * 0.6) {
+                    continue;
+                }
+                let h = 1e-4f32;
+                let gu =
+                    (lum(p + Vec2::new(h, 0.0)) - lum(p - Vec2::new(h, 0.0))) / (2.0 * h as f64);
+                let gv =
+                    (lum(p + Vec2::new(0.0, h)) - lum(p - Vec2::new(0.0, h))) / (2.0 * h as f64);
+                let g = t.eval_1_grad(p);
+                let tol = 2e-2 * (gu.abs() + gv.abs() + 1.0);
+                assert!(
+                    (g.x as f64 - gu).abs() < tol && (g.y as f64 - gv).abs() < tol,
+                    "{wrap:?} at {p}: {g} vs ({gu}, {gv})"
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 3000, "{checked}");
+    // A constant has no gradient; a checkerboard, whose value jumps, none defined.
+    assert_eq!(
+        Texture::Constant(Vec3::ONE).eval_1_grad(Vec2::ZERO),
+        Some(Vec2::ZERO)
+    );
+}

@@ -75,6 +75,18 @@ impl Texture {
         }
     }
 
+    /// The gradient of the luminance at `uv` with respect to (u, v): a bitmap's
+    /// [`BitmapTexture::eval_1_grad`]; 0 for a constant; `None` for a checkerboard, whose value
+    /// jumps (Mitsuba's has no gradient either).
+    #[inline]
+    pub fn eval_1_grad(&self, uv: Vec2) -> Option<Vec2> {
+        match self {
+            Texture::Constant(_) => Some(Vec2::ZERO),
+            Texture::Bitmap(b) => Some(b.eval_1_grad(uv)),
+            Texture::Checkerboard(_) => None,
+        }
+    }
+
     /// The value at `uv` for a scalar parameter (roughness): a bitmap's [`Channel`], else the
     /// [`luminance`].
     #[inline]

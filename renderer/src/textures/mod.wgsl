@@ -113,6 +113,25 @@ fn bitmap_eval(t: TextureRecord, uv: vec2f) -> vec3f {
     return out * t.c0.xyz;
 }
 
+// `BitmapTexture::eval_1_grad`: the gradient of the scaled corner texels' luminance over the
+// bilinear cell at `uv`, through the uv transform's scale, times the resolution. What a bump map
+// (`materials/bump_map.rs`) differentiates; only bitmaps have one (the scene refuses others).
+fn texture_eval_1_grad(id: u32, uv: vec2f) -> vec2f {
+    let t = texture_record(id);
+    let p = texture_uv(t, uv);
+    let w = bitcast<u32>(t.c0.w);
+    let h = bitcast<u32>(t.c1.w);
+    let x = bitmap_axis(p.x, w, t.h.y);
+    let y = bitmap_axis(p.y, h, t.h.y);
+    let f00 = texture_luminance(bitmap_texel(t.h.w, w, x.i.x, y.i.x) * t.c0.xyz);
+    let f10 = texture_luminance(bitmap_texel(t.h.w, w, x.i.y, y.i.x) * t.c0.xyz);
+    let f01 = texture_luminance(bitmap_texel(t.h.w, w, x.i.x, y.i.y) * t.c0.xyz);
+    let f11 = texture_luminance(bitmap_texel(t.h.w, w, x.i.y, y.i.y) * t.c0.xyz);
+    let dx = y.w.x * (f10 - f00) + y.w.y * (f11 - f01);
+    let dy = x.w.x * (f01 - f00) + x.w.y * (f11 - f10);
+    return vec2f(dx * t.uv.x * f32(w), dy * t.uv.y * f32(h));
+}
+
 // Texel (i, j) of a bitmap of width w whose texels start at `first`.
 fn bitmap_texel(first: u32, w: u32, i: u32, j: u32) -> vec3f {
     let k = first + j * w + i;

@@ -10,6 +10,7 @@ mod common;
 #[path = "common/mod.rs"]
 mod gpu_common;
 
+mod bump_map;
 mod bvh2;
 mod chi2;
 mod filter_images;

@@ -134,6 +134,14 @@ fn gpu_xml_cylinder_matches_the_cpu_and_mitsuba() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// `xml_thin.xml` (Mitsuba's `thindielectric`: `materials/thin_dielectric.wgsl`, a crossing
+/// without refraction in the path tracer's transmission code).
+#[test]
+fn gpu_xml_thin_matches_the_cpu_and_mitsuba() {
+    let failures = check("xml_thin");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// [`check`], and for scenes lit by delta lights `mis-optimal` too at 12 spp with the CPU's
 /// seed (past its first stage, so that α and `opt_delta_light`'s moments count).
 fn check_delta(name: &str) -> Vec<String> {

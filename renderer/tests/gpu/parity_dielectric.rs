@@ -7,7 +7,7 @@ use glam::{Vec2, Vec3};
 use gpu_common::parity::*;
 use gpu_common::*;
 use lumis::gpu::GpuScene;
-use lumis::materials::{Dielectric, Material, Microfacet, fresnel};
+use lumis::materials::{Dielectric, Material, Microfacet, ThinDielectric, fresnel};
 use lumis::math::{reflect, refract};
 use lumis::rng::Rng;
 use serde_json::json;
@@ -523,4 +523,121 @@ fn dielectric_matches() {
     );
     assert!(kinds.iter().all(|&n| n > items / 200), "{kinds:?}");
     assert!(ambiguous * 100 < items, "{ambiguous} ambiguous samples");
+}
+
+/// Parity of the thin dielectric's twin (`materials/thin_dielectric.wgsl`) with
+/// `materials/thin_dielectric.rs`: eval and pdf exactly 0, and a sample's lobe, direction, pdf,
+/// weight and η' at sheets of index below 1 (total reflection beyond the critical angle), 1
+/// (everything passes), water, 1.9 and diamond, from both sides and down to grazing. Both
+/// directions are exact operations (a mirror and a negation): compared bit for bit. R = 2r/(1+r)
+/// to [`DIELECTRIC_RTOL`] (the Fresnel term's ~20 operations, each within 2.5 ulp); a sample whose
+/// u_lobe lies within that tolerance of R may pick either lobe and is only counted, as are those
+/// within 1e-3 of a sheet's critical angle, where r's slope is unbounded.
+#[test]
+fn thin_dielectric_matches() {
+    let Some(ctx) = context() else {
+        return;
+    };
+    let iors = [0.7f32, 1.0, 1.33, 1.9, 2.42];
+    let mut materials = serde_json::Map::new();
+    for (i, ior) in iors.iter().enumerate() {
+        materials.insert(
+            format!("sheet{i}"),
+            json!({"type": "thin_dielectric", "ior": ior}),
+        );
+    }
+    let desc = json!({
+        "camera": {"from": [0, 0, -3], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 40, "width": 4, "height": 4},
+        "materials": materials,
+        "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "sheet0"}]
+    });
+    let scene = build(&desc.to_string());
+    let list: Vec<(ThinDielectric, usize)> = iors
+        .iter()
+        .enumerate()
+        .map(|(i, &ior)| {
+            let name = format!("sheet{i}");
+            let index = scene
+                .material_names
+                .iter()
+                .position(|n| *n == name)
+                .unwrap();
+            let t = ThinDielectric { ior };
+            assert_eq!(scene.materials[index], Material::ThinDielectric(t));
+            (t, index)
+        })
+        .collect();
+    let gpu = GpuScene::new(ctx, scene).expect("upload");
+    let mut r = Rng::new(18, 0, 0);
+    let items = 2 * N;
+    let mut inputs = Vec::with_capacity(2 * items);
+    for k in 0..items {
+        let index = list[k % list.len()].1;
+        // A quarter within 1° of grazing, from either side.
+        let j = k / list.len();
+        let theta = if j.is_multiple_of(4) {
+            (90.0 - r.next_f32()).to_radians()
+        } else {
+            r.next_f32() * std::f32::consts::FRAC_PI_2
+        };
+        let wo = at_theta(theta, j % 2 == 1, &mut r);
+        inputs.push(f4(wo, index as f32));
+        inputs.push([r.next_f32(), k as f32, 0.0, 0.0]);
+    }
+    let out = run(
+        &gpu,
+        "let m = materials[u32(inp(0u).w)]; let wo = inp(0u).xyz; let wi = vec3f(wo.x, -wo.y, wo.z);
+         let e = material_eval(m, wo, wi) + material_eval(m, wo, -wo);
+         outp(0u, vec4f(e.x + e.y + e.z, material_pdf(m, wo, wi), material_pdf(m, wo, -wo), 0.0));
+         let s = material_sample(m, wo, inp(1u).x, vec2f(0.5));
+         outp(1u, vec4f(s.wi, select(-1.0, s.pdf, s.ok)));
+         outp(2u, vec4f(s.weight, select(0.0, 1.0, s.delta)));
+         outp(3u, vec4f(s.eta, 0.0, 0.0, 0.0));",
+        &inputs,
+        2,
+        4,
+    );
+    let mut zero = Compare::new("thin dielectric eval/pdf", 0.0, 0.0);
+    let mut exact = Compare::new("thin dielectric direction, weight, delta, η'", 0.0, 0.0);
+    let mut pdf = Compare::new("thin dielectric pdf", DIELECTRIC_RTOL, 0.0);
+    let (mut ambiguous, mut kinds) = (0, [0usize; 2]);
+    for (i, o) in inputs.chunks(2).zip(out.chunks(4)) {
+        let k = i[1][1] as usize;
+        let (t, _) = list[k % list.len()];
+        let m = Material::ThinDielectric(t);
+        let wo = Vec3::from_slice(&i[0][..3]);
+        let u_lobe = i[1][0];
+        let what = format!("{t:?} wo {wo} u_lobe {u_lobe}");
+        for v in o[0][..3].iter() {
+            zero.scalar(*v, 0.0, &format!("eval/pdf, {what}"));
+        }
+        let big_r = t.reflectance(wo.z);
+        let critical = t.ior < 1.0 && (wo.z.abs() - (1.0 - t.ior * t.ior).sqrt()).abs() < 1e-3;
+        if critical || (u_lobe - big_r).abs() <= DIELECTRIC_RTOL * big_r.max(1e-30) * 4.0 {
+            ambiguous += 1;
+            continue;
+        }
+        let s = m
+            .sample(wo, u_lobe, Vec2::splat(0.5))
+            .expect("a sheet always samples");
+        kinds[(s.wi.z * wo.z < 0.0) as usize] += 1;
+        for (c, (g_wi, g_weight)) in o[1][..3].iter().zip(&o[2][..3]).enumerate() {
+            exact.scalar(*g_wi, s.wi[c], &format!("wi, {what}"));
+            exact.scalar(*g_weight, s.weight[c], &format!("weight, {what}"));
+        }
+        exact.scalar(o[2][3], 1.0, &format!("delta, {what}"));
+        exact.scalar(o[3][0], s.eta, &format!("eta, {what}"));
+        pdf.scalar(o[1][3], s.pdf, &format!("pdf, {what}"));
+    }
+    eprintln!(
+        "thin dielectric: {} reflections, {} transmissions, {ambiguous} within the pdf's \
+         tolerance of the lobe boundary or near a critical angle",
+        kinds[0], kinds[1]
+    );
+    // Both lobes seen many times, and few samples left out.
+    assert!(kinds[0] > 500 && kinds[1] > 5000, "{kinds:?}");
+    assert!(ambiguous < items / 100, "{ambiguous} of {items}");
+    zero.finish(0);
+    exact.finish(0);
+    pdf.finish(0);
 }

@@ -504,6 +504,7 @@ fn textured_materials_resolve_as_on_the_cpu() {
                     "{what}"
                 );
             }
+            Material::ThinDielectric(t) => assert_eq!(o[1][0], t.ior, "{what}"),
         }
     }
     eprintln!("{flips} points changed the smooth-part flag, {tints} turned a conductor to a tint");

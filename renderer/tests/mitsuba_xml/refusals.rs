@@ -156,6 +156,67 @@ fn a_normalmap_maps_onto_the_materials_normal_map() {
     );
 }
 
+/// Mitsuba's `bumpmap` becomes its material's `bump_map`: its one texture (whatever its name)
+/// with its options, `scale`, the two flags; around a `twosided`, without a texture or on a
+/// sphere (lumis has no ∂p/∂v there) it is refused where it is written.
+#[test]
+fn a_bumpmap_maps_onto_the_materials_bump_map() {
+    let dir = Dir::new("bumpmap");
+    let img = lumis::image_io::Image {
+        width: 2,
+        height: 2,
+        data: vec![
+            glam::Vec3::splat(0.2),
+            glam::Vec3::splat(0.7),
+            glam::Vec3::ONE,
+            glam::Vec3::ZERO,
+        ],
+    };
+    img.write(&dir.0.join("h.png"), 0.0).unwrap();
+    let tex = r#"<texture name="tiles" type="bitmap"><string name="filename" value="h.png"/>
+        <boolean name="raw" value="true"/></texture>"#;
+    let body = format!(
+        r#"<shape type="rectangle"><bsdf type="twosided" id="dented"><bsdf type="bumpmap">{tex}
+    <float name="scale" value="0.02"/><boolean name="use_shadowing_function" value="false"/>
+    <bsdf type="diffuse"/></bsdf></bsdf></shape>"#
+    );
+    let m = ok(&dir, &body).desc;
+    let dented = m.materials.iter().find(|m| m.name == "dented").unwrap();
+    assert!(dented.two_sided);
+    let map = dented.normal_map.as_ref().expect("a bump map");
+    assert!(map.flip_invalid_normals && !map.shadowing);
+    assert_eq!(map.height_scale, Some(0.02));
+    let lumis::textures::Texture::Bitmap(b) = &map.texture.texture else {
+        panic!("{:?}", map.texture)
+    };
+    assert!(b.raw && b.file.ends_with("h.png"));
+    refused(
+        &dir,
+        &format!(
+            r#"<shape type="rectangle"><bsdf type="bumpmap">{tex}<bsdf type="twosided"><bsdf type="diffuse"/></bsdf></bsdf></shape>"#
+        ),
+        "bumpmap",
+        "scene/shape/bsdf",
+        "a bumpmap around a twosided BSDF is not supported",
+    );
+    refused(
+        &dir,
+        r#"<shape type="rectangle"><bsdf type="bumpmap"><bsdf type="diffuse"/></bsdf></shape>"#,
+        "bumpmap",
+        "scene/shape/bsdf",
+        "a bumpmap needs exactly one nested <texture>",
+    );
+    refused(
+        &dir,
+        &format!(
+            r#"<shape type="sphere"><bsdf type="bumpmap">{tex}<bsdf type="diffuse"/></bsdf></shape>"#
+        ),
+        "<shape type=\"sphere",
+        "scene/shape",
+        "bump map on a sphere",
+    );
+}
+
 /// Every unsupported feature is refused with its file, line and element path.
 #[test]
 fn refusals_name_file_line_and_element() {
@@ -183,7 +244,7 @@ fn refusals_name_file_line_and_element() {
             r#"<shape type="sphere"><bsdf type="bumpmap"/></shape>"#,
             "bumpmap",
             "scene/shape/bsdf",
-            "no bump mapping",
+            "a bumpmap needs a nested <bsdf>",
         ),
         (
             r#"<shape type="sphere"><bsdf type="normalmap"/></shape>"#,
@@ -213,7 +274,7 @@ fn refusals_name_file_line_and_element() {
             r#"<shape type="sphere"><bsdf type="normalmap"><rgb name="normalmap" value="0.5 0.5 1"/><bsdf type="normalmap"><rgb name="normalmap" value="0.5 0.5 1"/><bsdf type="diffuse"/></bsdf></bsdf></shape>"#,
             "<bsdf type=\"normalmap\"><rgb name=\"normalmap\" value=\"0.5 0.5 1\"/><bsdf type=\"diffuse",
             "scene/shape/bsdf/bsdf",
-            "one normalmap, around its BSDF or its twosided",
+            "one normalmap or bumpmap, around its BSDF or its twosided",
         ),
         (
             r#"<shape type="sphere"><bsdf type="normalmap"><rgb name="normalmap" value="0.5 0.5 1"/><float name="strength" value="2"/><bsdf type="diffuse"/></bsdf></shape>"#,

@@ -61,6 +61,8 @@ gpu_tags! {
         /// [`Material::Plastic`] coupled as Mitsuba's ([`crate::materials::plastic_mitsuba`]):
         /// one Rust variant, two programs (`materials/plastic_mitsuba.wgsl`).
         PlasticMitsuba => "MATERIAL_PLASTIC_MITSUBA",
+        /// [`Material::ThinDielectric`].
+        ThinDielectric => "MATERIAL_THIN_DIELECTRIC",
     }
 }
 
@@ -73,6 +75,7 @@ impl MaterialTag {
             Material::Plastic(p) if p.mitsuba_coat().is_some() => MaterialTag::PlasticMitsuba,
             Material::Plastic(_) => MaterialTag::Plastic,
             Material::Dielectric(_) => MaterialTag::Dielectric,
+            Material::ThinDielectric(_) => MaterialTag::ThinDielectric,
         }
     }
 }
@@ -152,7 +155,8 @@ fn sides_word(texture: u32, map: Option<&Option<NormalMap>>) -> u32 {
         Some(Some(map)) => {
             (map.flip_invalid_normals as u32) << 1
                 | (map.shadowing as u32) << 2
-                | (texture + 1) << 3
+                | (map.height_scale.is_some() as u32) << 3
+                | (texture + 1) << 4
         }
         _ => 0,
     }
@@ -274,6 +278,13 @@ pub(super) fn encode(
                     a: [d.ior, 0.0, 0.0, 0.0],
                     b: z,
                     c: microfacet_slot(&d.microfacet),
+                },
+                // The same from both sides.
+                Material::ThinDielectric(t) => GpuMaterial {
+                    h: [kind, 0, 0, smooth],
+                    a: [t.ior, 0.0, 0.0, 0.0],
+                    b: z,
+                    c: z,
                 },
             };
             r.a[3] = bits(colour);

@@ -326,8 +326,12 @@ pub(crate) fn encode(scene: &Scene) -> SceneTextures {
         let Some(map) = map else { continue };
         let what = format!("material \"{}\" normal_map", scene.material_names[i]);
         out.normal_maps[i] = (out.records.len() as u32) / RECORD_VEC4S;
-        out.records
-            .extend(record(&map.texture, &what, &mut out.texels, &mut stored));
+        let mut r = record(&map.texture, &what, &mut out.texels, &mut stored);
+        // A bump map's scale in its own record's free c1.x (`materials/normal_map.wgsl`).
+        if let Some(scale) = map.height_scale {
+            r[3][0] = scale;
+        }
+        out.records.extend(r);
         out.names.push(what);
     }
     out

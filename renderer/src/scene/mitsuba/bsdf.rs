@@ -22,7 +22,7 @@ use serde_json::{Value as Json, json};
 
 /// The BSDF types lumis maps, for messages.
 const SUPPORTED: &str = "diffuse, conductor, roughconductor, plastic, roughplastic, dielectric, \
-                         roughdielectric, twosided, normalmap, null";
+                         roughdielectric, thindielectric, twosided, normalmap, bumpmap, null";
 
 /// The scene format's material for BSDF element `el` (translated once, then named again),
 /// or `None` for a `null` BSDF.
@@ -56,10 +56,13 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
                 inner_plugin.finish("one or two (identical) nested <bsdf>")?;
                 target(first)
             }
-            "normalmap" if normal_map.is_none() => {
+            "normalmap" | "bumpmap" if normal_map.is_none() => {
                 let nested = match inner_plugin.object("bsdf")? {
                     Some(b) => target(b),
-                    None => return Err(inner_plugin.error("a normalmap needs a nested <bsdf>")),
+                    None => {
+                        let ty = inner_plugin.ty;
+                        return Err(inner_plugin.error(format!("a {ty} needs a nested <bsdf>")));
+                    }
                 };
                 // Inside a twosided (read first) is what lumis renders on the back side.
                 map_outside = !two_sided;
@@ -71,15 +74,16 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
         inner_plugin = ctx.plugin(inner)?;
     }
     if let (Some(map), true) = (&normal_map, two_sided && map_outside) {
-        return Err(map.error(
-            "a normalmap around a twosided BSDF is not supported: its back side is not what \
-             lumis renders (a twosided around the normalmap is)",
-        ));
+        let ty = map.ty;
+        return Err(map.error(format!(
+            "a {ty} around a twosided BSDF is not supported: its back side is not what lumis \
+             renders (a twosided around the {ty} is)"
+        )));
     }
     if two_sided
         && matches!(
             inner_plugin.ty,
-            "dielectric" | "roughdielectric" | "twosided" | "null"
+            "dielectric" | "roughdielectric" | "thindielectric" | "twosided" | "null"
         )
     {
         return Err(inner_plugin.error(format!(
@@ -89,7 +93,8 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
     }
     if inner_plugin.ty == "null" {
         if let Some(map) = &normal_map {
-            return Err(map.error("a normalmap around a null BSDF has nothing to shade"));
+            let ty = map.ty;
+            return Err(map.error(format!("a {ty} around a null BSDF has nothing to shade")));
         }
         inner_plugin.finish("nothing")?;
         ctx.material_names.insert(el as *const Element, None);
@@ -100,11 +105,18 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
     let path = crate::scene::walk::join("materials", &name);
     ctx.origin(&path, inner_plugin.pos());
     let mut m = bsdf(ctx, &inner_plugin, &path)?;
-    if !matches!(inner_plugin.ty, "dielectric" | "roughdielectric") {
+    if !matches!(
+        inner_plugin.ty,
+        "dielectric" | "roughdielectric" | "thindielectric"
+    ) {
         m["two_sided"] = json!(two_sided);
     }
-    if let Some(map) = &normal_map {
-        m["normal_map"] = normal_map_json(ctx, map, &format!("{path}.normal_map"))?;
+    match &normal_map {
+        Some(map) if map.ty == "bumpmap" => {
+            m["bump_map"] = bump_map_json(ctx, map, &format!("{path}.bump_map"))?;
+        }
+        Some(map) => m["normal_map"] = normal_map_json(ctx, map, &format!("{path}.normal_map"))?,
+        None => {}
     }
     ctx.materials.insert(name.clone(), m);
     ctx.material_names
@@ -134,6 +146,31 @@ fn normal_map_json(
     let shadowing = map.bool("use_shadowing_function", true)?;
     map.finish("normalmap, flip_invalid_normals, use_shadowing_function, one nested <bsdf>")?;
     Ok(json!({"texture": texture, "flip_invalid_normals": flip, "shadowing": shadowing}))
+}
+
+/// A `bumpmap`'s parameters as the material's `bump_map` object: its one nested texture
+/// (whatever its name, as Mitsuba takes it) a bitmap of heights, `scale` (default 1) and the
+/// flags a normalmap has (its nested BSDF is read by the caller).
+fn bump_map_json(
+    ctx: &mut Ctx,
+    map: &super::plugin::Plugin,
+    path: &str,
+) -> Result<Json, SceneError> {
+    let textures = map.objects("texture");
+    let prop = match textures.as_slice() {
+        [one] => *one,
+        _ => return Err(map.error("a bumpmap needs exactly one nested <texture>")),
+    };
+    let texture = super::texture::height_texture(ctx, prop, &format!("{path}.texture"))?;
+    let scale = map.float("scale", 1.0)?;
+    let flip = map.bool("flip_invalid_normals", true)?;
+    let shadowing = map.bool("use_shadowing_function", true)?;
+    map.finish(
+        "one <texture>, scale, flip_invalid_normals, use_shadowing_function, one nested <bsdf>",
+    )?;
+    Ok(
+        json!({"texture": texture, "scale": scale, "flip_invalid_normals": flip, "shadowing": shadowing}),
+    )
 }
 
 /// One non-wrapper BSDF as a material object.
@@ -201,7 +238,7 @@ fn bsdf(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, Sc
                 "nonlinear": nonlinear,
             })
         }
-        "dielectric" | "roughdielectric" => {
+        "dielectric" | "roughdielectric" | "thindielectric" => {
             let eta = index_ratio(ctx, b, "bk7", &at("ior"))?;
             for key in ["specular_reflectance", "specular_transmittance"] {
                 if let Some(p) = b.get(key) {
@@ -213,6 +250,10 @@ fn bsdf(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, Sc
                         )));
                     }
                 }
+            }
+            if b.ty == "thindielectric" {
+                b.finish("int_ior, ext_ior, specular_reflectance and specular_transmittance 1")?;
+                return Ok(json!({"type": "thin_dielectric", "ior": eta}));
             }
             let (alpha, distribution) = match b.ty {
                 "dielectric" => (json!(0.0), Distribution::Ggx),
@@ -229,10 +270,9 @@ fn bsdf(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, Sc
         }
         other => {
             let why = match other {
-                "thindielectric" => " (lumis' dielectric is a boundary between two media)",
-                "bumpmap" => " (lumis has no bump mapping)",
-                "normalmap" => {
-                    " here (a material has one normalmap, around its BSDF or its twosided)"
+                "normalmap" | "bumpmap" => {
+                    " here (a material has one normalmap or bumpmap, around its BSDF or its \
+                     twosided)"
                 }
                 "blendbsdf" | "mask" => " (lumis has no BSDF mixtures or opacity masks)",
                 _ => "",

@@ -73,8 +73,7 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
              importer maps back (nor lumis' stochastic mix), so the scene would change",
         ));
     }
-    let dielectric = matches!(m.material, MaterialDesc::Dielectric { .. });
-    let wrap = m.two_sided && !dielectric;
+    let wrap = m.two_sided && !m.material.transmits();
     let ty = bsdf_type(m);
     // The wrappers, outermost first, the id on the first: twosided around normalmap, the
     // nesting whose back side lumis renders.
@@ -84,20 +83,28 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
         wrappers += 1;
     }
     if let Some(map) = &m.normal_map {
+        // A bump map is Mitsuba's bumpmap, its heights the one nested texture.
+        let (plugin, key, texture) = match map.height_scale {
+            None => ("normalmap", "normal_map", "normalmap"),
+            Some(_) => ("bumpmap", "bump_map", "height"),
+        };
         if wrappers == 0 {
-            x.open("bsdf", &[("type", "normalmap"), ("id", &m.name)]);
+            x.open("bsdf", &[("type", plugin), ("id", &m.name)]);
         } else {
-            x.open("bsdf", &[("type", "normalmap")]);
+            x.open("bsdf", &[("type", plugin)]);
         }
         wrappers += 1;
         texture_xml(
             x,
-            "normalmap",
+            texture,
             &map.texture,
             false,
             folder,
-            &format!("{path}.normal_map.texture"),
+            &format!("{path}.{key}.texture"),
         )?;
+        if let Some(scale) = map.height_scale {
+            x.leaf("float", &[("name", "scale"), ("value", &num(scale))]);
+        }
         for (name, value) in [
             ("flip_invalid_normals", map.flip_invalid_normals),
             ("use_shadowing_function", map.shadowing),
@@ -221,6 +228,7 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
                 &path,
             )?;
         }
+        MaterialDesc::ThinDielectric { ior } => index(x, *ior),
     }
     x.close("bsdf");
     for _ in 0..wrappers {
@@ -245,6 +253,7 @@ fn bsdf_type(m: &NamedMaterial) -> &'static str {
         MaterialDesc::Plastic { .. } => "plastic",
         MaterialDesc::Dielectric { alpha, .. } if rough(*alpha) => "roughdielectric",
         MaterialDesc::Dielectric { .. } => "dielectric",
+        MaterialDesc::ThinDielectric { .. } => "thindielectric",
     }
 }
 

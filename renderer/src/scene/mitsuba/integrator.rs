@@ -130,6 +130,7 @@ pub fn check_ptracer(desc: &SceneDesc) -> Result<(), String> {
         MaterialDesc::Conductor { alpha, .. }
         | MaterialDesc::Plastic { alpha, .. }
         | MaterialDesc::Dielectric { alpha, .. } => alpha == 0.0,
+        MaterialDesc::ThinDielectric { .. } => true,
         _ => false,
     });
     match delta {

@@ -42,6 +42,13 @@ pub fn color_param(
     }
 }
 
+/// A bump map's height texture object (`prop`, a `<texture>`), for the scene format: a bitmap
+/// (any other texture has no gradient; the scene format says so where it is read).
+pub fn height_texture(ctx: &mut Ctx, prop: &Prop, json_path: &str) -> Result<Json, SceneError> {
+    ctx.origin(json_path, prop.pos());
+    texture(ctx, prop, Reads::Color, json_path)
+}
+
 /// The scalar parameter `name` (a number or a texture object), or `default`.
 pub fn scalar_param(
     ctx: &mut Ctx,
