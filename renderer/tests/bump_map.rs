@@ -16,6 +16,7 @@
 
 mod common;
 
+use common::surface_detail::*;
 use common::*;
 use glam::Vec3;
 use lumis::image_io::Image;
@@ -135,67 +136,24 @@ fn strong_bumps_let_no_light_through_the_surface() {
     // 30°: the camera sees only the plane, never the light.
     let below = plane_scene(&dir, [0.0, 3.0, 0.5], 30.0, [1.6, -0.3, 0.0]);
     let above = plane_scene(&dir, [0.0, 3.0, 0.5], 30.0, [1.6, 0.3, 0.0]);
-    for (i, strategy) in STRATEGIES_AND_OPTIMAL.into_iter().enumerate() {
-        let s = Settings {
-            strategy,
-            ..Settings::default()
-        };
-        let film = render(&below, s, 16, 2580 + i as u32).film().clone();
-        assert_eq!(film.nonfinite, 0);
-        let lit = film
-            .mean()
-            .iter()
-            .filter(|c| c.max_element() != 0.0)
-            .count();
-        assert_eq!(
-            lit, 0,
-            "{strategy:?}: light below the plane reached {lit} pixels"
-        );
-        let film = render(&above, s, 16, 2590 + i as u32).film().clone();
-        let lit = film.mean().iter().filter(|c| c.max_element() > 0.0).count();
-        assert!(
-            lit > 50,
-            "{strategy:?}: the light above lit only {lit} pixels"
-        );
-    }
+    assert_no_light_through(&below, &above, 2580, 2590);
 }
 
 #[test]
 fn grazing_views_of_strong_bumps_stay_finite() {
     let dir = scratch("grazing");
-    for (k, from) in [[0.0, 0.02, -3.0], [2.5, 0.05, 2.5], [-3.0, 0.2, 0.0]]
-        .into_iter()
-        .enumerate()
-    {
-        let scene = plane_scene(&dir, from, 50.0, [0.3, 1.5, 0.2]);
-        for (i, strategy) in STRATEGIES_AND_OPTIMAL.into_iter().enumerate() {
-            let s = Settings {
-                strategy,
-                ..Settings::default()
-            };
-            let film = render(&scene, s, 8, 2600 + 10 * k as u32 + i as u32)
-                .film()
-                .clone();
-            assert_eq!(film.nonfinite, 0, "{strategy:?} from {from:?}");
-        }
-    }
+    assert_finite_at_grazing_views(|from| plane_scene(&dir, from, 50.0, [0.3, 1.5, 0.2]), 2600);
 }
 
 #[test]
 fn the_back_of_a_two_sided_bump_map_is_mitsubas() {
-    let path = data_dir().join("mitsuba/bumpmap_back.xml");
-    let desc = lumis::scene::mitsuba::load(&path, &[])
-        .unwrap_or_else(|e| panic!("{e}"))
-        .desc;
-    let m = &desc.materials[0];
+    let scene = mitsuba_scene("bumpmap_back");
     assert!(
-        m.two_sided
-            && m.normal_map
+        scene.two_sided[0]
+            && scene.normal_maps[0]
                 .as_ref()
                 .is_some_and(|n| n.height_scale == Some(1.0))
     );
-    let scene = Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}")));
-    let want = reference("bumpmap_back.exr");
     // Not the one-sample mixture, whose samples are 0 or twice the value.
     let exact = DELTA_STRATEGIES
         .into_iter()
@@ -206,12 +164,7 @@ fn the_back_of_a_two_sided_bump_map_is_mitsubas() {
             ..Settings::default()
         };
         let got = render(&scene, s, 4, 2640 + i as u32).film().mean();
-        for (k, (g, w)) in got.iter().zip(&want.data).enumerate() {
-            assert!(
-                (*g - *w).abs().max_element() <= 1e-5 * w.max_element(),
-                "{strategy:?}: pixel {k} {g:?}, Mitsuba {w:?}"
-            );
-        }
+        assert_pixels_match(&got, "bumpmap_back.exr", 1e-5, &format!("{strategy:?}"));
     }
 }
 

@@ -22,6 +22,7 @@
 
 mod common;
 
+use common::surface_detail::*;
 use common::*;
 use glam::Vec3;
 use lumis::image_io::Image;
@@ -142,62 +143,20 @@ fn a_strong_normal_map_lets_no_light_through_the_surface() {
     // 30°: the camera sees only the plane (±0.8 around its centre), never the light.
     let below = plane_scene(&dir, [0.0, 3.0, 0.5], 30.0, [1.6, -0.3, 0.0]);
     let above = plane_scene(&dir, [0.0, 3.0, 0.5], 30.0, [1.6, 0.3, 0.0]);
-    for (i, strategy) in STRATEGIES_AND_OPTIMAL.into_iter().enumerate() {
-        let s = Settings {
-            strategy,
-            ..Settings::default()
-        };
-        let film = render(&below, s, 16, 2460 + i as u32).film().clone();
-        assert_eq!(film.nonfinite, 0);
-        let lit = film
-            .mean()
-            .iter()
-            .filter(|c| c.max_element() != 0.0)
-            .count();
-        assert_eq!(
-            lit, 0,
-            "{strategy:?}: light below the plane reached {lit} pixels"
-        );
-        let film = render(&above, s, 16, 2470 + i as u32).film().clone();
-        let lit = film.mean().iter().filter(|c| c.max_element() > 0.0).count();
-        // Measured: 117 of the 1024 pixels by BSDF sampling alone, over 500 by the others.
-        assert!(
-            lit > 50,
-            "{strategy:?}: the light above lit only {lit} pixels"
-        );
-    }
+    // Measured above: 117 of the 1024 pixels by BSDF sampling alone, over 500 by the others.
+    assert_no_light_through(&below, &above, 2460, 2470);
 }
 
 #[test]
 fn grazing_views_of_a_strong_normal_map_stay_finite() {
     let dir = scratch("grazing");
-    for (k, from) in [[0.0, 0.02, -3.0], [2.5, 0.05, 2.5], [-3.0, 0.2, 0.0]]
-        .into_iter()
-        .enumerate()
-    {
-        let scene = plane_scene(&dir, from, 50.0, [0.3, 1.5, 0.2]);
-        for (i, strategy) in STRATEGIES_AND_OPTIMAL.into_iter().enumerate() {
-            let s = Settings {
-                strategy,
-                ..Settings::default()
-            };
-            let film = render(&scene, s, 8, 2480 + 10 * k as u32 + i as u32)
-                .film()
-                .clone();
-            assert_eq!(film.nonfinite, 0, "{strategy:?} from {from:?}");
-        }
-    }
+    assert_finite_at_grazing_views(|from| plane_scene(&dir, from, 50.0, [0.3, 1.5, 0.2]), 2480);
 }
 
 #[test]
 fn the_back_of_a_two_sided_normal_map_is_mitsubas() {
-    let path = data_dir().join("mitsuba/normalmap_back.xml");
-    let desc = lumis::scene::mitsuba::load(&path, &[])
-        .unwrap_or_else(|e| panic!("{e}"))
-        .desc;
-    assert!(desc.materials[0].two_sided && desc.materials[0].normal_map.is_some());
-    let scene = Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}")));
-    let want = reference("normalmap_back.exr");
+    let scene = mitsuba_scene("normalmap_back");
+    assert!(scene.two_sided[0] && scene.normal_maps[0].is_some());
     // Not the one-sample mixture: it takes the light with probability ½ (weighted 2) and
     // otherwise finds nothing, so its samples are not the one value.
     let exact = DELTA_STRATEGIES
@@ -209,12 +168,7 @@ fn the_back_of_a_two_sided_normal_map_is_mitsubas() {
             ..Settings::default()
         };
         let got = render(&scene, s, 4, 2506 + i as u32).film().mean();
-        for (k, (g, w)) in got.iter().zip(&want.data).enumerate() {
-            assert!(
-                (*g - *w).abs().max_element() <= 1e-5 * w.max_element(),
-                "{strategy:?}: pixel {k} {g:?}, Mitsuba {w:?}"
-            );
-        }
+        assert_pixels_match(&got, "normalmap_back.exr", 1e-5, &format!("{strategy:?}"));
     }
 }
 

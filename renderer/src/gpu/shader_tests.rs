@@ -260,6 +260,7 @@ mod tests {
             // Mitsuba's plastic reads the dielectric Fresnel (checked below).
             Features {
                 has_dielectric: false,
+                has_thin_dielectric: false,
                 has_mitsuba_plastic: false,
                 ..Features::all()
             },
@@ -273,6 +274,19 @@ mod tests {
                 );
             }
         }
+        // A thin sheet alone: the transmission code (a crossing, η' = 1) without refraction.
+        let thin = program_body(&Features {
+            has_thin_dielectric: true,
+            has_lights: true,
+            ..Features::default()
+        });
+        for name in TRANSMISSION_CODE.iter().filter(|n| **n != "refract") {
+            assert!(thin.contains(name), "a thin sheet's program lacks {name:?}");
+        }
+        assert!(
+            !thin.contains("refract"),
+            "refraction in a thin sheet's program"
+        );
         // Mitsuba's plastic coat: the dielectric Fresnel, nothing of transmission.
         let coat = program_body(&Features {
             has_mitsuba_plastic: true,

@@ -253,7 +253,8 @@ fn trace<const TRANSMISSION: bool>(
         if max_depth >= 0 && depth >= max_depth {
             break;
         }
-        let material = &*scene.material_at(&hit, prim.material);
+        let (material, detail_map) = scene.shading_at(&hit, prim.material);
+        let material = &*material;
         let wo_world = -ray.d.normalize();
         // `n`: the geometric normal, which decides sides and ray offsets; the BSDF lives in the
         // frame of the shading normal `ns` (the geometric one where the mesh has none).
@@ -285,7 +286,7 @@ fn trace<const TRANSMISSION: bool>(
         // A normal or bump map tilts the frame the material sees, about the frame of ∂p/∂u
         // (`materials/normal_map.rs`, `materials/bump_map.rs`).
         let mut perturbation = None;
-        if let Some((map, uv)) = scene.normal_map_at(&hit, prim.material) {
+        if let Some((map, uv)) = detail_map {
             let tilt = match map.height_scale {
                 None => Some(NormalMap::decode(map.texture.eval(uv))),
                 // In the front's frame, which `seen_from` mirrors on the back as for a texel.

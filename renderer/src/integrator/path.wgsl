@@ -323,9 +323,18 @@ fn radiance(camera_ray: Ray) -> vec3f {
 // #endif
         var m = materials[mi];
 // #if HAS_TEXTURES
-        // `Scene::material_at`: the textures evaluated at the hit's texture coordinates.
+        // `Scene::shading_at`: the hit's texture coordinates, once for the material's textures
+        // and its normal or bump map.
+        var uv = vec2f(0.0);
+        var needs_uv = material_textured(m);
+// #if HAS_NORMAL_MAPS
+        needs_uv = needs_uv || normal_map_texture(m) != 0u;
+// #endif
+        if needs_uv {
+            uv = surface_uv(prim, hit);
+        }
         if material_textured(m) {
-            m = material_at(m, surface_uv(prim, hit));
+            m = material_at(m, uv);
         }
 // #endif
         let wo_world = -normalize_glam(ray.d);
@@ -377,7 +386,6 @@ fn radiance(camera_ray: Ray) -> vec3f {
         vertex_perturbation = no_perturbation();
         let nm = normal_map_texture(m);
         if nm != 0u {
-            let uv = surface_uv(prim, hit);
             var tilt = vec4f(0.0);
             if normal_map_is_bump(m) {
                 // In the front's frame, which `seen_from` mirrors on the back as for a texel.

@@ -75,7 +75,7 @@ pub struct Scene {
     /// (for code that reads one BSDF); [`Scene::material_at`] resolves the mix per hit.
     pub mixes: Vec<Option<Mix>>,
     /// Per material, its normal map (`None`: none), parallel to `materials`; empty when no
-    /// material has one ([`Scene::normal_map_at`]).
+    /// material has one ([`Scene::shading_at`]).
     pub normal_maps: Vec<Option<NormalMap>>,
 }
 

@@ -351,10 +351,10 @@ fn resolve_mixes(
 /// The optional `normal_map`: `{"texture": T, "flip_invalid_normals": b, "shadowing": b}`, T a
 /// texture object or a colour, every channel in [0, 1]; the flags default to Mitsuba's (true).
 fn normal_map(obj: &Obj, loader: &mut TextureLoader) -> Result<Option<NormalMapDesc>, SceneError> {
-    if obj.get("normal_map").is_none() {
+    let Some(v) = obj.get("normal_map") else {
         return Ok(None);
-    }
-    let m = Obj::new(obj.get("normal_map").unwrap(), obj.at("normal_map"))?;
+    };
+    let m = Obj::new(v, obj.at("normal_map"))?;
     m.only_keys(&["texture", "flip_invalid_normals", "shadowing"], true)?;
     let texture = match texture_at(&m, "texture", TextureUse::NormalMap, loader)? {
         Some(t) => t,

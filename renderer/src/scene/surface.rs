@@ -153,23 +153,31 @@ impl Scene {
     /// none).
     #[inline]
     pub fn material_at(&self, hit: &SurfaceHit, material: u32) -> Cow<'_, Material> {
-        let material = self.resolve_mix(hit, material);
-        let base = &self.materials[material as usize];
-        match &self.material_textures[material as usize] {
-            None => Cow::Borrowed(base),
-            Some(t) => Cow::Owned(t.at(base, self.uv(hit))),
-        }
+        self.shading_at(hit, material).0
     }
 
-    /// The normal or bump map of the material that `material` (a mix resolved) is at `hit`, and
-    /// the hit's texture coordinates; `None` without one (at once in a scene without maps).
+    /// [`Scene::material_at`] and the normal or bump map of that material with the hit's texture
+    /// coordinates (`None` without one: at once in a scene without maps), the mix resolved and
+    /// the coordinates computed once for both.
     #[inline]
-    pub fn normal_map_at(&self, hit: &SurfaceHit, material: u32) -> Option<(&NormalMap, Vec2)> {
-        if self.normal_maps.is_empty() {
-            return None;
+    pub fn shading_at(
+        &self,
+        hit: &SurfaceHit,
+        material: u32,
+    ) -> (Cow<'_, Material>, Option<(&NormalMap, Vec2)>) {
+        let material = self.resolve_mix(hit, material) as usize;
+        let base = &self.materials[material];
+        let textures = &self.material_textures[material];
+        let map = self.normal_maps.get(material).and_then(Option::as_ref);
+        if textures.is_none() && map.is_none() {
+            return (Cow::Borrowed(base), None);
         }
-        let map = self.normal_maps[self.resolve_mix(hit, material) as usize].as_ref()?;
-        Some((map, self.uv(hit)))
+        let uv = self.uv(hit);
+        let m = match textures {
+            None => Cow::Borrowed(base),
+            Some(t) => Cow::Owned(t.at(base, uv)),
+        };
+        (m, map.map(|m| (m, uv)))
     }
 
     /// The material a mix chooses at `hit`, through nested mixes (`material` itself when it is

@@ -155,9 +155,10 @@ impl BitmapTexture {
         &self.options
     }
 
-    /// The bilinearly filtered, scaled value at `uv`.
+    /// The bilinear cell around `uv`: its four texels in Dr.Jit's corner order ((x0, y0),
+    /// (x1, y0), (x0, y1), (x1, y1)), unscaled, and the weights `[1 − f, f]` of each axis.
     #[inline]
-    pub fn eval(&self, uv: Vec2) -> Vec3 {
+    fn cell(&self, uv: Vec2) -> ([Vec3; 4], [f32; 2], [f32; 2]) {
         let p = self.options.uv.apply(uv);
         let img = &*self.image;
         let wrap = self.options.wrap;
@@ -165,11 +166,27 @@ impl BitmapTexture {
         let (ys, wy) = axis_lookup(p.y, img.height, wrap);
         let w = img.width as usize;
         let t = |i: u32, j: u32| img.data[j as usize * w + i as usize];
-        // Dr.Jit's corner order and per-corner weight wx·wy.
-        let mut out = t(xs[0], ys[0]) * (wx[0] * wy[0]);
-        out += t(xs[1], ys[0]) * (wx[1] * wy[0]);
-        out += t(xs[0], ys[1]) * (wx[0] * wy[1]);
-        out += t(xs[1], ys[1]) * (wx[1] * wy[1]);
+        (
+            [
+                t(xs[0], ys[0]),
+                t(xs[1], ys[0]),
+                t(xs[0], ys[1]),
+                t(xs[1], ys[1]),
+            ],
+            wx,
+            wy,
+        )
+    }
+
+    /// The bilinearly filtered, scaled value at `uv`.
+    #[inline]
+    pub fn eval(&self, uv: Vec2) -> Vec3 {
+        let ([t00, t10, t01, t11], wx, wy) = self.cell(uv);
+        // Dr.Jit's per-corner weight wx·wy.
+        let mut out = t00 * (wx[0] * wy[0]);
+        out += t10 * (wx[1] * wy[0]);
+        out += t01 * (wx[0] * wy[1]);
+        out += t11 * (wx[1] * wy[1]);
         out * self.options.scale
     }
 
@@ -180,25 +197,12 @@ impl BitmapTexture {
     /// WGSL twin: `texture_eval_1_grad` in `textures/mod.wgsl`.
     #[inline]
     pub fn eval_1_grad(&self, uv: Vec2) -> Vec2 {
-        let p = self.options.uv.apply(uv);
-        let img = &*self.image;
-        let wrap = self.options.wrap;
-        let (xs, wx) = axis_lookup(p.x, img.width, wrap);
-        let (ys, wy) = axis_lookup(p.y, img.height, wrap);
-        let w = img.width as usize;
-        let f = |i: u32, j: u32| {
-            super::luminance(img.data[j as usize * w + i as usize] * self.options.scale)
-        };
-        let (f00, f10, f01, f11) = (
-            f(xs[0], ys[0]),
-            f(xs[1], ys[0]),
-            f(xs[0], ys[1]),
-            f(xs[1], ys[1]),
-        );
-        // ∂/∂x and ∂/∂y in texels, weights [1 − f, f] as in `eval`.
+        let (texels, wx, wy) = self.cell(uv);
+        let [f00, f10, f01, f11] = texels.map(|t| super::luminance(t * self.options.scale));
+        // ∂/∂x and ∂/∂y in texels.
         let dx = wy[0] * (f10 - f00) + wy[1] * (f11 - f01);
         let dy = wx[0] * (f01 - f00) + wx[1] * (f11 - f10);
-        let s = self.options.uv.scale;
+        let (s, img) = (self.options.uv.scale, &*self.image);
         Vec2::new(dx * s.x * img.width as f32, dy * s.y * img.height as f32)
     }
 

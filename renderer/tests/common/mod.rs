@@ -7,6 +7,7 @@ pub mod emitters;
 pub mod ground;
 pub mod hidden;
 pub mod protocol;
+pub mod surface_detail;
 
 use glam::Vec3;
 use lumis::engine::Progressive;

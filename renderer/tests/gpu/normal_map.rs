@@ -79,11 +79,7 @@ fn the_gpu_renders_the_cpus_normal_mapped_image_in_every_strategy() {
 /// CPU's, to 1e-5).
 #[test]
 fn the_gpus_back_of_a_two_sided_normal_map_is_mitsubas() {
-    let path = data_dir().join("mitsuba/normalmap_back.xml");
-    let desc = lumis::scene::mitsuba::load(&path, &[])
-        .unwrap_or_else(|e| panic!("{e}"))
-        .desc;
-    let scene = Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}")));
+    let scene = crate::common::surface_detail::mitsuba_scene("normalmap_back");
     let settings = Settings {
         strategy: STRATEGIES_AND_OPTIMAL[3],
         ..Settings::default()
@@ -91,13 +87,12 @@ fn the_gpus_back_of_a_two_sided_normal_map_is_mitsubas() {
     let Some(film) = gpu_render(&scene, settings, 4, 4407) else {
         return;
     };
-    let want = crate::common::reference("normalmap_back.exr");
-    for (k, (g, w)) in film.mean().iter().zip(&want.data).enumerate() {
-        assert!(
-            (*g - *w).abs().max_element() <= 1e-4 * w.max_element(),
-            "pixel {k} {g:?}, Mitsuba {w:?}"
-        );
-    }
+    crate::common::surface_detail::assert_pixels_match(
+        &film.mean(),
+        "normalmap_back.exr",
+        1e-4,
+        "MIS",
+    );
 }
 
 /// The image test's power against a GPU that ignores the map (the record's bits, the feature

@@ -1,0 +1,87 @@
+//! What the normal- and bump-map tests share (`renderer/tests/normal_map.rs`, `bump_map.rs` and
+//! their GPU twins): Mitsuba scenes whose image is one exact value, and the leak and grazing
+//! checks of a one-sided plane under a strong map.
+
+use super::{STRATEGIES_AND_OPTIMAL, data_dir, reference, render};
+use glam::Vec3;
+use lumis::integrator::Settings;
+use lumis::scene::Scene;
+use std::sync::Arc;
+
+/// `tests/data/mitsuba/NAME.xml`, imported and built.
+pub fn mitsuba_scene(name: &str) -> Arc<Scene> {
+    let path = data_dir().join("mitsuba").join(format!("{name}.xml"));
+    let desc = lumis::scene::mitsuba::load(&path, &[])
+        .unwrap_or_else(|e| panic!("{e}"))
+        .desc;
+    Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}")))
+}
+
+/// Every pixel of `got` within `rel` (of the reference's largest channel) of
+/// `tests/data/refs/REFERENCE`'s.
+pub fn assert_pixels_match(got: &[Vec3], reference_file: &str, rel: f32, what: &str) {
+    let want = reference(reference_file);
+    assert_eq!(got.len(), want.data.len(), "{what}: size");
+    for (k, (g, w)) in got.iter().zip(&want.data).enumerate() {
+        assert!(
+            (*g - *w).abs().max_element() <= rel * w.max_element(),
+            "{what}: pixel {k} {g:?}, Mitsuba {w:?}"
+        );
+    }
+}
+
+/// A one-sided plane that the camera alone sees, lit by a light `below` it (which must reach no
+/// pixel in any strategy: no light through the surface) and, as the check's power, by one
+/// `above` it (which must light more than 50 of its pixels); render `i` of a strategy uses seed
+/// `seed_below + i` resp. `seed_above + i`, 16 spp.
+pub fn assert_no_light_through(
+    below: &Arc<Scene>,
+    above: &Arc<Scene>,
+    seed_below: u32,
+    seed_above: u32,
+) {
+    for (i, strategy) in STRATEGIES_AND_OPTIMAL.into_iter().enumerate() {
+        let s = Settings {
+            strategy,
+            ..Settings::default()
+        };
+        let film = render(below, s, 16, seed_below + i as u32).film().clone();
+        assert_eq!(film.nonfinite, 0);
+        let lit = film
+            .mean()
+            .iter()
+            .filter(|c| c.max_element() != 0.0)
+            .count();
+        assert_eq!(
+            lit, 0,
+            "{strategy:?}: light below the plane reached {lit} pixels"
+        );
+        let film = render(above, s, 16, seed_above + i as u32).film().clone();
+        let lit = film.mean().iter().filter(|c| c.max_element() > 0.0).count();
+        assert!(
+            lit > 50,
+            "{strategy:?}: the light above lit only {lit} pixels"
+        );
+    }
+}
+
+/// The plane scene `scene(from)` seen from three grazing viewpoints renders no non-finite sample
+/// in any strategy (8 spp, seed `seed + 10·viewpoint + strategy`).
+pub fn assert_finite_at_grazing_views(scene: impl Fn([f32; 3]) -> Arc<Scene>, seed: u32) {
+    for (k, from) in [[0.0, 0.02, -3.0], [2.5, 0.05, 2.5], [-3.0, 0.2, 0.0]]
+        .into_iter()
+        .enumerate()
+    {
+        let scene = scene(from);
+        for (i, strategy) in STRATEGIES_AND_OPTIMAL.into_iter().enumerate() {
+            let s = Settings {
+                strategy,
+                ..Settings::default()
+            };
+            let film = render(&scene, s, 8, seed + 10 * k as u32 + i as u32)
+                .film()
+                .clone();
+            assert_eq!(film.nonfinite, 0, "{strategy:?} from {from:?}");
+        }
+    }
+}
