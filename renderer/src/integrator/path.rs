@@ -4,13 +4,14 @@
 //! Path length follows Mitsuba's `max_depth`: a path of `k` segments ends at its `k`-th vertex, so
 //! `1` keeps only emission seen by the camera and `2` adds direct lighting.
 //!
-//! Transmission (dielectrics): the frame of a transmitting material is never flipped, so `wo` and
-//! `wi` may lie on either side; next-event estimation at a rough dielectric samples lights on both
-//! sides; shadow rays are blocked by dielectrics like by any surface (Mitsuba's `path`); Russian
-//! roulette sees the throughput times η'² of every refraction (pbrt-v4's `etaScale`), so radiance's
-//! 1/η'² does not kill paths inside glass. The loop is compiled twice, with and without this code
-//! (`TRANSMISSION`); scenes without a dielectric run the version without it, bit for bit the
-//! renderer they ran before.
+//! Transmission (dielectrics and thin sheets, [`crate::materials::Material::transmits`]): the
+//! frame of a transmitting material is never flipped, so `wo` and `wi` may lie on either side;
+//! next-event estimation at a rough dielectric samples lights on both sides; shadow rays are
+//! blocked by dielectrics like by any surface (Mitsuba's `path`); Russian roulette sees the
+//! throughput times η'² of every refraction (pbrt-v4's `etaScale`), so radiance's 1/η'² does not
+//! kill paths inside glass. The loop is compiled twice, with and without this code
+//! (`TRANSMISSION`); scenes without a transmitting material run the version without it, bit for
+//! bit the renderer they ran before.
 //!
 //! Shading normals (meshes with vertex normals): the BSDF frame is the shading normal's, the
 //! geometric normal decides sides and ray offsets, and a direction that the two normals put on
