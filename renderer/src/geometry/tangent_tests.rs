@@ -46,6 +46,18 @@ fn one_triangle(uvs: [Vec2; 3]) -> MeshAttributes {
     }
 }
 
+/// The move of p on triangle `v` under the barycentric step (db1, db2) that moves its texture
+/// coordinates `uvs` by `duv`: the definition of ∂p/∂u (`duv` = (1, 0)) and ∂p/∂v ((0, 1));
+/// `None` where the UV map is nearly degenerate.
+fn p_step(v: [Vec3; 3], uvs: [Vec2; 3], duv: Vec2) -> Option<Vec3> {
+    let m = glam::Mat2::from_cols(uvs[1] - uvs[0], uvs[2] - uvs[0]);
+    if m.determinant().abs() < 1e-3 {
+        return None;
+    }
+    let db = m.inverse() * duv;
+    Some(db.x * (v[1] - v[0]) + db.y * (v[2] - v[0]))
+}
+
 #[test]
 fn a_triangles_dp_du_moves_along_u_only() {
     let mut r = Rng::new(3, 0, 0);
@@ -62,14 +74,9 @@ fn a_triangles_dp_du_moves_along_u_only() {
             _ => unreachable!(),
         };
         let d = dp_du(&prim(shape, 0), &attrs, &hit(v[0], n));
-        // The barycentric step (db1, db2) that moves the UVs by (1, 0) moves p by ∂p/∂u.
-        let (duv0, duv1) = (uvs[1] - uvs[0], uvs[2] - uvs[0]);
-        let m = glam::Mat2::from_cols(duv0, duv1);
-        if m.determinant().abs() < 1e-3 {
+        let Some(want) = p_step(v, uvs, Vec2::X) else {
             continue;
-        }
-        let db = m.inverse() * Vec2::X;
-        let want = db.x * (v[1] - v[0]) + db.y * (v[2] - v[0]);
+        };
         assert!(
             (d - want).length() <= 1e-3 * want.length().max(1.0),
             "{d} vs {want}"
@@ -100,13 +107,9 @@ fn a_triangles_dp_dv_moves_along_v_only() {
         let h = hit(v[0], n);
         let (du, dv) = dp_duv(&prim(shape, 0), &attrs, &h).unwrap();
         assert_eq!(du, dp_du(&prim(shape, 0), &attrs, &h));
-        let (duv0, duv1) = (uvs[1] - uvs[0], uvs[2] - uvs[0]);
-        let m = glam::Mat2::from_cols(duv0, duv1);
-        if m.determinant().abs() < 1e-3 {
+        let Some(want) = p_step(v, uvs, Vec2::Y) else {
             continue;
-        }
-        let db = m.inverse() * Vec2::Y;
-        let want = db.x * (v[1] - v[0]) + db.y * (v[2] - v[0]);
+        };
         assert!(
             (dv - want).length() <= 1e-3 * want.length().max(1.0),
             "{dv} vs {want}"

@@ -288,19 +288,23 @@ fn trace<const TRANSMISSION: bool>(
         // (`materials/normal_map.rs`, `materials/bump_map.rs`).
         let mut perturbation = None;
         if let Some((map, uv)) = detail_map {
+            // A bump map's ∂p/∂u, kept for the base frame (`dp_duv`'s is `dp_du`'s, bit for bit).
+            let mut bump_dp_du = None;
             let tilt = match map.height_scale {
                 None => Some(NormalMap::decode(map.texture.eval(uv))),
                 // In the front's frame, which `seen_from` mirrors on the back as for a texel.
                 Some(scale) => map.texture.eval_1_grad(uv).and_then(|g| {
                     let (dp_du, dp_dv) = tangent::dp_duv(prim, &scene.attributes, &hit)?;
+                    bump_dp_du = Some(dp_du);
                     let ns_front = if back { -ns } else { ns };
                     let front = tangent::tangent_frame(ns_front, dp_du);
                     bump_map::local_normal(scale * g, dp_du, dp_dv, ns_front, hit.n, &front)
                 }),
             };
             let base = || {
-                let f = tangent::tangent_frame(ns, tangent::dp_du(prim, &scene.attributes, &hit));
-                normal_map::seen_from(f, back)
+                let dp_du =
+                    bump_dp_du.unwrap_or_else(|| tangent::dp_du(prim, &scene.attributes, &hit));
+                normal_map::seen_from(tangent::tangent_frame(ns, dp_du), back)
             };
             if let Some((f, p)) = tilt.and_then(|n| map.perturb(n, base, wo_world)) {
                 frame = f;

@@ -387,18 +387,25 @@ fn radiance(camera_ray: Ray) -> vec3f {
         let nm = normal_map_texture(m);
         if nm != 0u {
             var tilt = vec4f(0.0);
-            if normal_map_is_bump(m) {
+            // A bump map's ∂p/∂u, kept for the base frame (`triangle_dp_duv`'s is `surface_dp_du`'s).
+            var dp_du = vec3f(0.0);
+            let bump = normal_map_is_bump(m);
+            if bump {
                 // In the front's frame, which `seen_from` mirrors on the back as for a texel.
                 let scale = texture_record(nm - 1u).c1.x;
                 let d = triangle_dp_duv(prim, hit);
                 let ns_front = select(frame.n, -frame.n, back);
                 let front = tangent_frame(ns_front, d.du);
+                dp_du = d.du;
                 tilt = bump_normal(scale * texture_eval_1_grad(nm - 1u, uv), d.du, d.dv, ns_front, hit.n, front);
             } else {
                 tilt = vec4f(2.0 * texture_eval(nm - 1u, uv) - vec3f(1.0), 1.0);
             }
             if tilt.w != 0.0 {
-                let base = normal_map_seen_from(tangent_frame(frame.n, surface_dp_du(prim, hit)), back);
+                if !bump {
+                    dp_du = surface_dp_du(prim, hit);
+                }
+                let base = normal_map_seen_from(tangent_frame(frame.n, dp_du), back);
                 let pert = normal_map_perturb(m.h.y, tilt.xyz, base, wo_world);
                 if pert.ok {
                     frame = pert.frame;

@@ -1,11 +1,12 @@
 //! What the normal- and bump-map tests share (`renderer/tests/normal_map.rs`, `bump_map.rs` and
 //! their GPU twins): Mitsuba scenes whose image is one exact value, and the leak and grazing
-//! checks of a one-sided plane under a strong map.
+//! checks of a one-sided plane under a strong map, the gallery's scenes at a reduced film.
 
 use super::{STRATEGIES_AND_OPTIMAL, data_dir, reference, render};
 use glam::Vec3;
 use lumis::integrator::Settings;
-use lumis::scene::Scene;
+use lumis::scene::{Scene, parse_scene_in};
+use std::path::Path;
 use std::sync::Arc;
 
 /// `tests/data/mitsuba/NAME.xml`, imported and built.
@@ -15,6 +16,23 @@ pub fn mitsuba_scene(name: &str) -> Arc<Scene> {
         .unwrap_or_else(|e| panic!("{e}"))
         .desc;
     Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}")))
+}
+
+/// The gallery's `tests/data/gallery/docs/scenes/NAME.xml`, unmodified, at `scale` of its film
+/// (each side rounded, at least 1), built.
+pub fn gallery_scene_at(name: &str, scale: f64) -> Scene {
+    let path = data_dir().join(format!("gallery/docs/scenes/{name}.xml"));
+    let params = lumis::scene::mitsuba::Params {
+        defines: Vec::new(),
+        spp: None,
+    };
+    let mut desc = lumis::scene::mitsuba::load_params(&path, &params)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .desc;
+    let scaled = |n: u32| ((n as f64 * scale).round() as u32).max(1);
+    (desc.camera.width, desc.camera.height) =
+        (scaled(desc.camera.width), scaled(desc.camera.height));
+    Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Every pixel of `got` within `rel` (of the reference's largest channel) of
@@ -28,6 +46,34 @@ pub fn assert_pixels_match(got: &[Vec3], reference_file: &str, rel: f32, what: &
             "{what}: pixel {k} {g:?}, Mitsuba {w:?}"
         );
     }
+}
+
+/// The leak and grazing checks' scene: a one-sided rough plastic quad 2 × 2 about the origin,
+/// normal +y, whose material carries `map` (a JSON member, `"normal_map": {…}` or
+/// `"bump_map": {…}`, files relative to `dir`), seen from `from` with vertical field of view
+/// `vfov` on a 32² film, lit by a sphere light of radius 0.25 at `light`.
+pub fn plane_under_map(
+    dir: &Path,
+    map: &str,
+    from: [f32; 3],
+    vfov: f32,
+    light: [f32; 3],
+) -> Arc<Scene> {
+    let json = format!(
+        r#"{{"camera": {{"from": {from:?}, "to": [0, 0, 0], "up": [0, 0, 1], "vfov_deg": {vfov},
+                        "width": 32, "height": 32}},
+            "materials": {{
+              "bumpy": {{"type": "plastic", "albedo": [0.7, 0.7, 0.7], "alpha": 0.3,
+                         "two_sided": false, {map}}}
+            }},
+            "shapes": [
+              {{"type": "quad", "corner": [-1, 0, -1], "edge_u": [0, 0, 2], "edge_v": [2, 0, 0],
+                "material": "bumpy"}},
+              {{"type": "sphere", "center": {light:?}, "radius": 0.25, "emission": [20, 20, 20]}}
+            ]}}"#
+    );
+    let desc = parse_scene_in(&json, dir).unwrap_or_else(|e| panic!("{e}\n{json}"));
+    Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}")))
 }
 
 /// A one-sided plane that the camera alone sees, lit by a light `below` it (which must reach no

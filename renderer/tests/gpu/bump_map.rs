@@ -11,8 +11,11 @@
 //! CPU's one by one; the back of a two-sided bump map renders Mitsuba's one exact value; a GPU
 //! at half the scale is detected by the image test (its power).
 
-use crate::common::{STRATEGIES_AND_OPTIMAL, data_dir};
-use crate::gpu_common::images::{CPU_SEED_OFFSET, cpu_render, decide_gpu_vs_cpu, gpu_render};
+use crate::common::STRATEGIES_AND_OPTIMAL;
+use crate::common::surface_detail::gallery_scene_at;
+use crate::gpu_common::images::{
+    CPU_SEED_OFFSET, cpu_render, gpu_render, gpu_vs_cpu_every_strategy,
+};
 use crate::gpu_common::parity::{f4, run};
 use crate::gpu_common::{Compare, context};
 use glam::Vec2;
@@ -21,7 +24,6 @@ use lumis::integrator::Settings;
 use lumis::materials::bump_map;
 use lumis::rng::Rng;
 use lumis::scene::Scene;
-use lumis::scene::mitsuba::{Params, load_params};
 use std::sync::Arc;
 
 const BLOCK: u32 = 8;
@@ -30,18 +32,7 @@ const SPP: u32 = 32;
 /// The gallery's bump-mapped material preview at an eighth of its film, its bump scale times
 /// `scale`.
 fn scene(scale: f32) -> Arc<Scene> {
-    let path = data_dir().join("gallery/docs/scenes/bsdf_bumpmap_with.xml");
-    let params = Params {
-        defines: Vec::new(),
-        spp: None,
-    };
-    let mut desc = load_params(&path, &params)
-        .unwrap_or_else(|e| panic!("{e}"))
-        .desc;
-    let scaled = |n: u32| ((n as f64 / 8.0).round() as u32).max(1);
-    (desc.camera.width, desc.camera.height) =
-        (scaled(desc.camera.width), scaled(desc.camera.height));
-    let mut scene = Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}"));
+    let mut scene = gallery_scene_at("bsdf_bumpmap_with", 1.0 / 8.0);
     for map in scene.normal_maps.iter_mut().flatten() {
         map.height_scale = map.height_scale.map(|s| s * scale);
     }
@@ -60,22 +51,11 @@ fn the_gpu_renders_the_cpus_bump_mapped_image_in_every_strategy() {
             .count(),
         1
     );
-    let mut failures = Vec::new();
-    for (i, strategy) in STRATEGIES_AND_OPTIMAL.into_iter().enumerate() {
-        let settings = Settings {
-            strategy,
-            ..Settings::default()
-        };
-        let what = format!("gpu bsdf_bumpmap_with {strategy:?} vs cpu");
-        let Some(decision) =
-            decide_gpu_vs_cpu(&what, &scene, settings, SPP, 4500 + i as u32, BLOCK)
-        else {
-            return;
-        };
-        if let Err(e) = decision {
-            failures.push(e);
-        }
-    }
+    let Some(failures) =
+        gpu_vs_cpu_every_strategy("gpu bsdf_bumpmap_with", &scene, SPP, 4500, BLOCK)
+    else {
+        return;
+    };
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 

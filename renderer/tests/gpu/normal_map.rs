@@ -19,11 +19,13 @@
 //! the side rule are branches on continuous inputs (a bilinear JPEG texel, a normalisation) that
 //! rounding sends either way, beyond that check's 1-in-1000 bound. It is not the criterion here.
 
-use crate::common::{STRATEGIES_AND_OPTIMAL, data_dir};
-use crate::gpu_common::images::{CPU_SEED_OFFSET, cpu_render, decide_gpu_vs_cpu, gpu_render};
+use crate::common::STRATEGIES_AND_OPTIMAL;
+use crate::common::surface_detail::gallery_scene_at;
+use crate::gpu_common::images::{
+    CPU_SEED_OFFSET, cpu_render, gpu_render, gpu_vs_cpu_every_strategy,
+};
 use lumis::integrator::Settings;
 use lumis::scene::Scene;
-use lumis::scene::mitsuba::{Params, load_params};
 use std::sync::Arc;
 
 /// Block side of the z-test (60×45 = 12×9 blocks).
@@ -33,18 +35,7 @@ const SPP: u32 = 32;
 
 /// The gallery's normal-mapped material preview at `scale` of its film.
 fn scene(scale: f64, shadowing: bool) -> Arc<Scene> {
-    let path = data_dir().join("gallery/docs/scenes/bsdf_normalmap_with.xml");
-    let params = Params {
-        defines: Vec::new(),
-        spp: None,
-    };
-    let mut desc = load_params(&path, &params)
-        .unwrap_or_else(|e| panic!("{e}"))
-        .desc;
-    let scaled = |n: u32| ((n as f64 * scale).round() as u32).max(1);
-    (desc.camera.width, desc.camera.height) =
-        (scaled(desc.camera.width), scaled(desc.camera.height));
-    let mut scene = Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}"));
+    let mut scene = gallery_scene_at("bsdf_normalmap_with", scale);
     for map in scene.normal_maps.iter_mut().flatten() {
         map.shadowing = shadowing;
     }
@@ -55,22 +46,11 @@ fn scene(scale: f64, shadowing: bool) -> Arc<Scene> {
 fn the_gpu_renders_the_cpus_normal_mapped_image_in_every_strategy() {
     let scene = scene(1.0 / 8.0, true);
     assert_eq!(scene.normal_maps.iter().flatten().count(), 1);
-    let mut failures = Vec::new();
-    for (i, strategy) in STRATEGIES_AND_OPTIMAL.into_iter().enumerate() {
-        let settings = Settings {
-            strategy,
-            ..Settings::default()
-        };
-        let what = format!("gpu bsdf_normalmap_with {strategy:?} vs cpu");
-        let Some(decision) =
-            decide_gpu_vs_cpu(&what, &scene, settings, SPP, 4400 + i as u32, BLOCK)
-        else {
-            return;
-        };
-        if let Err(e) = decision {
-            failures.push(e);
-        }
-    }
+    let Some(failures) =
+        gpu_vs_cpu_every_strategy("gpu bsdf_normalmap_with", &scene, SPP, 4400, BLOCK)
+    else {
+        return;
+    };
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 

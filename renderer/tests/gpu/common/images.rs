@@ -34,6 +34,33 @@ pub fn cpu_render(scene: &Arc<Scene>, settings: Settings, spp: u32, seed: u32) -
 /// pairs 4000/5000, 4100/5100, … keep their seeds).
 pub const CPU_SEED_OFFSET: u32 = 1000;
 
+/// [`decide_gpu_vs_cpu`] for strategy `i` of [`crate::common::STRATEGIES_AND_OPTIMAL`] at GPU seed
+/// `seed + i` (default settings otherwise), named `{label} {strategy:?} vs cpu`: the failures,
+/// or `None` when GPU tests are skipped.
+pub fn gpu_vs_cpu_every_strategy(
+    label: &str,
+    scene: &Arc<Scene>,
+    spp: u32,
+    seed: u32,
+    block: u32,
+) -> Option<Vec<String>> {
+    let mut failures = Vec::new();
+    for (i, strategy) in crate::common::STRATEGIES_AND_OPTIMAL
+        .into_iter()
+        .enumerate()
+    {
+        let settings = Settings {
+            strategy,
+            ..Settings::default()
+        };
+        let what = format!("{label} {strategy:?} vs cpu");
+        if let Err(e) = decide_gpu_vs_cpu(&what, scene, settings, spp, seed + i as u32, block)? {
+            failures.push(e);
+        }
+    }
+    Some(failures)
+}
+
 /// The GPU's render of `scene` with `s` against the CPU's, one decision of the suite's protocol
 /// (`common/protocol.rs`): the GPU at `seed`, the CPU at `seed + CPU_SEED_OFFSET`, `spp` each,
 /// `block`×`block` blocks; `None` when GPU tests are skipped.
