@@ -265,6 +265,45 @@ fn a_bump_map_switches_under_its_own_name() {
     assert_eq!(scale(&mut h, "bump on"), Some(0.02));
 }
 
+/// A material's alpha mask switched off and on again, and its constant opacity dragged: each
+/// restarts with the edited description, which the render thread builds (the built scene's
+/// opacity follows).
+#[test]
+fn a_mask_switches_and_its_opacity_slides() {
+    let dir = scratch("mask");
+    let mut desc = lumis::scene::load_scene(&asset("seed_cornell.json")).unwrap();
+    let i = material_in(&desc, "ggx05");
+    desc.materials[i].opacity = Some(lumis::scene::TextureDesc {
+        texture: lumis::textures::Texture::Constant(glam::Vec3::splat(0.5)),
+    });
+    let file = dir.join("mask.json");
+    std::fs::write(&file, desc.to_json().to_string()).unwrap();
+    let mut h = harness_at(file, 24, dir);
+    h.state_mut().selected_material = Some(i);
+    h.run_steps(2);
+    let opacity = |h: &mut Harness<'static, ViewerApp>, what: &str| {
+        wait_for_current_scene(h, what);
+        let scene = h.state().output().scene.clone().unwrap();
+        scene
+            .opacity
+            .get(i)
+            .cloned()
+            .flatten()
+            .map(|t| t.eval_scalar(glam::Vec2::ZERO))
+    };
+    assert_eq!(opacity(&mut h, "loaded"), Some(0.5));
+    assert_restarts(&mut h, "mask off", |h| {
+        h.get_by_role_and_label(Role::CheckBox, "Mask").click()
+    });
+    assert_eq!(opacity(&mut h, "mask off"), None);
+    assert_restarts(&mut h, "mask on", |h| {
+        h.get_by_role_and_label(Role::CheckBox, "Mask").click()
+    });
+    assert_eq!(opacity(&mut h, "mask on"), Some(0.5));
+    assert_restarts(&mut h, "opacity", |h| set_slider(h, "Opacity", 0.25));
+    assert_eq!(opacity(&mut h, "opacity"), Some(0.25));
+}
+
 #[test]
 fn dielectric_ior_presets_and_sliders_edit_the_glass() {
     // The Cornell box with sphere ggx05 turned into smooth glass, written as a scene file.

@@ -15,8 +15,10 @@
 //! microfacets on the material preview under the map (`bsdf_roughplastic_beckmann`), a gold
 //! conductor (`bsdf_conductor_gold`), the Cornell box of OBJ meshes with an area light and
 //! unlimited depth (`integrator_depth_inf`), the thin-lens camera (`sensor_thinlens`), a
-//! normal map (`bsdf_normalmap_with`: a JPEG map on the preview's rough plastic, issue 40) and a
-//! bump map (`bsdf_bumpmap_with`: a PNG of heights, scale 0.02, on the same plastic).
+//! normal map (`bsdf_normalmap_with`: a JPEG map on the preview's rough plastic, issue 40), a
+//! bump map (`bsdf_bumpmap_with`: a PNG of heights, scale 0.02, on the same plastic) and an
+//! alpha mask (`bsdf_mask_after`: a leaf cut from a rectangle by a grey-and-alpha PNG, over the
+//! preview's checkerboard plane).
 //! `tools/corpus.py` compares the whole gallery offline (docs/mitsuba.md).
 //!
 //! **Test:** as `tools/corpus.py` (whose first version, like a first version of this file,
@@ -53,7 +55,7 @@ const RENDERS: u32 = 8;
 const SCALE: f64 = 0.125;
 
 /// The subset, in order (scene `k` of the seeds).
-const SCENES: [&str; 8] = [
+const SCENES: [&str; 9] = [
     "emitter_spot_texture",
     "emitter_projector_textured",
     "bsdf_roughplastic_beckmann",
@@ -62,6 +64,7 @@ const SCENES: [&str; 8] = [
     "sensor_thinlens",
     "bsdf_normalmap_with",
     "bsdf_bumpmap_with",
+    "bsdf_mask_after",
 ];
 
 /// Every failure of scene `k` against its reference.
@@ -421,5 +424,11 @@ fn bsdf_normalmap_with_agrees_with_mitsuba() {
 #[test]
 fn bsdf_bumpmap_with_agrees_with_mitsuba() {
     let f = check(7);
+    assert!(f.is_empty(), "{}", f.join("\n"));
+}
+
+#[test]
+fn bsdf_mask_after_agrees_with_mitsuba() {
+    let f = check(8);
     assert!(f.is_empty(), "{}", f.join("\n"));
 }

@@ -480,6 +480,48 @@ fn every_material_texture_and_shape_kind_round_trips_bit_for_bit() {
     assert_round_trip(&kitchen_sink(), "kitchen_sink");
 }
 
+/// Opacities go out as Mitsuba's `mask` around everything else (a constant on a one-sided
+/// diffuse, a bitmap on a bump-mapped two-sided diffuse) and come back the same, rendering the
+/// same image bit for bit, at unlimited depth; at a finite `max_depth` the export is refused by
+/// path (Mitsuba spends a bounce on each pass through a mask).
+#[test]
+fn masks_round_trip_at_unlimited_depth() {
+    let mut desc = kitchen_sink();
+    desc.max_depth = -1;
+    let bitmap = desc
+        .materials
+        .iter()
+        .find(|m| m.name == "frosted")
+        .and_then(|m| m.textures.alpha.clone())
+        .expect("a scalar bitmap");
+    for m in desc.materials.iter_mut() {
+        match m.name.as_str() {
+            "raw" => {
+                m.opacity = Some(lumis::scene::TextureDesc {
+                    texture: lumis::textures::Texture::Constant(glam::Vec3::splat(0.6)),
+                })
+            }
+            "dented" => m.opacity = Some(bitmap.clone()),
+            _ => {}
+        }
+    }
+    assert_round_trip(&desc, "masks");
+    let dir = Dir::new("masks_back");
+    let (_, back) = round_trip(&desc, &dir, "masks_back");
+    for name in ["raw", "dented"] {
+        let find = |d: &SceneDesc| d.materials.iter().find(|m| m.name == name).cloned();
+        assert_eq!(
+            find(&back.desc).unwrap().opacity,
+            find(&desc).unwrap().opacity,
+            "{name}"
+        );
+    }
+    desc.max_depth = 6;
+    let dir = Dir::new("masks_depth");
+    let err = write_export(&desc, &dir.0.join("s.xml"), &ExportOptions::default()).unwrap_err();
+    assert!(err.to_string().contains("materials.raw.opacity"), "{err}");
+}
+
 /// A gaussian pixel filter goes out as Mitsuba's `gaussian` rfilter and comes back as the same
 /// filter (the same image, bit for bit); a radius other than Mitsuba's 4σ is refused by path.
 #[test]

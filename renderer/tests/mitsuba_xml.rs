@@ -617,6 +617,65 @@ fn bsdfs_map_onto_lumis_materials() {
     assert!(m.desc.shapes.is_empty());
 }
 
+/// Mitsuba's `mask` becomes a material's `opacity`: its default ½, a number, a texture read as a
+/// scalar (a checkerboard's colours swapped, Mitsuba's `eval_1`), outside or inside a
+/// `twosided`; a finite `max_depth` beside a mask (Mitsuba spends a bounce on each pass), a
+/// mask around a null BSDF or without a nested one are located errors.
+#[test]
+fn masks_become_opacities() {
+    let dir = Dir::new("masks");
+    let body = r#"<shape type="sphere"><bsdf type="mask" id="half"><bsdf type="diffuse"/></bsdf></shape>
+<shape type="sphere"><bsdf type="mask" id="faint"><float name="opacity" value="0.3"/>
+    <bsdf type="twosided"><bsdf type="roughconductor"><float name="alpha" value="0.2"/></bsdf></bsdf></bsdf></shape>
+<shape type="sphere"><bsdf type="twosided" id="checked"><bsdf type="mask">
+    <texture name="opacity" type="checkerboard"><float name="color0" value="0.1"/><float name="color1" value="0.9"/></texture>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.2 0.6 0.3"/></bsdf></bsdf></bsdf></shape>"#;
+    let m = ok(&dir, body);
+    let shapes: Vec<Value> = ["half", "faint", "checked"]
+        .iter()
+        .map(|n| json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": n}))
+        .collect();
+    let want = expected(
+        &dir,
+        json!({
+            "materials": {
+                "half": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5], "two_sided": false,
+                         "opacity": 0.5},
+                "faint": {"type": "conductor", "alpha": 0.2, "distribution": "beckmann",
+                          "reflectance": [1, 1, 1], "two_sided": true, "opacity": 0.3},
+                "checked": {"type": "diffuse", "albedo": [0.2, 0.6, 0.3], "two_sided": true,
+                            "opacity": {"type": "checkerboard", "color0": 0.9, "color1": 0.1}},
+            },
+            "shapes": shapes,
+        }),
+    );
+    assert_same(&m.desc, &want);
+    let mask = r#"<shape type="sphere"><bsdf type="mask"><bsdf type="diffuse"/></bsdf></shape>"#;
+    refused(
+        &dir,
+        &format!(
+            "<integrator type=\"path\"><integer name=\"max_depth\" value=\"4\"/></integrator>\n{mask}"
+        ),
+        "<bsdf type=\"mask",
+        "scene/shape/bsdf",
+        "a mask with max_depth 4",
+    );
+    refused(
+        &dir,
+        r#"<shape type="sphere"><bsdf type="mask"><bsdf type="null"/></bsdf></shape>"#,
+        "<bsdf type=\"mask",
+        "scene/shape/bsdf",
+        "a mask around a null BSDF has nothing to mask",
+    );
+    refused(
+        &dir,
+        r#"<shape type="sphere"><bsdf type="mask"><float name="opacity" value="0.2"/></bsdf></shape>"#,
+        "<bsdf type=\"mask",
+        "scene/shape/bsdf",
+        "a mask needs a nested <bsdf>",
+    );
+}
+
 /// Textured alpha_u and alpha_v (each a number or a texture) become the scene format's textured
 /// pair: α_u's texture in `alpha`, α_v's (a number as a constant) in `alpha_v`.
 #[test]

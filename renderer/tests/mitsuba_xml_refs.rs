@@ -405,6 +405,24 @@ fn xml_thin_wrong_index_is_detected() {
     assert_detected("xml_thin", &m, 2540, "with ior=1.6");
 }
 
+/// `xml_mask.xml` (Mitsuba's `mask`: a pane masked by a bilinearly filtered 8-bit grey PNG
+/// between a rectangle light and the floor, which shows its patterned shadow, and a sphere at the
+/// default opacity ½, its black inside and the box behind seen through it) against its
+/// reference, seeds 2770–2774. Mitsuba's shadow rays stop at the pane and the floor under it is
+/// lit through it by BSDF sampling only; lumis' pass it with probability 1 − α: the same image.
+#[test]
+fn xml_mask_matches_its_mitsuba_reference() {
+    every_strategy("xml_mask", [256, 256, 256, 256, 256], 2770);
+}
+
+/// Power: `xml_mask.xml` with `-D raw=true` (the mask's 8-bit texels read as linear, not
+/// sRGB-decoded: a mid-grey texel is 0.50 opaque for 0.22) fails, MIS 256 spp, seed 2780.
+#[test]
+fn xml_mask_undecoded_opacity_is_detected() {
+    let m = import("xml_mask", &[("raw", "true")]);
+    assert_detected("xml_mask", &m, 2780, "with raw=true");
+}
+
 /// `xml_textured_shapes.xml` (Mitsuba's texture coordinates on spheres and disks turned by
 /// their `to_world`: a checkered sphere with a tilted pole, a checkered disk turned about its
 /// normal, a sphere light with a checkered radiance, anisotropic gold about a tilted pole)

@@ -54,6 +54,9 @@ pub struct ViewerApp {
     /// Normal maps switched off in the material controls, by material index, kept to switch
     /// them back on.
     pub normal_maps_off: std::collections::HashMap<usize, lumis::scene::desc::NormalMapDesc>,
+    /// Alpha masks (opacities) switched off in the material controls, by material index, kept
+    /// to switch them back on.
+    pub masks_off: std::collections::HashMap<usize, lumis::scene::TextureDesc>,
     /// Selected light and its editor state.
     pub light: Option<LightEdit>,
     /// Selected delta light (index into `desc.lights`) for the delta-light controls.
@@ -119,6 +122,7 @@ impl ViewerApp {
             home_camera: None,
             selected_material: None,
             normal_maps_off: Default::default(),
+            masks_off: Default::default(),
             light: None,
             selected_delta_light: None,
             reference: None,
@@ -165,6 +169,7 @@ impl ViewerApp {
                 self.scene_path = Some(path.to_path_buf());
                 self.selected_material = None;
                 self.normal_maps_off.clear();
+                self.masks_off.clear();
                 self.light = None;
                 self.selected_delta_light = None;
                 self.error = None;

@@ -236,6 +236,30 @@ impl ViewerApp {
                 .checkbox(&mut map.flip_invalid_normals, "Flip invalid normals")
                 .changed();
         }
+        // An alpha mask: on or off (kept aside while off), and a constant opacity's value.
+        let off = &mut self.masks_off;
+        let mut on = named.opacity.is_some();
+        if (on || off.contains_key(&i)) && ui.checkbox(&mut on, "Mask").changed() {
+            if on {
+                named.opacity = off.remove(&i);
+            } else if let Some(opacity) = named.opacity.take() {
+                off.insert(i, opacity);
+            }
+            changed = true;
+        }
+        if let Some(lumis::scene::TextureDesc {
+            texture: lumis::textures::Texture::Constant(c),
+        }) = &mut named.opacity
+        {
+            let mut alpha = c.x;
+            if ui
+                .add(egui::Slider::new(&mut alpha, 0.0..=1.0).text("Opacity"))
+                .changed()
+            {
+                *c = glam::Vec3::splat(alpha);
+                changed = true;
+            }
+        }
         if changed {
             self.scene_changed();
         }

@@ -116,6 +116,24 @@ struct HitT {
     prim: u32,
 }
 
+// The hit of primitive `id` on `ray` that the traversals consider (its distance, negative for
+// none): with HAS_MASKS a hit that a mask lets the ray pass is none (`materials/mask.wgsl`).
+fn prim_hit_t(id: u32, ray: Ray, tri: TriangleRay) -> f32 {
+// #if HAS_MASKS
+    var t = shape_intersect_t(prims[id], ray, tri);
+    // A passed sphere or cylinder may still be met on its far side (at most two hits).
+    for (var k = 0u; k < 2u && t >= 0.0; k++) {
+        if mask_meets(id, ray, t) {
+            return t;
+        }
+        t = shape_intersect_t_beyond(prims[id], ray, t);
+    }
+    return -1.0;
+// #else
+    return shape_intersect_t(prims[id], ray, tri);
+// #endif
+}
+
 // #if !USE_BVH2
 // Closest hit along `ray` in (0, ray.t_max); prim = NONE for none.
 fn scene_intersect_t(ray: Ray) -> HitT {
@@ -133,7 +151,7 @@ fn scene_intersect_t(ray: Ray) -> HitT {
             let local = firstLeadingBit(prims_group.y);
             prims_group.y &= ~(1u << local);
             let id = prims_group.x + local;
-            let t = shape_intersect_t(prims[id], Ray(ray.o, ray.d, best_t), tri);
+            let t = prim_hit_t(id, Ray(ray.o, ray.d, best_t), tri);
             if t >= 0.0 {
                 best_t = t;
                 best = id;
@@ -168,7 +186,7 @@ fn scene_intersect_t(ray: Ray) -> HitT {
 // #else
     let n = arrayLength(&prims);
     for (var id = 0u; id < n; id++) {
-        let t = shape_intersect_t(prims[id], Ray(ray.o, ray.d, best_t), tri);
+        let t = prim_hit_t(id, Ray(ray.o, ray.d, best_t), tri);
         if t >= 0.0 {
             best_t = t;
             best = id;
@@ -191,7 +209,7 @@ fn scene_occluded(ray: Ray) -> bool {
         while prims_group.y != 0u {
             let local = firstLeadingBit(prims_group.y);
             prims_group.y &= ~(1u << local);
-            if shape_intersect_t(prims[prims_group.x + local], ray, tri) >= 0.0 {
+            if prim_hit_t(prims_group.x + local, ray, tri) >= 0.0 {
                 return true;
             }
         }
@@ -225,7 +243,7 @@ fn scene_occluded(ray: Ray) -> bool {
 // #else
     let n = arrayLength(&prims);
     for (var id = 0u; id < n; id++) {
-        if shape_intersect_t(prims[id], ray, tri) >= 0.0 {
+        if prim_hit_t(id, ray, tri) >= 0.0 {
             return true;
         }
     }

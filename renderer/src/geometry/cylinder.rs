@@ -39,6 +39,13 @@ impl Cylinder {
     /// Nearest ray parameter in `(0, t_max)` whose point lies between the end circles, or
     /// `None`. A ray that meets the tube beyond an end first may still hit its inside.
     pub fn intersect(&self, ray: &Ray) -> Option<f32> {
+        self.intersect_beyond(ray, 0.0)
+    }
+
+    /// [`Cylinder::intersect`] in `(after, t_max)` (`after` ≥ 0): the far wall where a mask let
+    /// the ray pass the near one ([`crate::materials::mask`]).
+    #[inline]
+    pub fn intersect_beyond(&self, ray: &Ray, after: f32) -> Option<f32> {
         let (z, y) = self.frame();
         let f = ray.o - self.p0;
         // The problem in the plane perpendicular to the axis, solved as the sphere's (Haines
@@ -67,7 +74,7 @@ impl Cylinder {
         let (oz, dz, h) = (f.dot(z), ray.d.dot(z), self.axis.length());
         let on_tube = |t: f32| {
             let zt = oz + t * dz;
-            t > slack && t < ray.t_max && (0.0..=h).contains(&zt)
+            t > slack && t > after && t < ray.t_max && (0.0..=h).contains(&zt)
         };
         if on_tube(t0) {
             Some(t0)

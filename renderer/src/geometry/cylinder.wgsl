@@ -8,6 +8,12 @@
 // `Cylinder::intersect`: the nearest ray parameter in (slack, t_max) between the end circles,
 // or −1.
 fn cylinder_intersect(p0: vec3f, axis: vec3f, u_axis: vec3f, radius: f32, ray: Ray) -> f32 {
+    return cylinder_intersect_beyond(p0, axis, u_axis, radius, ray, 0.0);
+}
+
+// `Cylinder::intersect_beyond`: the nearest in (after, t_max) too, the far wall past a mask
+// (`cylinder_intersect` is it with after = 0).
+fn cylinder_intersect_beyond(p0: vec3f, axis: vec3f, u_axis: vec3f, radius: f32, ray: Ray, after: f32) -> f32 {
     let z = normalize(axis);
     let y = cross(z, u_axis);
     let f = ray.o - p0;
@@ -32,11 +38,11 @@ fn cylinder_intersect(p0: vec3f, axis: vec3f, u_axis: vec3f, radius: f32, ray: R
     let dz = dot(ray.d, z);
     let h = length(axis);
     let z0 = oz + t0 * dz;
-    if t0 > slack && t0 < ray.t_max && z0 >= 0.0 && z0 <= h {
+    if t0 > slack && t0 > after && t0 < ray.t_max && z0 >= 0.0 && z0 <= h {
         return t0;
     }
     let z1 = oz + t1 * dz;
-    if t1 > slack && t1 < ray.t_max && z1 >= 0.0 && z1 <= h {
+    if t1 > slack && t1 > after && t1 < ray.t_max && z1 >= 0.0 && z1 <= h {
         return t1;
     }
     return -1.0;

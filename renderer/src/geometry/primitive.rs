@@ -69,6 +69,19 @@ impl Shape {
         }
     }
 
+    /// The next hit in `(after, ray.t_max)` beyond a hit at `after` that a mask let the ray pass
+    /// ([`crate::materials::mask`]): a sphere's or cylinder's far side; none for the flat shapes,
+    /// which a ray meets once.
+    #[inline]
+    pub fn intersect_t_beyond(&self, ray: &Ray, after: f32) -> Option<ShapeHit> {
+        let t = match self {
+            Shape::Triangle { .. } | Shape::Disk(_) => None,
+            Shape::Sphere(s) => s.intersect_beyond(ray, after),
+            Shape::Cylinder(c) => c.intersect_beyond(ray, after),
+        };
+        t.map(|t| ShapeHit { t, b: [0.0; 3] })
+    }
+
     /// Full hit record for `hit` (found by [`Shape::intersect_t`] on the same ray).
     pub fn surface_hit(&self, ray: &Ray, hit: ShapeHit, prim: u32) -> SurfaceHit {
         let t = hit.t;

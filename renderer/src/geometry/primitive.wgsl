@@ -49,6 +49,28 @@ struct SurfaceHit {
     b: vec2f,
 }
 
+// #if HAS_MASKS
+// `Shape::intersect_t_beyond`: the next hit in (after, ray.t_max) past a hit at `after` that a
+// mask let the ray pass (a sphere's or cylinder's far side), or −1: flat shapes are met once.
+fn shape_intersect_t_beyond(p: Prim, ray: Ray, after: f32) -> f32 {
+    switch prim_kind(p) {
+// #if HAS_SPHERE_SHAPE
+        case SHAPE_SPHERE: {
+            return sphere_intersect_beyond(p.a.xyz, p.d.w, ray, after);
+        }
+// #endif
+// #if HAS_CYLINDER_SHAPE
+        case SHAPE_CYLINDER: {
+            return cylinder_intersect_beyond(p.a.xyz, p.b.xyz, p.c.xyz, abs(p.d.w), ray, after);
+        }
+// #endif
+        default: {
+            return -1.0;
+        }
+    }
+}
+// #endif
+
 // `Shape::intersect_t`: the nearest hit in (0, ray.t_max), or −1.
 fn shape_intersect_t(p: Prim, ray: Ray, tri: TriangleRay) -> f32 {
     switch prim_kind(p) {

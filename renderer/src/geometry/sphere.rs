@@ -49,6 +49,29 @@ impl Sphere {
 
     /// Nearest ray parameter in `(0, t_max)`, or `None`.
     pub fn intersect(&self, ray: &Ray) -> Option<f32> {
+        let (t0, t1, slack) = self.roots(ray)?;
+        if t0 > slack && t0 < ray.t_max {
+            Some(t0)
+        } else if t1 > slack && t1 < ray.t_max {
+            Some(t1)
+        } else {
+            None
+        }
+    }
+
+    /// Nearest ray parameter in `(after, t_max)` (`after` ≥ 0), or `None`: the far side of the
+    /// sphere where a mask let the ray pass its near side ([`crate::materials::mask`]).
+    pub fn intersect_beyond(&self, ray: &Ray, after: f32) -> Option<f32> {
+        let (t0, t1, slack) = self.roots(ray)?;
+        [t0, t1]
+            .into_iter()
+            .find(|&t| t > slack && t > after && t < ray.t_max)
+    }
+
+    /// The two roots along `ray`, in order, and the distance uncertainty of a hit in the ray's
+    /// parameter; `None` where the line misses.
+    #[inline(always)]
+    fn roots(&self, ray: &Ray) -> Option<(f32, f32, f32)> {
         let inv_len = 1.0 / ray.d.length();
         let d = ray.d * inv_len;
         let f = ray.o - self.center;
@@ -64,13 +87,7 @@ impl Sphere {
         )?;
         // Distance uncertainty of a hit, scaled to the ray's parameter.
         let slack = gamma(8) * (f.length() + self.radius) * inv_len;
-        if t0 > slack && t0 < ray.t_max {
-            Some(t0)
-        } else if t1 > slack && t1 < ray.t_max {
-            Some(t1)
-        } else {
-            None
-        }
+        Some((t0, t1, slack))
     }
 
     /// Hit point reprojected onto the sphere, its error bound and outward normal.

@@ -22,6 +22,26 @@ fn sphere_intersect(center: vec3f, radius: f32, ray: Ray) -> f32 {
     return -1.0;
 }
 
+// #if HAS_MASKS
+// `Sphere::intersect_beyond`: the nearest in (after, t_max), the far side past a mask (the same
+// roots as `sphere_intersect`, which programs without masks keep as it was).
+fn sphere_intersect_beyond(center: vec3f, radius: f32, ray: Ray, after: f32) -> f32 {
+    let inv_len = 1.0 / length(ray.d);
+    let d = ray.d * inv_len;
+    let f = ray.o - center;
+    let b = -dot(f, d);
+    let l = f + b * d;
+    let roots = careful_roots(b, dot(l, l), dot(f, f), radius, inv_len);
+    let slack = gamma(8.0) * (length(f) + radius) * inv_len;
+    if roots.found && roots.t0 > slack && roots.t0 > after && roots.t0 < ray.t_max {
+        return roots.t0;
+    } else if roots.found && roots.t1 > slack && roots.t1 > after && roots.t1 < ray.t_max {
+        return roots.t1;
+    }
+    return -1.0;
+}
+// #endif
+
 struct Roots {
     found: bool,
     t0: f32,

@@ -74,7 +74,7 @@ fn scene_intersect_t(ray: Ray) -> HitT {
         } else {
             for (var k = 0u; k < count; k++) {
                 let id = bvh2_word(first + k);
-                let t = shape_intersect_t(prims[id], Ray(ray.o, ray.d, best_t), tri);
+                let t = prim_hit_t(id, Ray(ray.o, ray.d, best_t), tri);
                 if t >= 0.0 {
                     best_t = t;
                     best = id;
@@ -135,7 +135,7 @@ fn scene_occluded(ray: Ray) -> bool {
             }
         } else {
             for (var k = 0u; k < count; k++) {
-                if shape_intersect_t(prims[bvh2_word(first + k)], ray, tri) >= 0.0 {
+                if prim_hit_t(bvh2_word(first + k), ray, tri) >= 0.0 {
                     return true;
                 }
             }

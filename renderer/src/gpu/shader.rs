@@ -96,6 +96,7 @@ const MODULES: &[Module] = &[
     module!("geometry/tangent.wgsl"),
     module!("textures/mod.wgsl"),
     module!("materials/mix.wgsl"),
+    module!("materials/mask.wgsl"),
     module!("materials/normal_map.wgsl"),
     module!("geometry/bvh.wgsl"),
     module!("gpu/bvh2.wgsl"),
@@ -187,6 +188,9 @@ pub struct Features {
     /// Normal maps (`materials/normal_map.wgsl`): texture lookups (as with
     /// [`Features::has_textures`]) and frames along ∂p/∂u (`geometry/tangent.wgsl`).
     pub has_normal_maps: bool,
+    /// Alpha masks (`materials/mask.wgsl`): the traversals' any-hit test, with texture lookups
+    /// (as with [`Features::has_textures`]) and `materials/mix.wgsl`'s hash.
+    pub has_masks: bool,
 }
 
 impl Features {
@@ -224,6 +228,7 @@ impl Features {
             has_mixes: true,
             has_signed_filter: true,
             has_normal_maps: true,
+            has_masks: true,
         }
     }
 
@@ -243,6 +248,7 @@ impl Features {
             has_mixes: scene.mixes.iter().any(Option::is_some),
             has_signed_filter: scene.camera.filter.is_signed(),
             has_normal_maps: !scene.normal_maps.is_empty(),
+            has_masks: !scene.opacity.is_empty(),
             ..Features::default()
         };
         // A mix's textured weight is looked up like a material's texture.
@@ -314,9 +320,10 @@ impl Features {
         f
     }
 
-    /// Texture lookups: textured parameters or emission, or normal maps.
+    /// Texture lookups: textured parameters or emission, normal maps, or masks (whose constant
+    /// opacities are texture records too).
     fn textures(&self) -> bool {
-        self.has_textures || self.has_normal_maps
+        self.has_textures || self.has_normal_maps || self.has_masks
     }
 
     /// A material that light passes through ([`Material::transmits`]).
@@ -333,7 +340,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 37] {
+    fn defines(&self) -> [(&'static str, bool); 38] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -389,6 +396,7 @@ impl Features {
             ("HAS_MIXES", self.has_mixes),
             ("HAS_SIGNED_FILTER", self.has_signed_filter),
             ("HAS_NORMAL_MAPS", self.has_normal_maps),
+            ("HAS_MASKS", self.has_masks),
             // The mutation points of `crate::mutants` (only with the `mutants` feature).
             ("MUTANTS", cfg!(feature = "mutants")),
         ]
@@ -455,7 +463,9 @@ impl Features {
             }
             "geometry/tangent.wgsl" => self.has_anisotropic || self.has_normal_maps,
             "textures/mod.wgsl" => self.textures(),
-            "materials/mix.wgsl" => self.has_mixes,
+            // Masks draw their decisions with the mixes' hash.
+            "materials/mix.wgsl" => self.has_mixes || self.has_masks,
+            "materials/mask.wgsl" => self.has_masks,
             _ => true,
         }
     }

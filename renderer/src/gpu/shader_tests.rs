@@ -235,6 +235,35 @@ mod tests {
         }
     }
 
+    /// The masked traversal exists only in programs for scenes with masks; without, the
+    /// primitive test is the shape's alone.
+    #[test]
+    fn only_masks_carry_their_code() {
+        let names = [
+            "fn mask_meets",
+            "mask_meets(id, ray, t)",
+            "shape_intersect_t_beyond(prims[id]",
+        ];
+        let with = program_body(&Features {
+            has_masks: true,
+            use_bvh: true,
+            ..Features::default()
+        });
+        for name in names {
+            assert!(with.contains(name), "a masked program lacks {name:?}");
+        }
+        let without = program_body(&Features {
+            has_masks: false,
+            ..Features::all()
+        });
+        for name in names {
+            assert!(
+                !without.contains(name),
+                "{name:?} in a program without masks"
+            );
+        }
+    }
+
     #[test]
     fn scenes_without_glass_carry_no_transmission_code() {
         let glass = Features {

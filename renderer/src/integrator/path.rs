@@ -187,7 +187,7 @@ fn trace<const TRANSMISSION: bool>(
         depth += 1;
         // The sampler's bounce: 0 at the camera ray's hit.
         let bounce = (depth - 1) as u32;
-        let hit = scene.accel.intersect(&ray);
+        let hit = scene.intersect(&ray);
         if let (Some(p), Some(opt)) = (pending.take(), optimal.as_deref_mut()) {
             let (cv, w) = resolve_bsdf(
                 scene,
@@ -627,7 +627,7 @@ fn direct_light<const TRANSMISSION: bool>(
     if f == Vec3::ZERO && p_bsdf_cv <= 0.0 {
         return PURE;
     }
-    if scene.accel.occluded(&shadow_ray(hit, n, &ls)) {
+    if scene.occluded(&shadow_ray(hit, n, &ls)) {
         if cv && crate::mutants::optimal_occluded_combined() {
             let p_bsdf = bsdf.pdf::<TRANSMISSION>(wo, wi);
             if let Some((rl, rb)) = balance_ratios(pmf * ls.pdf, p_bsdf) {
@@ -686,7 +686,7 @@ fn delta_light(
     if f == Vec3::ZERO {
         return Vec3::ZERO;
     }
-    if scene.accel.occluded(&shadow_ray(hit, n, ls)) {
+    if scene.occluded(&shadow_ray(hit, n, ls)) {
         return Vec3::ZERO;
     }
     let branch = match weight {

@@ -23,6 +23,7 @@ pub mod dielectric;
 pub mod diffuse;
 pub mod fresnel;
 pub mod ggx;
+pub mod mask;
 pub mod microfacet;
 pub mod mix;
 pub mod normal_map;

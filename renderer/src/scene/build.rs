@@ -77,6 +77,10 @@ pub struct Scene {
     /// Per material, its normal map (`None`: none), parallel to `materials`; empty when no
     /// material has one ([`Scene::shading_at`]).
     pub normal_maps: Vec<Option<NormalMap>>,
+    /// Per material, its opacity (`None`: opaque), a scalar texture, parallel to `materials`;
+    /// empty when every material is opaque, and then rays meet every surface
+    /// ([`Scene::intersect`]).
+    pub opacity: Vec<Option<Texture>>,
 }
 
 fn v(d: DVec3) -> Vec3 {
@@ -439,6 +443,16 @@ impl Scene {
         } else {
             normal_maps.push(None);
         }
+        let mut opacity: Vec<Option<Texture>> = desc
+            .materials
+            .iter()
+            .map(|m| m.opacity.as_ref().map(|o| o.texture.clone()))
+            .collect();
+        if opacity.iter().all(Option::is_none) {
+            opacity.clear();
+        } else {
+            opacity.push(None);
+        }
         let black = materials.len() as u32;
         materials.push(Material::Diffuse(Diffuse { albedo: Vec3::ZERO }));
         two_sided.push(true);
@@ -470,6 +484,12 @@ impl Scene {
                 Some(_) => (Vec3::ZERO, false, NONE),
             };
             let err = |what: &str| SceneError::new(&shape.json_path, what);
+            if emits && matches!(opacity.get(mat as usize), Some(Some(_))) {
+                return Err(err(
+                    "an emitter's material cannot have an opacity: a mask hides the surface, \
+                     and Mitsuba masks its BSDF but not its emission",
+                ));
+            }
             let mut push_light = |light: Option<Light>| -> Result<u32, SceneError> {
                 if !emits {
                     return Ok(NONE);
@@ -761,6 +781,7 @@ impl Scene {
             emission_textures,
             mixes,
             normal_maps,
+            opacity,
         })
     }
 

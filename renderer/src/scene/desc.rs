@@ -238,6 +238,10 @@ pub struct NamedMaterial {
     pub textures: MaterialTextures,
     /// Its normal map (`"normal_map"`; never on a mix).
     pub normal_map: Option<NormalMapDesc>,
+    /// Its opacity (`"opacity"`, Mitsuba's `mask`): a scalar in [0, 1], constant or textured;
+    /// `None` is opaque ([`crate::materials::mask`]). Never on a mix's materials (on the mix
+    /// itself it is), never on an emitter's.
+    pub opacity: Option<TextureDesc>,
     /// `Some` for a mix of two other materials (`{"type": "mix"}`). `material` then holds the
     /// description of the material its mean weight favours (through nested mixes: the second
     /// at a weight ≥ ½), as a texture's mean stands in for it, for code that reads one BSDF;
@@ -925,6 +929,12 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
             }
             None => obj["normal_map"] = v,
         }
+    }
+    if let Some(opacity) = &m.opacity {
+        obj["opacity"] = match &opacity.texture {
+            crate::textures::Texture::Constant(c) => json!(c.x),
+            _ => opacity.to_json(),
+        };
     }
     obj
 }

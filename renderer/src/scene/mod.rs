@@ -21,9 +21,11 @@ mod parse_materials;
 mod parse_mesh;
 mod parse_mesh_file;
 mod parse_shapes;
+mod parse_surface_detail;
 mod parse_texture;
 mod select_light;
 pub mod surface;
+mod trace;
 mod walk;
 
 #[cfg(test)]

@@ -2,10 +2,10 @@
 
 use super::desc::Distribution;
 use super::desc::{
-    FresnelDesc, MaterialDesc, MaterialTextures, MixDesc, NamedMaterial, NormalMapDesc,
-    PlasticModel, TextureDesc,
+    FresnelDesc, MaterialDesc, MaterialTextures, MixDesc, NamedMaterial, PlasticModel, TextureDesc,
 };
 use super::error::SceneError;
+use super::parse_surface_detail::{bump_map, normal_map, opacity};
 use super::parse_texture::{TextureLoader, TextureUse, parse_texture, texture_at};
 use super::walk::{Obj, array, check_components};
 use crate::textures::Texture;
@@ -52,7 +52,14 @@ fn parse_material(
     let material = match kind {
         "diffuse" => {
             obj.only_keys(
-                &["type", "albedo", "two_sided", "normal_map", "bump_map"],
+                &[
+                    "type",
+                    "albedo",
+                    "two_sided",
+                    "normal_map",
+                    "bump_map",
+                    "opacity",
+                ],
                 true,
             )?;
             MaterialDesc::Diffuse {
@@ -72,6 +79,7 @@ fn parse_material(
                     "two_sided",
                     "normal_map",
                     "bump_map",
+                    "opacity",
                 ],
                 true,
             )?;
@@ -97,6 +105,7 @@ fn parse_material(
                     "nonlinear",
                     "normal_map",
                     "bump_map",
+                    "opacity",
                 ],
                 true,
             )?;
@@ -138,6 +147,7 @@ fn parse_material(
                     "distribution",
                     "normal_map",
                     "bump_map",
+                    "opacity",
                 ],
                 true,
             )?;
@@ -163,7 +173,7 @@ fn parse_material(
                 let msg = "a thin dielectric has no two_sided: it is the same from both sides";
                 return Err(SceneError::new(obj.at("two_sided"), msg));
             }
-            obj.only_keys(&["type", "ior"], true)?;
+            obj.only_keys(&["type", "ior", "opacity"], true)?;
             let ior = obj.opt_number("ior")?.unwrap_or(1.5);
             let max = crate::materials::dielectric::MAX_IOR as f64;
             if !(ior > 0.0 && ior <= max) {
@@ -177,7 +187,7 @@ fn parse_material(
                 let msg = "a mix has no sides of its own: its materials' `two_sided` apply";
                 return Err(SceneError::new(obj.at("two_sided"), msg));
             }
-            obj.only_keys(&["type", "materials", "weight"], true)?;
+            obj.only_keys(&["type", "materials", "weight", "opacity"], true)?;
             mix = Some(parse_mix(obj, loader)?);
             // Replaced by the favoured material's once the names resolve.
             MaterialDesc::Diffuse {
@@ -204,6 +214,7 @@ fn parse_material(
             Some(b) => Some(b),
             None => normal_map(obj, loader)?,
         },
+        opacity: opacity(obj, loader)?,
         mix: None,
     };
     Ok((named, mix))
@@ -265,6 +276,13 @@ fn resolve_mixes(
                     format!("unknown material `{name}` (defined: {})", names.join(", ")),
                 )
             })?;
+            if materials[index[k]].opacity.is_some() {
+                let msg = format!(
+                    "material `{name}` has an opacity, and a mix's materials cannot: a ray meets \
+                     or passes a surface before the mix chooses (give the mix the opacity)"
+                );
+                return Err(SceneError::new(format!("{path}[{k}]"), msg));
+            }
         }
         materials[i].mix = Some(MixDesc {
             materials: index,
@@ -348,68 +366,6 @@ fn resolve_mixes(
 }
 
 /// The JSON path of a mix's `materials`.
-/// The optional `normal_map`: `{"texture": T, "flip_invalid_normals": b, "shadowing": b}`, T a
-/// texture object or a colour, every channel in [0, 1]; the flags default to Mitsuba's (true).
-fn normal_map(obj: &Obj, loader: &mut TextureLoader) -> Result<Option<NormalMapDesc>, SceneError> {
-    let Some(v) = obj.get("normal_map") else {
-        return Ok(None);
-    };
-    let m = Obj::new(v, obj.at("normal_map"))?;
-    m.only_keys(&["texture", "flip_invalid_normals", "shadowing"], true)?;
-    let texture = match texture_at(&m, "texture", TextureUse::NormalMap, loader)? {
-        Some(t) => t,
-        None => {
-            let c = unit_color(&m, "texture")?;
-            if c == DVec3::splat(0.5) {
-                let msg = "(0.5, 0.5, 0.5) encodes the normal 2c − 1 = 0, which has no direction";
-                return Err(SceneError::new(m.at("texture"), msg));
-            }
-            TextureDesc {
-                texture: Texture::Constant(c.as_vec3()),
-            }
-        }
-    };
-    Ok(Some(NormalMapDesc {
-        texture,
-        flip_invalid_normals: m.opt_bool("flip_invalid_normals")?.unwrap_or(true),
-        shadowing: m.opt_bool("shadowing")?.unwrap_or(true),
-        height_scale: None,
-    }))
-}
-
-/// The optional `bump_map`: `{"texture": T, "scale": s, "flip_invalid_normals": b,
-/// "shadowing": b}`, T a bitmap of finite heights (a checkerboard has no gradient), `scale` a
-/// finite number (default 1, Mitsuba's); the flags as a normal map's. Not beside a `normal_map`.
-fn bump_map(obj: &Obj, loader: &mut TextureLoader) -> Result<Option<NormalMapDesc>, SceneError> {
-    let Some(v) = obj.get("bump_map") else {
-        return Ok(None);
-    };
-    if obj.get("normal_map").is_some() {
-        let msg = "a material has one normal_map or one bump_map, not both";
-        return Err(SceneError::new(obj.at("bump_map"), msg));
-    }
-    let m = Obj::new(v, obj.at("bump_map"))?;
-    m.only_keys(
-        &["texture", "scale", "flip_invalid_normals", "shadowing"],
-        true,
-    )?;
-    let texture = match texture_at(&m, "texture", TextureUse::Height, loader)? {
-        Some(t) if matches!(t.texture, Texture::Bitmap(_)) => t,
-        _ => {
-            let msg = "a bump map's texture must be a bitmap: heights are differentiated, \
-                       and a constant or a checkerboard has no gradient";
-            return Err(SceneError::new(m.at("texture"), msg));
-        }
-    };
-    let scale = m.opt_number("scale")?.unwrap_or(1.0);
-    Ok(Some(NormalMapDesc {
-        texture,
-        flip_invalid_normals: m.opt_bool("flip_invalid_normals")?.unwrap_or(true),
-        shadowing: m.opt_bool("shadowing")?.unwrap_or(true),
-        height_scale: Some(scale),
-    }))
-}
-
 fn join_materials(obj: &Obj, name: &str) -> String {
     super::walk::join(&obj.at(name), "materials")
 }
@@ -428,7 +384,7 @@ fn albedo(
 }
 
 /// A required colour with every channel in [0, 1] (reflectances: more would create energy).
-fn unit_color(obj: &Obj, key: &str) -> Result<DVec3, SceneError> {
+pub(super) fn unit_color(obj: &Obj, key: &str) -> Result<DVec3, SceneError> {
     let c = obj.vec3(key)?;
     check_components(
         c,

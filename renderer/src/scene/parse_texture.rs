@@ -38,11 +38,16 @@ pub(crate) enum TextureUse {
     NormalMap,
     /// A bump map's heights: any finite values, differentiated through their luminance.
     Height,
+    /// An alpha mask's opacity: a scalar in [0, 1].
+    Opacity,
 }
 
 impl TextureUse {
     fn is_scalar(self) -> bool {
-        matches!(self, TextureUse::Alpha | TextureUse::Weight)
+        matches!(
+            self,
+            TextureUse::Alpha | TextureUse::Weight | TextureUse::Opacity
+        )
     }
 
     /// Why `x` is not allowed here, if it is not.
@@ -60,6 +65,8 @@ impl TextureUse {
             }
             TextureUse::Weight => (!(0.0..=1.0).contains(&x))
                 .then_some("is outside [0, 1]: a mix weight must lie in [0, 1]"),
+            TextureUse::Opacity => (!(0.0..=1.0).contains(&x))
+                .then_some("is outside [0, 1]: an opacity must lie in [0, 1]"),
             TextureUse::NormalMap => (!(0.0..=1.0).contains(&x))
                 .then_some("is outside [0, 1]: a normal map encodes (n + 1)/2 in [0, 1]"),
             TextureUse::Height => (!x.is_finite()).then_some("is not finite"),

@@ -66,6 +66,29 @@ pub fn decode_texture_image(bytes: &[u8], name: &Path, raw: bool) -> Result<Imag
     Ok(image)
 }
 
+/// The alpha channel of an image file held in memory (a glTF base colour's: linear, whatever
+/// the colour's encoding), as a grey image; `None` when the file has none. `name` is for
+/// messages.
+pub fn decode_alpha(bytes: &[u8], name: &Path) -> Result<Option<Image>, ImageError> {
+    let img = image::load_from_memory(bytes).map_err(|e| err(name, e))?;
+    if !img.color().has_alpha() {
+        return Ok(None);
+    }
+    let (width, height) = (img.width(), img.height());
+    let data = img
+        .into_rgba32f()
+        .pixels()
+        .map(|p| Vec3::splat(p[3]))
+        .collect();
+    let image = Image {
+        width,
+        height,
+        data,
+    };
+    check_size(&image, name)?;
+    Ok(Some(image))
+}
+
 fn check_size(image: &Image, path: &Path) -> Result<(), ImageError> {
     let texels = image.width as u64 * image.height as u64;
     if texels == 0 || texels > MAX_TEXTURE_TEXELS {

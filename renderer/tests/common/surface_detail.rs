@@ -1,11 +1,13 @@
-//! What the normal- and bump-map tests share (`renderer/tests/normal_map.rs`, `bump_map.rs` and
-//! their GPU twins): Mitsuba scenes whose image is one exact value, and the leak and grazing
-//! checks of a one-sided plane under a strong map, the gallery's scenes at a reduced film.
+//! What the normal-map, bump-map and mask tests share (`renderer/tests/normal_map.rs`,
+//! `bump_map.rs`, `mask.rs` and their GPU twins): Mitsuba scenes whose image is one exact value,
+//! the leak and grazing checks of a one-sided plane under a strong map, the gallery's scenes at
+//! a reduced film, a shared scene with an opacity on its materials.
 
 use super::{STRATEGIES_AND_OPTIMAL, data_dir, reference, render};
 use glam::Vec3;
 use lumis::integrator::Settings;
-use lumis::scene::{Scene, parse_scene_in};
+use lumis::scene::{Scene, TextureDesc, load_scene, parse_scene_in};
+use lumis::textures::Texture;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -129,5 +131,62 @@ pub fn assert_finite_at_grazing_views(scene: impl Fn([f32; 3]) -> Arc<Scene>, se
                 .clone();
             assert_eq!(film.nonfinite, 0, "{strategy:?} from {from:?}");
         }
+    }
+}
+
+/// `tests/data/scenes/NAME.json` with `opacity` on every material no emitter uses (an emitter's
+/// cannot have one) and no mix uses.
+pub fn with_opacity(name: &str, opacity: Option<f32>) -> Arc<Scene> {
+    let mut desc = load_scene(&data_dir().join("scenes").join(format!("{name}.json")))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let emitters: Vec<usize> = desc
+        .shapes
+        .iter()
+        .filter(|s| s.emission.max_element() > 0.0 || s.emission_texture.is_some())
+        .filter_map(|s| s.material)
+        .collect();
+    let in_mixes: Vec<usize> = desc
+        .materials
+        .iter()
+        .filter_map(|m| m.mix.as_ref())
+        .flat_map(|m| m.materials)
+        .collect();
+    for (i, m) in desc.materials.iter_mut().enumerate() {
+        if !emitters.contains(&i) && !in_mixes.contains(&i) {
+            m.opacity = opacity.map(|a| TextureDesc {
+                texture: Texture::Constant(glam::Vec3::splat(a)),
+            });
+        }
+    }
+    Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}")))
+}
+
+/// In every strategy (render `i` of strategy `i` with seed `first_seed + i`, 4 spp), `same`
+/// renders `plain`'s film bit for bit and `changed` does not (the check's power); `what` names
+/// the two changes in messages, `[same, changed]`.
+pub fn assert_same_bits(
+    plain: &Arc<Scene>,
+    same: &Arc<Scene>,
+    changed: &Arc<Scene>,
+    first_seed: u32,
+    what: [&str; 2],
+) {
+    for (i, strategy) in STRATEGIES_AND_OPTIMAL.into_iter().enumerate() {
+        let s = Settings {
+            strategy,
+            ..Settings::default()
+        };
+        let seed = first_seed + i as u32;
+        let sums = |scene: &Arc<Scene>| {
+            let r = render(scene, s, 4, seed);
+            r.film().pixels.iter().map(|p| p.sum).collect::<Vec<_>>()
+        };
+        let base = sums(plain);
+        assert!(base == sums(same), "{strategy:?}: {} changed bits", what[0]);
+        assert!(
+            base != sums(changed),
+            "{strategy:?}: {} changed nothing",
+            what[1]
+        );
     }
 }

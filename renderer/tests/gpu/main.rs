@@ -16,6 +16,7 @@ mod chi2;
 mod filter_images;
 mod hide_emitters;
 mod images;
+mod mask;
 mod mitsuba_refs;
 mod mix;
 mod normal_map;

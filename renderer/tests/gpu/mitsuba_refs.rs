@@ -142,6 +142,14 @@ fn gpu_xml_thin_matches_the_cpu_and_mitsuba() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// `xml_mask.xml` (Mitsuba's `mask`: `materials/mask.wgsl` in both traversals, a textured
+/// opacity and a constant one).
+#[test]
+fn gpu_xml_mask_matches_the_cpu_and_mitsuba() {
+    let failures = check("xml_mask");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// [`check`], and for scenes lit by delta lights `mis-optimal` too at 12 spp with the CPU's
 /// seed (past its first stage, so that α and `opt_delta_light`'s moments count).
 fn check_delta(name: &str) -> Vec<String> {

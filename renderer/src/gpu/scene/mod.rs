@@ -74,7 +74,8 @@ pub(crate) struct Records {
     /// Polygon lights' triangles, then the mesh vertex attributes at `attr`, then the texture
     /// records at `textures`.
     pub(crate) vertex_data: Vec<[f32; 4]>,
-    /// Coat albedo tables, an environment map's sampling tables, then the light-selection CDF
+    /// In a scene with masks first the opacity record of each material (`materials/mask.wgsl`),
+    /// then coat albedo tables, an environment map's sampling tables, the light-selection CDF
     /// and pmf.
     pub(crate) tables: Vec<f32>,
     pub(crate) light_cdf: u32,
@@ -100,6 +101,8 @@ impl Records {
         let mut vertex_data = Vec::new();
         let prims = shapes::encode(scene);
         let scene_textures = textures::encode(scene);
+        // At offset 0, where `materials/mask.wgsl` reads it (empty without masks).
+        tables.extend(scene_textures.opacity.iter().map(|&id| bits(id)));
         let materials = materials::encode(
             scene,
             &mut tables,

@@ -24,6 +24,8 @@
 //!   slot is constant. Hence at most [`MAX_TEXTURES`] textures.
 //! - **Area lights** name their emission texture in `h.w` of their record (see `lights/mod.wgsl`),
 //!   `NONE` for a constant radiance.
+//! - **Masks**: a material's opacity, constant or not, is a record, named by the table that leads
+//!   `tables` in a scene with masks (`materials/mask.wgsl`).
 //!
 //! Record of a texture (`TextureRecord` in `textures/mod.wgsl`):
 //! - `h` = bits of (kind [`TextureTag`], wrap [`WrapTag`], channel [`ChannelTag`], offset of the
@@ -230,6 +232,9 @@ pub(crate) struct SceneTextures {
     /// Per material: the id of its normal map's texture, else `NONE`
     /// (`materials/normal_map.wgsl`).
     pub(crate) normal_maps: Vec<u32>,
+    /// Per material: the id of its opacity's record, else `NONE` (`materials/mask.wgsl`); empty
+    /// in a scene without masks.
+    pub(crate) opacity: Vec<u32>,
     /// Per emission texture ([`Scene::emission_textures`]): its id, after the materials'.
     pub(crate) emission: Vec<u32>,
     /// Per record: `material "wood" albedo`, for errors.
@@ -276,6 +281,7 @@ pub(crate) fn encode(scene: &Scene) -> SceneTextures {
         slots: Vec::with_capacity(scene.materials.len()),
         mix_weights: vec![none; scene.materials.len()],
         normal_maps: vec![none; scene.materials.len()],
+        opacity: vec![none; scene.opacity.len()],
         emission: Vec::with_capacity(scene.emission_textures.len()),
         names: Vec::new(),
         texels: TextureTexels {
@@ -332,6 +338,14 @@ pub(crate) fn encode(scene: &Scene) -> SceneTextures {
             r[3][0] = scale;
         }
         out.records.extend(r);
+        out.names.push(what);
+    }
+    for (i, opacity) in scene.opacity.iter().enumerate() {
+        let Some(opacity) = opacity else { continue };
+        let what = format!("material \"{}\" opacity", scene.material_names[i]);
+        out.opacity[i] = (out.records.len() as u32) / RECORD_VEC4S;
+        out.records
+            .extend(record(opacity, &what, &mut out.texels, &mut stored));
         out.names.push(what);
     }
     out

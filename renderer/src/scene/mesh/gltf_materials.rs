@@ -4,7 +4,10 @@
 //! and an emission, with its textures as `bitmap` objects whose images this module has decoded
 //! already, so that the JSON front end checks everything exactly as it checks a scene file.
 //!
-//! What lumis does not render (normal and occlusion maps, alpha modes, extensions other than
+//! The base colour's alpha becomes the material's `opacity` (alpha masks): `MASK` the alpha
+//! against `alphaCutoff` per texel, `BLEND` the alpha itself as stochastic opacity.
+//!
+//! What lumis does not render (normal and occlusion maps, extensions other than
 //! `KHR_materials_ior`, `KHR_materials_transmission`, `KHR_materials_emissive_strength` and
 //! `KHR_texture_transform`, texture rotation, a second texture coordinate set, a sampler whose
 //! two axes wrap differently, nearest filtering) is collected by glTF path into
@@ -17,7 +20,7 @@
 use super::buffers::{read_uri, relative_path};
 use crate::image_io::Image;
 use crate::scene::mesh::MeshError;
-use crate::textures::load::decode_texture_image;
+use crate::textures::load::{decode_alpha, decode_texture_image};
 use ::gltf::Document;
 use ::gltf::json;
 use ::gltf::json::texture::{MagFilter, WrappingMode};
@@ -207,18 +210,22 @@ impl Reader<'_> {
         if m.occlusion_texture.is_some() {
             self.out.ignored.push(format!("{at}.occlusionTexture"));
         }
-        match m.alpha_mode {
-            Checked::Valid(json::material::AlphaMode::Opaque) => {}
+        // The alpha mode: `Some(Some(cutoff))` for MASK, `Some(None)` for BLEND.
+        let alpha_mode = match m.alpha_mode {
+            Checked::Valid(json::material::AlphaMode::Opaque) => None,
             Checked::Valid(json::material::AlphaMode::Mask) => {
-                self.out.ignored.push(format!("{at}.alphaMode MASK"));
+                Some(Some(m.alpha_cutoff.map_or(0.5, |c| c.0)))
             }
-            Checked::Valid(json::material::AlphaMode::Blend) => {
-                self.out.ignored.push(format!("{at}.alphaMode BLEND"));
+            Checked::Valid(json::material::AlphaMode::Blend) => Some(None),
+            Checked::Invalid => {
+                self.out.ignored.push(format!("{at}.alphaMode"));
+                None
             }
-            Checked::Invalid => self.out.ignored.push(format!("{at}.alphaMode")),
-        }
-        if m.alpha_cutoff.is_some() {
-            self.out.ignored.push(format!("{at}.alphaCutoff"));
+        };
+        if m.alpha_cutoff.is_some() && !matches!(alpha_mode, Some(Some(_))) {
+            self.out
+                .ignored
+                .push(format!("{at}.alphaCutoff (without MASK)"));
         }
 
         let pbr = &m.pbr_metallic_roughness;
@@ -237,14 +244,21 @@ impl Reader<'_> {
             pbr.roughness_factor.0,
         )?;
 
-        let base = match &pbr.base_color_texture {
+        let base_at = format!("{pbr_at}.baseColorTexture");
+        let (base, base_texture) = match &pbr.base_color_texture {
             Some(info) => {
-                let t = self.texture(&format!("{pbr_at}.baseColorTexture"), info, false)?;
-                let mut j = t.json;
+                let t = self.texture(&base_at, info, false)?;
+                let mut j = t.json.clone();
                 j["scale"] = vec3(base_factor);
-                Param::Texture(j)
+                let image = self.root.textures[info.index.value()].source.value();
+                (Param::Texture(j), Some((t, image)))
             }
-            None => Param::Constant(vec3(base_factor)),
+            None => (Param::Constant(vec3(base_factor)), None),
+        };
+        let alpha_factor = unit(self, &format!("{pbr_at}.baseColorFactor[3]"), f[3])?;
+        let opacity = match alpha_mode {
+            Some(cutoff) => self.opacity(&at, &base_at, base_texture, alpha_factor, cutoff)?,
+            None => None,
         };
         // glTF keeps roughness in G and metallic in B of one linear texture.
         let mr = match &pbr.metallic_roughness_texture {
@@ -379,15 +393,72 @@ impl Reader<'_> {
         };
 
         let emission = self.emission(m, others, &at)?;
+        // An emitter's material takes no opacity (Mitsuba masks a BSDF, not its emission).
+        let opacity = match opacity {
+            Some(_) if emission.is_some() => {
+                self.out.ignored.push(format!(
+                    "{at}.alphaMode on an emissive material (lumis masks no emitter)"
+                ));
+                None
+            }
+            o => o,
+        };
+        if let Some(o) = &opacity {
+            self.out.json[&top]["opacity"] = o.json();
+        }
         let textured = base.is_texture()
             || mr.is_some()
             || transmission.as_ref().is_some_and(|(_, t)| t.is_some())
-            || emission.as_ref().is_some_and(Param::is_texture);
+            || emission.as_ref().is_some_and(Param::is_texture)
+            || opacity.as_ref().is_some_and(Param::is_texture);
         Ok(Mapped {
             name: top,
             emission: emission.map(|e| e.json()),
             textured,
         })
+    }
+
+    /// The opacity of glTF's alpha (the base colour texture's alpha, `image`, times `factor`):
+    /// for MASK (`cutoff`) 1 where it reaches the cutoff and 0 elsewhere, decided per texel
+    /// (before bilinear filtering, so an edge is a band of partial opacity where glTF cuts the
+    /// filtered alpha), for BLEND the alpha itself. A texture on the base colour's sampler and
+    /// transform, baked per texel; a constant without one (or where the image has no alpha);
+    /// `None` where everything is opaque.
+    fn opacity(
+        &mut self,
+        at: &str,
+        base_at: &str,
+        base: Option<(TextureRef, usize)>,
+        factor: f32,
+        cutoff: Option<f32>,
+    ) -> Result<Option<Param>, MeshError> {
+        let alpha_of = |a: f32| match cutoff {
+            Some(c) => f32::from(a * factor >= c),
+            None => a * factor,
+        };
+        let alpha = match &base {
+            Some((_, image)) => self.alpha(base_at, *image)?,
+            None => None,
+        };
+        let (Some((t, _)), Some(alpha)) = (base, alpha) else {
+            let a = alpha_of(1.0);
+            return Ok((a < 1.0).then(|| Param::Constant(json!(a))));
+        };
+        let name = format!("{}#{at}.opacity", self.file_name);
+        let image = Image {
+            width: alpha.width,
+            height: alpha.height,
+            data: alpha
+                .data
+                .iter()
+                .map(|a| Vec3::splat(alpha_of(a.x)))
+                .collect(),
+        };
+        self.out.images.push((name.clone(), true, Arc::new(image)));
+        let mut j = t.json;
+        j["file"] = json!(name);
+        j["raw"] = json!(true);
+        Ok(Some(Param::Texture(j)))
     }
 
     /// `KHR_materials_transmission`: the factor and, if given, the texture's R channel times
@@ -571,6 +642,23 @@ impl Reader<'_> {
         if let Some((name, image)) = self.decoded.get(&(k, raw)) {
             return Ok((name.clone(), image.clone()));
         }
+        let (bytes, name) = self.image_bytes(at, k)?;
+        let image = decode_texture_image(&bytes, Path::new(&name), raw)
+            .map_err(|e| self.error(at, format!("images[{k}] ('{name}'): {}", e.message)))?;
+        let image = Arc::new(image);
+        self.decoded.insert((k, raw), (name.clone(), image.clone()));
+        Ok((name, image))
+    }
+
+    /// Image `k`'s alpha channel (linear), or `None` where it has none.
+    fn alpha(&self, at: &str, k: usize) -> Result<Option<Image>, MeshError> {
+        let (bytes, name) = self.image_bytes(at, k)?;
+        decode_alpha(&bytes, Path::new(&name))
+            .map_err(|e| self.error(at, format!("images[{k}] ('{name}'): {}", e.message)))
+    }
+
+    /// Image `k`'s encoded bytes and the name the JSON texture gives it (see [`Reader::image`]).
+    fn image_bytes(&self, at: &str, k: usize) -> Result<(Vec<u8>, String), MeshError> {
         let fail = |what: &str, m: String| self.error(at, format!("images[{k}] ({what}): {m}"));
         let img = &self.root.images[k];
         let embedded = format!("{}#images[{k}]", self.file_name);
@@ -617,11 +705,7 @@ impl Reader<'_> {
                 ));
             }
         };
-        let image = decode_texture_image(&bytes, Path::new(&name), raw)
-            .map_err(|e| fail(&format!("'{name}'"), e.message))?;
-        let image = Arc::new(image);
-        self.decoded.insert((k, raw), (name.clone(), image.clone()));
-        Ok((name, image))
+        Ok((bytes, name))
     }
 }
 

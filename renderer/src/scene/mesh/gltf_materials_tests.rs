@@ -258,6 +258,84 @@ fn textures_from_a_glb_a_data_uri_and_a_file_are_the_same() {
     assert!(files.windows(2).all(|w| w[0] == w[1]));
 }
 
+/// The base colour's alpha (texture alpha × factor) becomes the top material's opacity: MASK
+/// against `alphaCutoff` (default ½) per texel, 0 or 1; BLEND the alpha itself; a constant
+/// without a texture, none where that is 1 (OPAQUE, or MASK at or above the cutoff); on an
+/// emissive material it is named in the warning and left out.
+#[test]
+fn alpha_modes_become_opacities() {
+    let dir = Dir::new("mat-alpha");
+    // A 4 × 1 RGBA image, alphas 0, 60, 128, 255.
+    let alphas = [0u8, 60, 128, 255];
+    let mut bytes = Vec::new();
+    let rgba: Vec<u8> = alphas.iter().flat_map(|&a| [200, 100, 50, a]).collect();
+    image::RgbaImage::from_raw(4, 1, rgba)
+        .unwrap()
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
+        .unwrap();
+    let textured = |mode: &str, extra: Value| {
+        let mut m = json!({"alphaMode": mode, "pbrMetallicRoughness": {
+            "baseColorFactor": [1, 1, 1, 0.8], "metallicFactor": 0,
+            "baseColorTexture": {"index": 0}}});
+        for (k, v) in extra.as_object().unwrap() {
+            m[k] = v.clone();
+        }
+        m
+    };
+    let mut a = quads(json!([
+        textured("MASK", json!({"alphaCutoff": 0.3})),
+        textured("BLEND", json!({})),
+        textured("OPAQUE", json!({})),
+        {"alphaMode": "MASK", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.2]}},
+        {"alphaMode": "BLEND", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.25]}},
+        {"alphaMode": "MASK", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.6]}},
+        {"alphaMode": "BLEND", "emissiveFactor": [1, 1, 1],
+         "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.5]}},
+    ]));
+    let view = a.view(&bytes);
+    a.root.insert(
+        "images".into(),
+        json!([{"bufferView": view, "mimeType": "image/png"}]),
+    );
+    a.root.insert("textures".into(), json!([{"source": 0}]));
+    let d = open(&a.write_glb(&dir, "alpha.glb"));
+    let texels = |i: usize| -> Vec<f32> {
+        bitmap(&named(&d, &format!("materials[{i}]")).opacity)
+            .image()
+            .data
+            .iter()
+            .map(|c| c.x)
+            .collect()
+    };
+    // MASK at 0.3: alpha × 0.8 = 0, 0.19, 0.40, 0.8.
+    assert_eq!(texels(0), [0.0, 0.0, 1.0, 1.0]);
+    let blend: Vec<f32> = alphas.iter().map(|&a| a as f32 / 255.0 * 0.8).collect();
+    assert_eq!(texels(1), blend, "BLEND: linear alpha × factor");
+    assert!(bitmap(&named(&d, "materials[0]").opacity).raw);
+    let constant = |i: usize| {
+        named(&d, &format!("materials[{i}]"))
+            .opacity
+            .as_ref()
+            .map(|t| t.texture.eval_scalar(Vec2::ZERO))
+    };
+    assert_eq!(constant(2), None, "OPAQUE");
+    assert_eq!(constant(3), Some(0.0), "MASK below the cutoff ½");
+    assert_eq!(constant(4), Some(0.25), "BLEND: the factor");
+    assert_eq!(constant(5), None, "MASK above the cutoff");
+    assert_eq!(constant(6), None, "an emitter takes no opacity");
+    assert_eq!(d.warnings.len(), 1, "{:?}", d.warnings);
+    assert!(
+        d.warnings[0].contains("materials[6].alphaMode on an emissive material"),
+        "{:?}",
+        d.warnings
+    );
+    let scene = Scene::from_desc(&d).unwrap_or_else(|e| panic!("{e}"));
+    assert!(!scene.opacity.is_empty());
+}
+
 /// metallicRoughnessTexture: metallic (B) × factor as the mix weight, roughness (G) × factor
 /// squared per texel as α, both read linearly.
 #[test]
@@ -455,8 +533,6 @@ fn one_warning_names_every_feature_that_is_not_rendered() {
     for name in [
         "materials[0].normalTexture",
         "materials[0].occlusionTexture",
-        "materials[0].alphaMode MASK",
-        "materials[0].alphaCutoff",
         "materials[0].extensions.KHR_materials_clearcoat",
         "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.rotation",
         "materials[0].pbrMetallicRoughness.baseColorTexture TEXCOORD_1",

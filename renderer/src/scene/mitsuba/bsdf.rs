@@ -1,5 +1,7 @@
 //! BSDFs: `diffuse`, `conductor`/`roughconductor`, `plastic`/`roughplastic`,
-//! `dielectric`/`roughdielectric`, `twosided` and `null` onto lumis' materials.
+//! `dielectric`/`roughdielectric`, `thindielectric`, `null`, and the wrappers `twosided`,
+//! `normalmap`/`bumpmap` and `mask` (a material's `opacity`, [`crate::materials::mask`]) onto
+//! lumis' materials.
 //!
 //! Mitsuba's BSDFs are one-sided (black from the back) unless wrapped in `twosided`, so a
 //! material is `"two_sided": false` unless it comes through a `twosided`; dielectrics have two
@@ -22,7 +24,7 @@ use serde_json::{Value as Json, json};
 
 /// The BSDF types lumis maps, for messages.
 const SUPPORTED: &str = "diffuse, conductor, roughconductor, plastic, roughplastic, dielectric, \
-                         roughdielectric, thindielectric, twosided, normalmap, bumpmap, null";
+                         roughdielectric, thindielectric, twosided, normalmap, bumpmap, mask, null";
 
 /// The scene format's material for BSDF element `el` (translated once, then named again),
 /// or `None` for a `null` BSDF.
@@ -30,15 +32,33 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
     if let Some(name) = ctx.material_names.get(&(el as *const Element)) {
         return Ok(name.clone());
     }
-    // The wrappers, outermost first: `twosided` and `normalmap`, each at most once, in either
-    // order.
+    // The wrappers, outermost first: `twosided`, `normalmap` or `bumpmap`, and `mask`, each at
+    // most once, in any order (but a map inside a twosided).
     let mut inner = el;
     let mut inner_plugin = ctx.plugin(el)?;
     let mut two_sided = false;
     let mut normal_map = None;
     let mut map_outside = false;
+    let mut mask = None;
     loop {
         inner = match inner_plugin.ty {
+            "mask" if mask.is_none() => {
+                let Some(nested) = inner_plugin.object("bsdf")?.map(target) else {
+                    return Err(inner_plugin.error("a mask needs a nested <bsdf>"));
+                };
+                // Mitsuba spends a bounce on each pass through a mask, lumis none (its masks are
+                // tested where rays meet surfaces): the images agree only without a depth bound.
+                if ctx.max_depth >= 0 {
+                    return Err(inner_plugin.error(format!(
+                        "a mask with max_depth {}: Mitsuba counts each pass through a mask as a \
+                         bounce and lumis does not, so the images would differ (lumis renders \
+                         masks at max_depth -1)",
+                        ctx.max_depth
+                    )));
+                }
+                mask = Some(inner_plugin);
+                nested
+            }
             "twosided" if !two_sided => {
                 two_sided = true;
                 let nested = inner_plugin.objects("bsdf");
@@ -96,6 +116,9 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
             let ty = map.ty;
             return Err(map.error(format!("a {ty} around a null BSDF has nothing to shade")));
         }
+        if let Some(mask) = &mask {
+            return Err(mask.error("a mask around a null BSDF has nothing to mask"));
+        }
         inner_plugin.finish("nothing")?;
         ctx.material_names.insert(el as *const Element, None);
         return Ok(None);
@@ -117,6 +140,11 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
         }
         Some(map) => m["normal_map"] = normal_map_json(ctx, map, &format!("{path}.normal_map"))?,
         None => {}
+    }
+    if let Some(mask) = &mask {
+        // Mitsuba's default opacity is ½.
+        m["opacity"] = scalar_param(ctx, mask, "opacity", 0.5, &format!("{path}.opacity"))?;
+        mask.finish("opacity, one nested <bsdf>")?;
     }
     ctx.materials.insert(name.clone(), m);
     ctx.material_names

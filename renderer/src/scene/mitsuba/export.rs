@@ -88,8 +88,10 @@ pub fn export_scene(
         shape(&mut ctx, &mut shapes, desc, s)?;
     }
     // BSDFs first (declared with ids, referenced by the shapes).
-    x.out
-        .push_str(&ctx.bsdfs.xml(&desc.materials, &ctx.folder, x.depth)?);
+    x.out.push_str(
+        &ctx.bsdfs
+            .xml(&desc.materials, &ctx.folder, x.depth, desc.max_depth)?,
+    );
     x.out.push_str(&shapes.out);
     x.close("scene");
     Ok(Exported {

@@ -1,7 +1,8 @@
 //! Export of materials and textures: each material a shape uses becomes one `<bsdf>` declared
 //! with the material's name as its `id` (the importer names a material by its id), wrapped in
-//! `twosided` (id on the wrapper) unless it is one-sided or a dielectric, and in `normalmap`
-//! (inside the twosided) where it has a normal map; the inverse of
+//! `twosided` (id on the wrapper) unless it is one-sided or a dielectric, in `normalmap` or
+//! `bumpmap` (inside the twosided) where it has one, and in `mask` (outermost) where it has an
+//! opacity; the inverse of
 //! [`super::bsdf`] and [`super::texture`]: lumis' `ior` becomes `int_ior` with `ext_ior` 1,
 //! a reflectance conductor Mitsuba's `material="none"` (Fresnel 1) times
 //! `specular_reflectance`, α > 0 or a textured α the rough variant with `distribution="ggx"`,
@@ -32,19 +33,32 @@ impl Bsdfs {
         materials[index].name.clone()
     }
 
-    /// The declarations of the used materials, at nesting `depth`.
+    /// The declarations of the used materials, at nesting `depth`, in a scene of `max_depth`.
     pub fn xml(
         &self,
         materials: &[NamedMaterial],
         folder: &Path,
         depth: usize,
+        max_depth: i32,
     ) -> Result<String, SceneError> {
         let mut x = Xml {
             depth,
             ..Xml::default()
         };
         for &i in &self.used {
-            material(&mut x, &materials[i], folder)?;
+            let m = &materials[i];
+            // Mitsuba spends a bounce on each pass through a mask (`crate::materials::mask`).
+            if m.opacity.is_some() && max_depth >= 0 {
+                return Err(SceneError::new(
+                    format!("{}.opacity", path_of(&m.name)),
+                    format!(
+                        "an opacity cannot be exported with max_depth {max_depth}: Mitsuba \
+                         counts each pass through its mask as a bounce, lumis does not, so the \
+                         image would change (masks export at max_depth -1)"
+                    ),
+                ));
+            }
+            material(&mut x, m, folder)?;
         }
         Ok(x.out)
     }
@@ -55,12 +69,20 @@ fn path_of(name: &str) -> String {
     join("materials", name)
 }
 
-/// Whether the material reads texture coordinates (a non-constant texture in a slot).
+/// Whether the material reads texture coordinates (a non-constant texture in a slot, its
+/// opacity or its normal or bump map).
 pub(crate) fn is_textured(m: &NamedMaterial) -> bool {
     let t = &m.textures;
-    [&t.albedo, &t.reflectance, &t.alpha]
-        .iter()
-        .any(|s| s.as_ref().is_some_and(|d| !d.texture.is_constant()))
+    let map = m.normal_map.as_ref().map(|n| &n.texture);
+    [
+        t.albedo.as_ref(),
+        t.reflectance.as_ref(),
+        t.alpha.as_ref(),
+        m.opacity.as_ref(),
+        map,
+    ]
+    .iter()
+    .any(|s| s.is_some_and(|d| !d.texture.is_constant()))
 }
 
 /// One material as a declared `<bsdf>`.
@@ -75,11 +97,27 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
     }
     let wrap = m.two_sided && !m.material.transmits();
     let ty = bsdf_type(m);
-    // The wrappers, outermost first, the id on the first: twosided around normalmap, the
-    // nesting whose back side lumis renders.
+    // The wrappers, outermost first, the id on the first: mask, then twosided around
+    // normalmap, the nesting whose back side lumis renders.
     let mut wrappers = 0;
+    if let Some(opacity) = &m.opacity {
+        x.open("bsdf", &[("type", "mask"), ("id", &m.name)]);
+        wrappers += 1;
+        texture_xml(
+            x,
+            "opacity",
+            opacity,
+            true,
+            folder,
+            &format!("{path}.opacity"),
+        )?;
+    }
     if wrap {
-        x.open("bsdf", &[("type", "twosided"), ("id", &m.name)]);
+        if wrappers == 0 {
+            x.open("bsdf", &[("type", "twosided"), ("id", &m.name)]);
+        } else {
+            x.open("bsdf", &[("type", "twosided")]);
+        }
         wrappers += 1;
     }
     if let Some(map) = &m.normal_map {

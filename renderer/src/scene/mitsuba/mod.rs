@@ -89,6 +89,7 @@ pub fn load_params(path: &Path, params: &Params) -> Result<Imported, SceneError>
         material_names: HashMap::new(),
         used_names: HashMap::new(),
         area_owners: HashMap::new(),
+        max_depth: -1,
     };
     let scene = ctx.plugin(&doc.root)?;
 
@@ -111,6 +112,7 @@ pub fn load_params(path: &Path, params: &Params) -> Result<Imported, SceneError>
             None,
         ),
     };
+    ctx.max_depth = mapped.max_depth;
     let sensors = scene.objects("sensor");
     let Some(first) = sensors.first() else {
         return Err(doc.root.pos.error(
@@ -236,6 +238,8 @@ pub(crate) struct Ctx<'a> {
     used_names: HashMap<String, usize>,
     /// Each area emitter element with the shape it is attached to.
     area_owners: HashMap<*const Element, Pos>,
+    /// The integrator's `max_depth` (−1 unlimited), known before any BSDF is read.
+    max_depth: i64,
 }
 
 impl<'a> Ctx<'a> {
