@@ -60,9 +60,12 @@ pub(crate) fn run_snippet_with(
              {body}\n\
          }}\n"
     );
+    // Everything on but what the scene's data layout decides: its BVH, and whether `tables`
+    // starts with the opacity records (`materials/mask.wgsl`).
     let features = Features {
         use_bvh: gpu.features().use_bvh,
         bvh2: gpu.features().bvh2,
+        has_masks: gpu.features().has_masks,
         ..Features::all()
     };
     let source = library_source_with(constants, &features, &kernel)?;

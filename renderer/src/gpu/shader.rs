@@ -189,7 +189,9 @@ pub struct Features {
     /// [`Features::has_textures`]) and frames along ∂p/∂u (`geometry/tangent.wgsl`).
     pub has_normal_maps: bool,
     /// Alpha masks (`materials/mask.wgsl`): the traversals' any-hit test, with texture lookups
-    /// (as with [`Features::has_textures`]) and `materials/mix.wgsl`'s hash.
+    /// (as with [`Features::has_textures`]) and `materials/mix.wgsl`'s hash. Like the BVH flags
+    /// it follows the scene's data (the opacity records lead `tables` only in a scene with
+    /// masks), so a program with it reads that scene's records only.
     pub has_masks: bool,
 }
 

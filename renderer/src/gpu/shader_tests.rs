@@ -671,10 +671,11 @@ mod texture_specialisation {
         for f in [
             plain,
             Features::default(),
-            // Normal maps look textures up too.
+            // Normal maps and masks look textures up too.
             Features {
                 has_textures: false,
                 has_normal_maps: false,
+                has_masks: false,
                 ..Features::all()
             },
         ] {

@@ -3,9 +3,9 @@
 // `materials/mix.wgsl`'s hash of the ray's origin, the hit's distance and the primitive, as the
 // CPU decides. Compiled only under HAS_MASKS.
 //
-// The opacities lead `tables` (`gpu/scene/mod.rs`): tables[m] holds the bits of the id of
-// material m's opacity texture record (`gpu/scene/textures.rs`; a constant opacity is a constant
-// record), or NONE for an opaque material.
+// The opacities lead `tables` (`Records::of`): tables[m] holds the bits of the id of material
+// m's opacity texture record (a constant opacity is a constant record), or NONE for an opaque
+// material.
 
 // Whether `ray` meets primitive `id` at its candidate hit at distance `t`.
 fn mask_meets(id: u32, ray: Ray, t: f32) -> bool {

@@ -2,6 +2,7 @@
 //! ([`crate::materials::mask`]). In a scene without masks these are the BVH's own queries; with
 //! masks, the BVH's any-hit test keeps a hit on a masked primitive with probability its
 //! opacity at the hit, the same rule for the paths' rays and for their shadow rays.
+//! WGSL twin: `materials/mask.wgsl` (`mask_meets`, which the traversals' `prim_hit_t` calls).
 
 use super::Scene;
 use crate::geometry::primitive::ShapeHit;

@@ -31,6 +31,13 @@ const BLOCK: u32 = 16;
 
 /// The failures of both checks on `tests/data/mitsuba/NAME.xml` against `refs/NAME.exr`.
 fn check(name: &str) -> Vec<String> {
+    check_with(name, true)
+}
+
+/// [`check`], the same-seed check only where `same_seed` (a scene whose estimators branch on
+/// hashes of hit distances, which the two sides round differently, is compared with the CPU by
+/// the z-test instead, in its own file).
+fn check_with(name: &str, same_seed: bool) -> Vec<String> {
     if gpu_common::context().is_none() {
         return Vec::new();
     }
@@ -44,6 +51,7 @@ fn check(name: &str) -> Vec<String> {
     };
     let mut failures: Vec<String> = STRATEGIES
         .into_iter()
+        .filter(|_| same_seed)
         .filter_map(|strategy| {
             let what = format!("gpu {name}.xml {strategy:?} same seed as the CPU");
             same_seed_check(&what, &scene, settings(strategy))?.err()
@@ -143,10 +151,13 @@ fn gpu_xml_thin_matches_the_cpu_and_mitsuba() {
 }
 
 /// `xml_mask.xml` (Mitsuba's `mask`: `materials/mask.wgsl` in both traversals, a textured
-/// opacity and a constant one).
+/// opacity and a constant one) against Mitsuba; against the CPU by the z-test in every strategy
+/// (`renderer/tests/gpu/mask.rs`): a mask's decision hashes the hit's distance, whose last bits
+/// the two sides round differently, so same-seed films diverge wherever a path meets a mask
+/// (tried first: 225–411 of 4800 pixels).
 #[test]
-fn gpu_xml_mask_matches_the_cpu_and_mitsuba() {
-    let failures = check("xml_mask");
+fn gpu_xml_mask_matches_mitsuba() {
+    let failures = check_with("xml_mask", false);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 

@@ -300,6 +300,21 @@ fn integrators_map_with_mitsubas_defaults() {
         e.contains("scene/integrator") && e.contains("`glass`") && e.contains("particle tracer"),
         "{e}"
     );
+    // Nor through a mask, whose camera connections stop at it.
+    let e = import(
+        &dir,
+        &scene(
+            r#"<integrator type="ptracer"/>
+<shape type="sphere"><bsdf type="mask" id="leaf"><bsdf type="diffuse"/></bsdf></shape>"#,
+        ),
+        &[],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("scene/integrator") && e.contains("`leaf`") && e.contains("a mask"),
+        "{e}"
+    );
 }
 
 #[test]

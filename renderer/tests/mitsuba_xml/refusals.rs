@@ -221,7 +221,7 @@ fn a_bumpmap_maps_onto_the_materials_bump_map() {
 #[test]
 fn refusals_name_file_line_and_element() {
     let dir = Dir::new("refusals");
-    let cases: [(&str, &str, &str, &str); 28] = [
+    let cases: [(&str, &str, &str, &str); 29] = [
         (
             r#"<emitter type="sunsky"/>"#,
             "sunsky",
@@ -287,6 +287,12 @@ fn refusals_name_file_line_and_element() {
             "blendbsdf",
             "scene/shape/bsdf",
             "no BSDF mixtures",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="mask"><bsdf type="mask"><bsdf type="diffuse"/></bsdf></bsdf></shape>"#,
+            "<bsdf type=\"mask\"><bsdf type=\"mask",
+            "scene/shape/bsdf/bsdf",
+            "BSDF type `mask` is not supported here (a material has one mask)",
         ),
         (
             r#"<shape type="sphere"><bsdf type="roughplastic"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.3"/></bsdf></shape>"#,

@@ -302,7 +302,8 @@ fn bsdf(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, Sc
                     " here (a material has one normalmap or bumpmap, around its BSDF or its \
                      twosided)"
                 }
-                "blendbsdf" | "mask" => " (lumis has no BSDF mixtures or opacity masks)",
+                "mask" => " here (a material has one mask)",
+                "blendbsdf" => " (lumis has no BSDF mixtures)",
                 _ => "",
             };
             return Err(b.error(format!(

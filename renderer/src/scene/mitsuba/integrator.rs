@@ -133,12 +133,21 @@ pub fn check_ptracer(desc: &SceneDesc) -> Result<(), String> {
         MaterialDesc::ThinDielectric { .. } => true,
         _ => false,
     });
-    match delta {
-        None => Ok(()),
-        Some(m) => Err(format!(
+    if let Some(m) = delta {
+        return Err(format!(
             "the `ptracer` integrator with a smooth (delta) BSDF (`{}`): a particle tracer \
              cannot reach the camera through it, so Mitsuba's image lacks what lumis' path \
              tracer shows there; use `path`",
+            m.name
+        ));
+    }
+    // Mitsuba's connections to the camera stop at a mask as its shadow rays do.
+    match desc.materials.iter().find(|m| m.opacity.is_some()) {
+        None => Ok(()),
+        Some(m) => Err(format!(
+            "the `ptracer` integrator with a mask (`{}`): a particle tracer's connections to \
+             the camera stop at the mask, so Mitsuba's image lacks what lumis shows through it; \
+             use `path`",
             m.name
         )),
     }
