@@ -5,6 +5,7 @@
 //! WGSL twin: `materials/mask.wgsl` (`mask_meets`, which the traversals' `prim_hit_t` calls).
 
 use super::Scene;
+use super::surface::SurfacePoint;
 use crate::geometry::primitive::ShapeHit;
 use crate::geometry::{Ray, SurfaceHit};
 use crate::materials::mask;
@@ -52,8 +53,14 @@ impl Scene {
         let Some(Some(opacity)) = self.opacity.get(prim.material as usize) else {
             return true;
         };
-        let uv = match opacity {
-            Texture::Constant(_) => Vec2::ZERO,
+        // A triangle's coordinates come from the candidate's barycentrics, as `Scene::uv` takes
+        // them from the hit record, without building that record.
+        let uv = match (opacity, &prim.shape) {
+            (Texture::Constant(_), _) => Vec2::ZERO,
+            (_, crate::geometry::Shape::Triangle { .. }) => self.uv_at(SurfacePoint::Triangle {
+                attr: prim.attr,
+                b: Vec2::new(h.b[1], h.b[2]),
+            }),
             _ => self.uv(&prim.shape.surface_hit(ray, *h, id as u32)),
         };
         mask::kept(opacity.eval_scalar(uv), ray.o, h.t, id as u32)
