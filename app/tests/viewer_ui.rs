@@ -371,6 +371,39 @@ fn dielectric_ior_presets_and_sliders_edit_the_glass() {
     assert_eq!(h.state().restarts, restarts);
 }
 
+/// A mix's or pair's own description is only a stand-in (what renders is its parts), so its
+/// panel edits nothing of it: it offers its parts, and a click selects one for editing.
+#[test]
+fn a_pair_offers_its_parts_for_editing() {
+    let dir = scratch("pair");
+    let mut text = std::fs::read_to_string(asset("seed_cornell.json")).unwrap();
+    text = text.replacen(
+        "\"materials\": {",
+        "\"materials\": {\n\"card\": {\"type\": \"two_sided\", \"front\": \"ggx05\", \"back\": \"blue\"},",
+        1,
+    );
+    let desc = lumis::scene::parse_scene(&text).unwrap_or_else(|e| panic!("{e}"));
+    let file = dir.join("pair.json");
+    std::fs::write(&file, desc.to_json().to_string()).unwrap();
+    let mut h = harness_at(file, 24, dir);
+    let (card, ggx05) = (material(&h, "card"), material(&h, "ggx05"));
+    h.state_mut().selected_material = Some(card);
+    h.run_steps(2);
+    assert!(
+        h.query_all_by_label("Roughness α").next().is_none(),
+        "the pair's stand-in (its front, ggx05) offered for editing"
+    );
+    let restarts = h.state().restarts;
+    h.get_by_label("ggx05").click();
+    h.run_steps(2);
+    assert_eq!(h.state().selected_material, Some(ggx05));
+    assert_eq!(h.state().restarts, restarts, "selecting restarts nothing");
+    assert!(
+        h.query_all_by_label("Roughness α").next().is_some(),
+        "the front's own panel"
+    );
+}
+
 #[test]
 fn clicking_an_object_selects_its_material_or_light() {
     let mut h = harness("seed_cornell.json", 64, scratch("pick"));

@@ -13,7 +13,8 @@
 //! * [`sampling`]: pure warping functions with their pdfs and inverses.
 //! * [`sampler`]: where a sample's random numbers come from (independent, Owen-scrambled Sobol);
 //!   [`rng`]: the counter-based random streams under them.
-//! * [`materials`]: BSDFs (diffuse, GGX conductor, plastic, dielectric) and mixes of two.
+//! * [`materials`]: BSDFs (diffuse, GGX conductor, plastic, dielectric), mixes of two and
+//!   two-sided pairs.
 //! * [`textures`]: constant, bitmap and checkerboard textures for material parameters and emission.
 //! * [`lights`]: area lights of every shape, the constant background and environment maps, and
 //!   light selection by power or through a light BVH.

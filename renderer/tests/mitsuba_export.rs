@@ -416,7 +416,8 @@ fn kitchen_sink() -> SceneDesc {
                    "bump_map": {"texture": {"type": "bitmap", "file": "textured_mesh_albedo.png",
                                 "raw": true, "uv_scale": [2, 2]}, "scale": -0.004,
                                 "shadowing": false}},
-        "sheet": {"type": "thin_dielectric", "ior": 1.33}
+        "sheet": {"type": "thin_dielectric", "ior": 1.33},
+        "card": {"type": "two_sided", "front": "tinted", "back": "glossy"}
       },
       "shapes": [
         {"type": "quad", "corner": [-3, 0, -3], "edge_u": [6, 0, 0], "edge_v": [0, 0, 6],
@@ -455,7 +456,9 @@ fn kitchen_sink() -> SceneDesc {
         {"type": "quad", "corner": [-3, 0, -3], "edge_u": [0.8, 0, 0], "edge_v": [0, 1, 0.1],
          "material": "dented"},
         {"type": "quad", "corner": [-0.6, 0.2, -2.5], "edge_u": [1.2, 0, 0.1],
-         "edge_v": [0, 1.2, 0], "material": "sheet"}
+         "edge_v": [0, 1.2, 0], "material": "sheet"},
+        {"type": "quad", "corner": [0.9, 0, -1.6], "edge_u": [0.3, 0, 0.6],
+         "edge_v": [0, 0.9, 0], "material": "card"}
       ],
       "lights": [
         {"type": "point", "position": [1.5, 2.0, -1.0], "intensity": [2, 1.5, 1]},

@@ -617,6 +617,14 @@ fn bsdfs_map_onto_lumis_materials() {
     assert!(m.desc.shapes.is_empty());
 }
 
+/// Mitsuba's default sphere (the unit sphere at the origin) in each of `materials`, as JSON.
+fn unit_spheres(materials: &[&str]) -> Vec<Value> {
+    materials
+        .iter()
+        .map(|n| json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": n}))
+        .collect()
+}
+
 /// Mitsuba's `mask` becomes a material's `opacity`: its default ½, a number, a texture read as a
 /// scalar (a checkerboard's colours swapped, Mitsuba's `eval_1`), outside or inside a
 /// `twosided`; a finite `max_depth` beside a mask (Mitsuba spends a bounce on each pass), a
@@ -631,10 +639,7 @@ fn masks_become_opacities() {
     <texture name="opacity" type="checkerboard"><float name="color0" value="0.1"/><float name="color1" value="0.9"/></texture>
     <bsdf type="diffuse"><rgb name="reflectance" value="0.2 0.6 0.3"/></bsdf></bsdf></bsdf></shape>"#;
     let m = ok(&dir, body);
-    let shapes: Vec<Value> = ["half", "faint", "checked"]
-        .iter()
-        .map(|n| json!({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": n}))
-        .collect();
+    let shapes = unit_spheres(&["half", "faint", "checked"]);
     let want = expected(
         &dir,
         json!({
@@ -673,6 +678,67 @@ fn masks_become_opacities() {
         "<bsdf type=\"mask",
         "scene/shape/bsdf",
         "a mask needs a nested <bsdf>",
+    );
+}
+
+/// Mitsuba's `twosided` with two different BSDFs becomes a `two_sided` pair of their materials,
+/// each translated as on its own (one-sided), a referenced one shared with the shapes that use
+/// it alone, under a mask the pair's opacity; a transmitting, null or masked BSDF in it, a third
+/// BSDF, and a normalmap around it are located errors.
+#[test]
+fn twosided_with_two_bsdfs_becomes_a_pair() {
+    let dir = Dir::new("two_sided_pair");
+    let body = r#"<bsdf type="diffuse" id="white"><rgb name="reflectance" value="0.6"/></bsdf>
+<shape type="sphere"><ref id="white"/></shape>
+<shape type="sphere"><bsdf type="twosided" id="card">
+    <bsdf type="roughconductor" id="gold"><float name="alpha" value="0.2"/></bsdf>
+    <ref id="white"/></bsdf></shape>
+<shape type="sphere"><bsdf type="mask" id="veil"><float name="opacity" value="0.3"/>
+    <bsdf type="twosided"><ref id="white"/><ref id="gold"/></bsdf></bsdf></shape>"#;
+    let m = ok(&dir, body);
+    let shapes = unit_spheres(&["white", "card", "veil"]);
+    let want = expected(
+        &dir,
+        json!({
+            "materials": {
+                "white": {"type": "diffuse", "albedo": [0.6, 0.6, 0.6], "two_sided": false},
+                "gold": {"type": "conductor", "alpha": 0.2, "distribution": "beckmann",
+                         "reflectance": [1, 1, 1], "two_sided": false},
+                "card": {"type": "two_sided", "front": "gold", "back": "white"},
+                "veil": {"type": "two_sided", "front": "white", "back": "gold", "opacity": 0.3},
+            },
+            "shapes": shapes,
+        }),
+    );
+    assert_same(&m.desc, &want);
+    for (inner, ty) in [
+        (r#"<bsdf type="dielectric"/>"#, "dielectric"),
+        (r#"<bsdf type="null"/>"#, "null"),
+        (r#"<bsdf type="mask"><bsdf type="diffuse"/></bsdf>"#, "mask"),
+    ] {
+        refused(
+            &dir,
+            &format!(
+                r#"<shape type="sphere"><bsdf type="twosided"><bsdf type="diffuse"/>{inner}</bsdf></shape>"#
+            ),
+            &format!("<bsdf type=\"{ty}"),
+            "scene/shape/bsdf/bsdf",
+            &format!("a `{ty}` cannot be nested in twosided"),
+        );
+    }
+    refused(
+        &dir,
+        r#"<shape type="sphere"><bsdf type="twosided"><bsdf type="diffuse"/><bsdf type="conductor"/><bsdf type="plastic"/></bsdf></shape>"#,
+        "<bsdf type=\"plastic",
+        "scene/shape/bsdf/bsdf",
+        "at most two nested <bsdf>",
+    );
+    refused(
+        &dir,
+        r#"<shape type="sphere"><bsdf type="normalmap"><texture name="normalmap" type="checkerboard"/><bsdf type="twosided"><bsdf type="diffuse"/><bsdf type="conductor"/></bsdf></bsdf></shape>"#,
+        "<bsdf type=\"normalmap",
+        "scene/shape/bsdf",
+        "a normalmap around a twosided BSDF with two BSDFs is not supported",
     );
 }
 

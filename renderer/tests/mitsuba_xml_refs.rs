@@ -423,6 +423,26 @@ fn xml_mask_undecoded_opacity_is_detected() {
     assert_detected("xml_mask", &m, 2780, "with raw=true");
 }
 
+/// `xml_two_sided.xml` (Mitsuba's `twosided` with two BSDFs: an open cylinder, orange diffuse
+/// outside and rough gold inside, and a panel that shows the camera its back, the floor's own
+/// one-sided white shared by reference) against its reference, seeds 2870–2874.
+#[test]
+fn xml_two_sided_matches_its_mitsuba_reference() {
+    every_strategy("xml_two_sided", [256, 256, 256, 256, 256], 2870);
+}
+
+/// Power: `xml_two_sided.xml` with the cylinder's sides swapped (`-D outside=gold -D
+/// inside=orange`: what a front/back convention the wrong way round renders) fails, MIS 256
+/// spp, seed 2880.
+#[test]
+fn xml_two_sided_swapped_sides_are_detected() {
+    let m = import(
+        "xml_two_sided",
+        &[("outside", "gold"), ("inside", "orange")],
+    );
+    assert_detected("xml_two_sided", &m, 2880, "with the sides swapped");
+}
+
 /// `xml_textured_shapes.xml` (Mitsuba's texture coordinates on spheres and disks turned by
 /// their `to_world`: a checkered sphere with a tilted pole, a checkered disk turned about its
 /// normal, a sphere light with a checkered radiance, anisotropic gold about a tilted pole)

@@ -65,8 +65,25 @@ impl ViewerApp {
             m.map_or("(none)".into(), |i| names[i].clone())
         });
         self.selected_material = sel;
-        if let Some(i) = sel {
-            self.material_controls(ui, i);
+        match sel.map(|i| (i, desc.materials[i].parts())) {
+            // A mix or pair has no parameters of its own (its stand-in BSDF is not what renders):
+            // its parts are edited instead.
+            Some((i, Some(parts))) => {
+                let what = match desc.materials[i].mix {
+                    Some(_) => "A mix of",
+                    None => "Two-sided: front and back",
+                };
+                ui.label(format!("{what} (pick one to edit it):"));
+                ui.horizontal(|ui| {
+                    for p in parts {
+                        if ui.button(&names[p]).clicked() {
+                            self.selected_material = Some(p);
+                        }
+                    }
+                });
+            }
+            Some((i, None)) => self.material_controls(ui, i),
+            None => {}
         }
         ui.separator();
         ui.heading("Light");

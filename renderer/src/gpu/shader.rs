@@ -96,6 +96,7 @@ const MODULES: &[Module] = &[
     module!("geometry/tangent.wgsl"),
     module!("textures/mod.wgsl"),
     module!("materials/mix.wgsl"),
+    module!("materials/two_sided.wgsl"),
     module!("materials/mask.wgsl"),
     module!("materials/normal_map.wgsl"),
     module!("geometry/bvh.wgsl"),
@@ -179,8 +180,8 @@ pub struct Features {
     /// points sampled on textured lights (`light_sample_textured` in `lights/mod.wgsl`) and the
     /// texel binding.
     pub has_textures: bool,
-    /// Mixes of materials, resolved at each hit (`materials/mix.wgsl`; a textured weight also sets
-    /// [`Features::has_textures`]).
+    /// Mixes of materials or two-sided pairs, resolved at each hit (`materials/mix.wgsl`,
+    /// `materials/two_sided.wgsl`; a textured weight also sets [`Features::has_textures`]).
     pub has_mixes: bool,
     /// A pixel filter with negative lobes (Lanczos, Mitchell): its piecewise sampling in
     /// `camera/filter.wgsl`, which programs without one leave out.
@@ -247,7 +248,7 @@ impl Features {
             has_shading_normals: scene.attributes.has_normals(),
             has_textures: scene.material_textures.iter().any(Option::is_some)
                 || !scene.emission_textures.is_empty(),
-            has_mixes: scene.mixes.iter().any(Option::is_some),
+            has_mixes: scene.mixes.iter().any(Option::is_some) || !scene.sides.is_empty(),
             has_signed_filter: scene.camera.filter.is_signed(),
             has_normal_maps: !scene.normal_maps.is_empty(),
             has_masks: !scene.opacity.is_empty(),
@@ -465,8 +466,9 @@ impl Features {
             }
             "geometry/tangent.wgsl" => self.has_anisotropic || self.has_normal_maps,
             "textures/mod.wgsl" => self.textures(),
-            // Masks draw their decisions with the mixes' hash.
-            "materials/mix.wgsl" => self.has_mixes || self.has_masks,
+            // Masks draw their decisions with the mixes' hash (the resolve loop beside it calls
+            // the pairs' choice).
+            "materials/mix.wgsl" | "materials/two_sided.wgsl" => self.has_mixes || self.has_masks,
             "materials/mask.wgsl" => self.has_masks,
             _ => true,
         }

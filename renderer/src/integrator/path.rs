@@ -254,12 +254,14 @@ fn trace<const TRANSMISSION: bool>(
         if max_depth >= 0 && depth >= max_depth {
             break;
         }
-        let (material, detail_map) = scene.shading_at(&hit, prim.material);
-        let material = &*material;
         let wo_world = -ray.d.normalize();
         // `n`: the geometric normal, which decides sides and ray offsets; the BSDF lives in the
         // frame of the shading normal `ns` (the geometric one where the mesh has none).
         let mut n = hit.n;
+        // A two-sided pair shows its back material to a path that arrives on its back.
+        let arrives_back = n.dot(wo_world) < 0.0;
+        let (material, detail_map) = scene.shading_at(&hit, prim.material, arrives_back);
+        let material = &*material;
         let shading_normal = if scene.attributes.has_normals() {
             scene.attributes.shading_normal(prim.attr, hit.b, n)
         } else {
@@ -268,7 +270,7 @@ fn trace<const TRANSMISSION: bool>(
         let shading = shading_normal.is_some();
         let mut ns = shading_normal.unwrap_or(n);
         let transmits = TRANSMISSION && material.transmits();
-        let back = n.dot(wo_world) < 0.0 && !transmits;
+        let back = arrives_back && !transmits;
         if back {
             if !scene.two_sided[prim.material as usize] {
                 break;

@@ -315,9 +315,12 @@ fn radiance(camera_ray: Ray) -> vec3f {
         if max_depth >= 0 && depth >= max_depth {
             break;
         }
+        let wo_world = -normalize_glam(ray.d);
 // #if HAS_MIXES
-        // `Scene::resolve_mix`: a mix chooses one of its materials at the hit.
-        let mi = mix_resolve(prim_material(prim), prim, hit);
+        // `Scene::resolve`: mixes and two-sided pairs choose one of their materials at the hit
+        // (a pair by the side the path arrives on).
+        let resolved = material_resolve(prim_material(prim), prim, hit, dot(hit.n, wo_world) < 0.0);
+        let mi = resolved.index;
 // #else
         let mi = prim_material(prim);
 // #endif
@@ -337,7 +340,6 @@ fn radiance(camera_ray: Ray) -> vec3f {
             m = material_at(m, uv);
         }
 // #endif
-        let wo_world = -normalize_glam(ray.d);
         // `n`: the geometric normal, which decides sides and ray offsets; the BSDF lives in the
         // frame of the shading normal `ns` (the geometric one where the mesh has none).
         var n = hit.n;
@@ -357,8 +359,13 @@ fn radiance(camera_ray: Ray) -> vec3f {
 // #else
         if dot(n, wo_world) < 0.0 {
 // #endif
-            // Bit 0 of h.y: two-sided (`materials/normal_map.wgsl` has the others).
-            if (m.h.y & 1u) == 0u {
+            // Bit 0 of h.y: two-sided (`materials/normal_map.wgsl` has the others); a material
+            // that a pair chose is seen from either side.
+            var two_sided = (m.h.y & 1u) != 0u;
+// #if HAS_MIXES
+            two_sided = two_sided || resolved.paired;
+// #endif
+            if !two_sided {
                 break;
             }
 // #if HAS_NORMAL_MAPS

@@ -11,7 +11,7 @@
 //! probability of the second material is `w` to within 2^-24, exactly 0 at `w ≤ 0` and 1 at
 //! `w ≥ 1`. A mix is resolved before textures, so it holds material indices, not materials.
 //!
-//! WGSL twin: `materials/mix.wgsl` (the hash bit for bit and the resolve loop of `Scene::resolve_mix`),
+//! WGSL twin: `materials/mix.wgsl` (the hash bit for bit and the resolve loop of `Scene::resolve`),
 //! `gpu/u64.wgsl` (the u64 arithmetic, emulated in u32 pairs).
 
 use crate::sampler::owen;

@@ -1,7 +1,9 @@
-// Mixes of two materials, the twin of `materials/mix.rs` and of `Scene::resolve_mix`: at a hit a
-// mix chooses one of its two materials by a hash of the bits of the hit point, the hit's ray
-// distance and the mix's own material index (the salt), bit for bit as the CPU does, so that both
-// sides choose alike at the same hit. Compiled only under HAS_MIXES.
+// Mixes of two materials, the twin of `materials/mix.rs` and of `Scene::resolve` (whose loop also
+// resolves the pairs of `materials/two_sided.rs`): at a hit a mix chooses one of its two
+// materials by a hash of the bits of the hit point, the hit's ray distance and the mix's own
+// material index (the salt), bit for bit as the CPU does, so that both sides choose alike at the
+// same hit. Compiled under HAS_MIXES (a scene with mixes or two-sided pairs) or HAS_MASKS (for
+// the hash alone).
 //
 // A mix's record lives in `materials` at the mix's own index (`gpu/scene/materials.rs`):
 //   h = (MATERIAL_MIX, first material, second material, id of the weight's texture or NONE);
@@ -31,18 +33,33 @@ fn mix_choice(w: f32, u: f32) -> u32 {
     return select(0u, 1u, u < w);
 }
 
-// `Scene::resolve_mix`: the material that material `mi` resolves to at `hit` on `prim` (`mi`
-// itself when it is no mix), through nested mixes, each salted with its own index. The texture
-// coordinates are computed only for a textured weight, as on the CPU.
-fn mix_resolve(mi_in: u32, prim: Prim, hit: SurfaceHit) -> u32 {
+// A material resolved at a hit: its index, and whether a two-sided pair chose it on the way (then
+// it is seen from either side, whatever its own record's two-sided bit says, as the CPU reads the
+// bit of the hit primitive's own material).
+struct ResolvedMaterial {
+    index: u32,
+    paired: bool,
+}
+
+// `Scene::resolve`: the material that material `mi` is at `hit` on `prim` for a path arriving on
+// the back (`back`) or front (`mi` itself when it is made of no others), through nested mixes,
+// each salted with its own index, and two-sided pairs. The texture coordinates are computed only
+// for a textured weight, as on the CPU.
+fn material_resolve(mi_in: u32, prim: Prim, hit: SurfaceHit, back: bool) -> ResolvedMaterial {
     var mi = mi_in;
-    // The builder checked that every chain of mixes ends within the number of materials; the
-    // bound only keeps a corrupt record from hanging the device.
+    var paired = false;
+    // The builder checked that every chain of mixes and pairs ends within the number of
+    // materials; the bound only keeps a corrupt record from hanging the device.
     let n = arrayLength(&materials);
     for (var k = 0u; k <= n; k++) {
         let m = materials[mi];
+        if m.h.x == MATERIAL_TWO_SIDED {
+            mi = two_sided_choose(m, back);
+            paired = true;
+            continue;
+        }
         if m.h.x != MATERIAL_MIX {
-            return mi;
+            return ResolvedMaterial(mi, paired);
         }
         var w = m.a.x;
 // #if HAS_TEXTURES
@@ -54,5 +71,5 @@ fn mix_resolve(mi_in: u32, prim: Prim, hit: SurfaceHit) -> u32 {
         mi = select(m.h.y, m.h.z, pick == 1u);
     }
     _ = unknown_tag();
-    return mi;
+    return ResolvedMaterial(mi, paired);
 }

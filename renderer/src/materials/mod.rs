@@ -34,6 +34,7 @@ pub mod plastic_textured;
 mod testing;
 pub mod textured;
 pub mod thin_dielectric;
+pub mod two_sided;
 
 pub use conductor::{Conductor, ConductorFresnel};
 pub use dielectric::Dielectric;

@@ -16,6 +16,7 @@
 //   Plastic with Mitsuba's coupling (MATERIAL_PLASTIC_MITSUBA): a.xyz albedo, b.xyz tint, b.w η,
 //               c the microfacet slot; aux its tables' offset (`materials/plastic_mitsuba.wgsl`).
 //   Mix:        (MATERIAL_MIX) resolved by `materials/mix.wgsl` before anything here sees the material.
+//   Two-sided pair: (MATERIAL_TWO_SIDED) likewise resolved there (`materials/two_sided.wgsl`).
 //   Dielectric: a.x ior, c.xyz the microfacet slot as a conductor's; never two-sided (its two
 //               sides are its two media).
 //   ThinDielectric: a.x ior; never two-sided (it is the same from both sides).

@@ -4,7 +4,7 @@
 
 use super::desc::{
     BackgroundDesc, CameraDesc, FresnelDesc, GeometryDesc, LightDesc, LookAt, MaterialDesc,
-    PlasticModel, ProjectionDesc, SceneDesc, TextureDesc,
+    NamedMaterial, PlasticModel, ProjectionDesc, SceneDesc, TextureDesc,
 };
 use super::error::SceneError;
 use super::parse_shapes::unit;
@@ -27,7 +27,7 @@ use crate::materials::normal_map::NormalMap;
 use crate::materials::textured::MaterialTextures;
 use crate::materials::{
     Conductor, ConductorFresnel, Dielectric, Diffuse, Distribution, Material, Microfacet, Mix,
-    Plastic, ThinDielectric,
+    Plastic, ThinDielectric, two_sided::TwoSided,
 };
 use crate::math::Frame;
 use crate::textures::Texture;
@@ -72,8 +72,12 @@ pub struct Scene {
     pub emission_textures: Vec<EmissionTexture>,
     /// Per material, the mix it is (`None`: not a mix), parallel to `materials`; empty when the
     /// scene has no mix. A mix's entry in `materials` is the material its mean weight favours
-    /// (for code that reads one BSDF); [`Scene::material_at`] resolves the mix per hit.
+    /// (for code that reads one BSDF); [`Scene::resolve`] chooses per hit.
     pub mixes: Vec<Option<Mix>>,
+    /// Per material, the two-sided pair it is (`None`: not a pair), parallel to `materials`;
+    /// empty when the scene has no pair. A pair's entry in `materials` is its front's;
+    /// [`Scene::resolve`] chooses per hit.
+    pub sides: Vec<Option<TwoSided>>,
     /// Per material, its normal map (`None`: none), parallel to `materials`; empty when no
     /// material has one ([`Scene::shading_at`]).
     pub normal_maps: Vec<Option<NormalMap>>,
@@ -157,27 +161,16 @@ fn microfacet(distribution: Distribution, alpha: f64, alpha_v: Option<f64>) -> M
     Microfacet::new(distribution, u, alpha_v.map_or(u, |v| v as f32))
 }
 
-/// The mixes of `desc`'s materials, parallel to them (empty if there are none). The parser
-/// rules out a mix that contains itself; a description built otherwise is checked here, so that
-/// resolving a mix at a hit always ends.
-fn mixes(desc: &SceneDesc) -> Result<Vec<Option<Mix>>, SceneError> {
+/// The mixes and two-sided pairs of `desc`'s materials, each parallel to them (empty if there
+/// are none). The parser rules out a material that contains itself; a description built
+/// otherwise is checked here, so that resolving a material at a hit always ends.
+type Composites = (Vec<Option<Mix>>, Vec<Option<TwoSided>>);
+
+fn composites(desc: &SceneDesc) -> Result<Composites, SceneError> {
     let n = desc.materials.len();
-    if desc.materials.iter().all(|m| m.mix.is_none()) {
-        return Ok(Vec::new());
-    }
-    let mut out = Vec::with_capacity(n + 1);
     for (i, m) in desc.materials.iter().enumerate() {
-        let mix = m.mix.as_ref().map(|mix| {
-            let weight = match &mix.weight_texture {
-                Some(t) => t.texture.clone(),
-                None => Texture::Constant(Vec3::splat(mix.weight as f32)),
-            };
-            Mix {
-                materials: mix.materials.map(|j| j as u32),
-                weight,
-            }
-        });
-        // Following either material from a mix must leave the mixes within `n` steps.
+        let Some(parts) = m.parts() else { continue };
+        // Following either part must leave the mixes and pairs within `n` steps.
         let mut frontier = vec![i];
         for _ in 0..=n {
             if frontier.is_empty() {
@@ -185,24 +178,53 @@ fn mixes(desc: &SceneDesc) -> Result<Vec<Option<Mix>>, SceneError> {
             }
             frontier = frontier
                 .iter()
-                .filter_map(|&j| desc.materials.get(j).and_then(|m| m.mix.as_ref()))
-                .flat_map(|x| x.materials)
+                .filter_map(|&j| desc.materials.get(j).and_then(NamedMaterial::parts))
+                .flatten()
                 .collect();
             frontier.sort_unstable();
             frontier.dedup();
         }
-        let dangling = m.mix.iter().any(|x| x.materials.iter().any(|&j| j >= n));
-        if mix.is_some() && (!frontier.is_empty() || dangling) {
+        if !frontier.is_empty() || parts.iter().any(|&j| j >= n) {
             return Err(SceneError::new(
                 format!("materials.{}", m.name),
-                "a mix names a material that does not exist or contains itself",
+                "a mix or two_sided pair names a material that does not exist or contains itself",
             ));
         }
-        out.push(mix);
     }
-    // The black material of shapes without one.
-    out.push(None);
-    Ok(out)
+    let mixes: Vec<Option<Mix>> = desc
+        .materials
+        .iter()
+        .map(|m| {
+            m.mix.as_ref().map(|mix| Mix {
+                materials: mix.materials.map(|j| j as u32),
+                weight: match &mix.weight_texture {
+                    Some(t) => t.texture.clone(),
+                    None => Texture::Constant(Vec3::splat(mix.weight as f32)),
+                },
+            })
+        })
+        .collect();
+    let sides: Vec<Option<TwoSided>> = desc
+        .materials
+        .iter()
+        .map(|m| {
+            m.sides.map(|[front, back]| TwoSided {
+                front: front as u32,
+                back: back as u32,
+            })
+        })
+        .collect();
+    Ok((with_black(mixes), with_black(sides)))
+}
+
+/// `v` with an entry for the black material of shapes without one, or empty if all are `None`.
+fn with_black<T>(mut v: Vec<Option<T>>) -> Vec<Option<T>> {
+    if v.iter().all(Option::is_none) {
+        v.clear();
+    } else {
+        v.push(None);
+    }
+    v
 }
 
 /// The 6 faces of a box as parallelograms `(corner, edge_u, edge_v)` with outward normals, rotated
@@ -432,27 +454,19 @@ impl Scene {
             material_textures.push((!t.is_empty()).then_some(textures));
         }
         material_textures.push(None);
-        let mixes = mixes(desc)?;
-        let mut normal_maps: Vec<Option<NormalMap>> = desc
-            .materials
-            .iter()
-            .map(|m| m.normal_map.as_ref().map(|n| n.normal_map()))
-            .collect();
-        if normal_maps.iter().all(Option::is_none) {
-            normal_maps.clear();
-        } else {
-            normal_maps.push(None);
-        }
-        let mut opacity: Vec<Option<Texture>> = desc
-            .materials
-            .iter()
-            .map(|m| m.opacity.as_ref().map(|o| o.texture.clone()))
-            .collect();
-        if opacity.iter().all(Option::is_none) {
-            opacity.clear();
-        } else {
-            opacity.push(None);
-        }
+        let (mixes, sides) = composites(desc)?;
+        let normal_maps: Vec<Option<NormalMap>> = with_black(
+            desc.materials
+                .iter()
+                .map(|m| m.normal_map.as_ref().map(|n| n.normal_map()))
+                .collect(),
+        );
+        let opacity: Vec<Option<Texture>> = with_black(
+            desc.materials
+                .iter()
+                .map(|m| m.opacity.as_ref().map(|o| o.texture.clone()))
+                .collect(),
+        );
         let black = materials.len() as u32;
         materials.push(Material::Diffuse(Diffuse { albedo: Vec3::ZERO }));
         two_sided.push(true);
@@ -780,6 +794,7 @@ impl Scene {
             material_textures,
             emission_textures,
             mixes,
+            sides,
             normal_maps,
             opacity,
         })

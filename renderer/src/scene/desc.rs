@@ -247,6 +247,19 @@ pub struct NamedMaterial {
     /// at a weight ≥ ½), as a texture's mean stands in for it, for code that reads one BSDF;
     /// `textures` is empty and `two_sided` is its materials' (which agree).
     pub mix: Option<MixDesc>,
+    /// `Some([front, back])` for a two-sided pair (`{"type": "two_sided"}`, Mitsuba's `twosided`
+    /// with two BSDFs, [`crate::materials::two_sided`]): indices into [`SceneDesc::materials`],
+    /// neither transmitting, never the pair itself. `material` then holds the front's
+    /// description (for code that reads one BSDF), `textures` is empty and `two_sided` true.
+    pub sides: Option<[usize; 2]>,
+}
+
+impl NamedMaterial {
+    /// The materials this one resolves to at a hit (a mix's two, a pair's front and back), or
+    /// `None` for a BSDF of its own.
+    pub fn parts(&self) -> Option<[usize; 2]> {
+        self.mix.as_ref().map(|m| m.materials).or(self.sides)
+    }
 }
 
 /// A material's normal map (Mitsuba's `normalmap`, [`crate::materials::normal_map`]).
@@ -817,14 +830,29 @@ fn microfacet_keys(obj: &mut Value, alpha: f64, alpha_v: Option<f64>, distributi
 
 /// `m` in the file format; `all` are the scene's materials, which a mix names.
 fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
-    if let Some(mix) = &m.mix {
+    let name = |i: usize| all[i].name.as_str();
+    let mut obj = if let Some(mix) = &m.mix {
         let weight = match &mix.weight_texture {
             Some(t) if !t.texture.is_constant() => t.to_json(),
             _ => json!(mix.weight),
         };
-        let names = mix.materials.map(|i| all[i].name.as_str());
-        return json!({"type": "mix", "materials": names, "weight": weight});
+        json!({"type": "mix", "materials": mix.materials.map(name), "weight": weight})
+    } else if let Some([front, back]) = m.sides {
+        json!({"type": "two_sided", "front": name(front), "back": name(back)})
+    } else {
+        bsdf_json(m)
+    };
+    if let Some(opacity) = &m.opacity {
+        obj["opacity"] = match &opacity.texture {
+            crate::textures::Texture::Constant(c) => json!(c.x),
+            _ => opacity.to_json(),
+        };
     }
+    obj
+}
+
+/// A material with a BSDF of its own (no mix, no pair) in the file format, without its opacity.
+fn bsdf_json(m: &NamedMaterial) -> Value {
     let mut obj = match &m.material {
         MaterialDesc::Diffuse { albedo } => json!({"type": "diffuse", "albedo": vec3(*albedo)}),
         MaterialDesc::Conductor {
@@ -929,12 +957,6 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
             }
             None => obj["normal_map"] = v,
         }
-    }
-    if let Some(opacity) = &m.opacity {
-        obj["opacity"] = match &opacity.texture {
-            crate::textures::Texture::Constant(c) => json!(c.x),
-            _ => opacity.to_json(),
-        };
     }
     obj
 }

@@ -16,6 +16,7 @@ pub mod mitsuba;
 pub mod model;
 pub mod parse;
 mod parse_background;
+mod parse_composite;
 mod parse_lights;
 mod parse_materials;
 mod parse_mesh;

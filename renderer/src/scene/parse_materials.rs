@@ -1,54 +1,49 @@
-//! The `materials` map: diffuse, conductor, plastic, dielectric and mix, with their range rules.
+//! The `materials` map: diffuse, conductor, plastic, dielectric, thin dielectric, and the
+//! materials made of others (mix, two_sided: `parse_composite`), with their range rules.
 
 use super::desc::Distribution;
 use super::desc::{
-    FresnelDesc, MaterialDesc, MaterialTextures, MixDesc, NamedMaterial, PlasticModel, TextureDesc,
+    FresnelDesc, MaterialDesc, MaterialTextures, NamedMaterial, PlasticModel, TextureDesc,
 };
 use super::error::SceneError;
+use super::parse_composite::{Pending, parse_mix, parse_two_sided, resolve_parts};
 use super::parse_surface_detail::{bump_map, normal_map, opacity};
 use super::parse_texture::{TextureLoader, TextureUse, parse_texture, texture_at};
-use super::walk::{Obj, array, check_components};
+use super::walk::{Obj, check_components};
 use crate::textures::Texture;
 use glam::DVec3;
 use serde_json::Value;
 
 /// Every material of the map, sorted by name (the map's order); texture files come from
-/// `loader`. Mixes are resolved once every material is known (`resolve_mixes`).
+/// `loader`. Mixes and pairs are resolved once every material is known (`resolve_parts`).
 pub(crate) fn parse_materials(
     obj: &Obj,
     loader: &mut TextureLoader,
 ) -> Result<Vec<NamedMaterial>, SceneError> {
     let mut materials = Vec::with_capacity(obj.map().len());
-    let mut mixes = Vec::with_capacity(obj.map().len());
+    let mut pending = Vec::with_capacity(obj.map().len());
     for (name, value) in obj.map() {
         let m = Obj::new(value, obj.at(name))?;
         if name.is_empty() {
             return Err(SceneError::new(m.path, "a material name must not be empty"));
         }
-        let (material, mix) = parse_material(name, &m, loader)?;
+        let (material, parts) = parse_material(name, &m, loader)?;
         materials.push(material);
-        mixes.push(mix);
+        pending.push(parts);
     }
-    resolve_mixes(obj, &mut materials, mixes)?;
+    resolve_parts(obj, &mut materials, pending)?;
     Ok(materials)
-}
-
-/// A mix as parsed, before its material names are looked up.
-struct PendingMix {
-    names: [String; 2],
-    weight: f64,
-    weight_texture: Option<TextureDesc>,
 }
 
 fn parse_material(
     name: &str,
     obj: &Obj,
     loader: &mut TextureLoader,
-) -> Result<(NamedMaterial, Option<PendingMix>), SceneError> {
+) -> Result<(NamedMaterial, Option<Pending>), SceneError> {
     let kind = obj.string("type")?;
     let mut textures = MaterialTextures::default();
     let t = &mut textures;
-    let mut mix = None;
+    let mut parts = None;
     let material = match kind {
         "diffuse" => {
             obj.only_keys(
@@ -188,8 +183,15 @@ fn parse_material(
                 return Err(SceneError::new(obj.at("two_sided"), msg));
             }
             obj.only_keys(&["type", "materials", "weight", "opacity"], true)?;
-            mix = Some(parse_mix(obj, loader)?);
+            parts = Some(parse_mix(obj, loader)?);
             // Replaced by the favoured material's once the names resolve.
+            MaterialDesc::Diffuse {
+                albedo: DVec3::ZERO,
+            }
+        }
+        "two_sided" => {
+            parts = Some(parse_two_sided(obj)?);
+            // Replaced by the front's once the names resolve.
             MaterialDesc::Diffuse {
                 albedo: DVec3::ZERO,
             }
@@ -199,7 +201,7 @@ fn parse_material(
                 obj.at("type"),
                 format!(
                     "unknown material type `{other}` (expected diffuse, conductor, plastic, \
-                     dielectric, thin_dielectric or mix)"
+                     dielectric, thin_dielectric, mix or two_sided)"
                 ),
             ));
         }
@@ -216,158 +218,9 @@ fn parse_material(
         },
         opacity: opacity(obj, loader)?,
         mix: None,
+        sides: None,
     };
-    Ok((named, mix))
-}
-
-/// A mix's `materials` (two names) and `weight` (a number or a scalar texture, in [0, 1]).
-fn parse_mix(obj: &Obj, loader: &mut TextureLoader) -> Result<PendingMix, SceneError> {
-    let path = obj.at("materials");
-    let items = array(obj.req("materials")?, &path)?;
-    if items.len() != 2 {
-        let msg = format!("expected 2 material names, found {}", items.len());
-        return Err(SceneError::new(path, msg));
-    }
-    let name = |i: usize| -> Result<String, SceneError> {
-        items[i].as_str().map(str::to_owned).ok_or_else(|| {
-            SceneError::new(
-                format!("{path}[{i}]"),
-                "expected a material name (a string)",
-            )
-        })
-    };
-    let names = [name(0)?, name(1)?];
-    let weight_texture = texture_at(obj, "weight", TextureUse::Weight, loader)?;
-    let weight = match &weight_texture {
-        Some(t) => t.mean_scalar(),
-        None => {
-            let w = obj.number("weight")?;
-            if !(0.0..=1.0).contains(&w) {
-                let msg = format!("weight {w} is outside [0, 1]");
-                return Err(SceneError::new(obj.at("weight"), msg));
-            }
-            w
-        }
-    };
-    Ok(PendingMix {
-        names,
-        weight,
-        weight_texture,
-    })
-}
-
-/// Looks up the names of every mix, then checks that no mix contains itself (directly or
-/// through others) and that its materials agree on `two_sided` (dielectrics have no sides), and
-/// gives each mix the description of the material its mean weight favours.
-fn resolve_mixes(
-    obj: &Obj,
-    materials: &mut [NamedMaterial],
-    pending: Vec<Option<PendingMix>>,
-) -> Result<(), SceneError> {
-    let names: Vec<String> = materials.iter().map(|m| m.name.clone()).collect();
-    for (i, p) in pending.into_iter().enumerate() {
-        let Some(p) = p else { continue };
-        let path = join_materials(obj, &names[i]);
-        let mut index = [0; 2];
-        for (k, name) in p.names.iter().enumerate() {
-            index[k] = names.iter().position(|n| n == name).ok_or_else(|| {
-                SceneError::new(
-                    format!("{path}[{k}]"),
-                    format!("unknown material `{name}` (defined: {})", names.join(", ")),
-                )
-            })?;
-            if materials[index[k]].opacity.is_some() {
-                let msg = format!(
-                    "material `{name}` has an opacity, and a mix's materials cannot: a ray meets \
-                     or passes a surface before the mix chooses (give the mix the opacity)"
-                );
-                return Err(SceneError::new(format!("{path}[{k}]"), msg));
-            }
-        }
-        materials[i].mix = Some(MixDesc {
-            materials: index,
-            weight: p.weight,
-            weight_texture: p.weight_texture,
-        });
-    }
-    // Depth-first over the mixes (an explicit stack; 1 = on the stack, 2 = done), so every
-    // mix is finished after its materials: `sides` then holds, per material, the `two_sided` of
-    // the sided materials under it (`None`: dielectrics only).
-    let n = materials.len();
-    let mut state = vec![0u8; n];
-    let mut sides: Vec<Option<bool>> = vec![None; n];
-    for root in 0..n {
-        if state[root] != 0 {
-            continue;
-        }
-        let mut stack = vec![(root, 0usize)];
-        state[root] = 1;
-        while let Some(&mut (m, ref mut next)) = stack.last_mut() {
-            let children = materials[m]
-                .mix
-                .as_ref()
-                .map_or(&[][..], |x| &x.materials[..]);
-            if let Some(&c) = children.get(*next) {
-                *next += 1;
-                match state[c] {
-                    0 => {
-                        state[c] = 1;
-                        stack.push((c, 0));
-                    }
-                    1 => {
-                        let from = stack.iter().position(|&(s, _)| s == c).unwrap_or(0);
-                        let cycle: Vec<&str> = stack[from..]
-                            .iter()
-                            .map(|&(s, _)| names[s].as_str())
-                            .chain([names[c].as_str()])
-                            .collect();
-                        let msg = format!("a mix cannot contain itself: {}", cycle.join(" → "));
-                        return Err(SceneError::new(join_materials(obj, &names[m]), msg));
-                    }
-                    _ => {}
-                }
-                continue;
-            }
-            stack.pop();
-            state[m] = 2;
-            sides[m] = match &materials[m].mix {
-                None if materials[m].material.transmits() => None,
-                None => Some(materials[m].two_sided),
-                Some(mix) => {
-                    let [a, b] = mix.materials;
-                    match (sides[a], sides[b]) {
-                        (Some(x), Some(y)) if x != y => {
-                            let msg = format!(
-                                "its materials differ in `two_sided` (`{}` is {x}, `{}` is {y}): \
-                                 a mix has one set of sides",
-                                names[a], names[b]
-                            );
-                            return Err(SceneError::new(join_materials(obj, &names[m]), msg));
-                        }
-                        (x, y) => x.or(y),
-                    }
-                }
-            };
-        }
-    }
-    for i in 0..n {
-        if materials[i].mix.is_none() {
-            continue;
-        }
-        // Acyclic now, so this ends within `n` steps.
-        let mut favoured = i;
-        while let Some(mix) = &materials[favoured].mix {
-            favoured = mix.materials[usize::from(mix.weight >= 0.5)];
-        }
-        materials[i].material = materials[favoured].material.clone();
-        materials[i].two_sided = sides[i].unwrap_or(false);
-    }
-    Ok(())
-}
-
-/// The JSON path of a mix's `materials`.
-fn join_materials(obj: &Obj, name: &str) -> String {
-    super::walk::join(&obj.at(name), "materials")
+    Ok((named, parts))
 }
 
 /// The required `albedo`: a colour in [0, 1] or a texture (then its mean, and `slot` is set).
@@ -953,7 +806,3 @@ mod tests {
         assert!(parse_scene_value(&with("white", ok)).is_ok());
     }
 }
-
-#[cfg(test)]
-#[path = "parse_materials_mix_tests.rs"]
-mod mix_tests;

@@ -1,5 +1,5 @@
-//! A hit's texture coordinates and its material: a mix resolved, textures evaluated there. Texture
-//! coordinates by shape: mesh triangles interpolate their file's UVs (else their barycentrics),
+//! A hit's texture coordinates and its material: mixes and pairs resolved, textures evaluated
+//! there. Texture coordinates by shape: mesh triangles interpolate their file's UVs (else their barycentrics),
 //! quads and box faces run `u` along `edge_u` and `v` along `edge_v`, other triangles give their
 //! barycentrics; spheres as Mitsuba 3's (`u = φ/2π` from its frame's x towards y, `v = θ/π`
 //! from its z), disks `(r/radius, φ/2π)` from their x axis towards their y, cylinders Mitsuba's (`φ/2π` from their
@@ -148,24 +148,25 @@ impl Scene {
         Some(s)
     }
 
-    /// The material of `hit`'s primitive: a mix resolved to one of its materials
-    /// ([`Scene::resolve_mix`]), then its textures evaluated at the hit (borrowed when it has
-    /// none).
+    /// The material of `hit`'s primitive, seen from its back (`back`) or front: mixes and pairs
+    /// resolved to one material ([`Scene::resolve`]), then its textures evaluated at the hit
+    /// (borrowed when it has none).
     #[inline]
-    pub fn material_at(&self, hit: &SurfaceHit, material: u32) -> Cow<'_, Material> {
-        self.shading_at(hit, material).0
+    pub fn material_at(&self, hit: &SurfaceHit, material: u32, back: bool) -> Cow<'_, Material> {
+        self.shading_at(hit, material, back).0
     }
 
     /// [`Scene::material_at`] and the normal or bump map of that material with the hit's texture
-    /// coordinates (`None` without one: at once in a scene without maps), the mix resolved and
-    /// the coordinates computed once for both.
+    /// coordinates (`None` without one: at once in a scene without maps), the material resolved
+    /// and the coordinates computed once for both.
     #[inline]
     pub fn shading_at(
         &self,
         hit: &SurfaceHit,
         material: u32,
+        back: bool,
     ) -> (Cow<'_, Material>, Option<(&NormalMap, Vec2)>) {
-        let material = self.resolve_mix(hit, material) as usize;
+        let material = self.resolve(hit, material, back) as usize;
         let base = &self.materials[material];
         let textures = &self.material_textures[material];
         let map = self.normal_maps.get(material).and_then(Option::as_ref);
@@ -180,16 +181,22 @@ impl Scene {
         (m, map.map(|m| (m, uv)))
     }
 
-    /// The material a mix chooses at `hit`, through nested mixes (`material` itself when it is
-    /// no mix): pbrt-v4's `ChooseMaterial`, by the hash of [`crate::materials::mix`], so that
-    /// one hit always sees one material.
+    /// The material that `material` is at `hit` for a path arriving on the back (`back`) or
+    /// front: `material` itself when it is made of no others, else through nested mixes (pbrt-v4's
+    /// `ChooseMaterial`, by the hash of [`crate::materials::mix`], so that one hit always sees
+    /// one material) and two-sided pairs ([`crate::materials::two_sided`]).
     #[inline]
-    pub fn resolve_mix(&self, hit: &SurfaceHit, material: u32) -> u32 {
+    pub fn resolve(&self, hit: &SurfaceHit, material: u32, back: bool) -> u32 {
         let mut m = material;
-        // The builder checked that every chain of mixes ends.
-        while let Some(Some(mix)) = self.mixes.get(m as usize) {
-            m = mix.choose(hit.p, hit.t, m, || self.uv(hit));
+        // The builder checked that every chain of mixes and pairs ends.
+        loop {
+            m = if let Some(Some(mix)) = self.mixes.get(m as usize) {
+                mix.choose(hit.p, hit.t, m, || self.uv(hit))
+            } else if let Some(Some(pair)) = self.sides.get(m as usize) {
+                pair.choose(back)
+            } else {
+                return m;
+            };
         }
-        m
     }
 }

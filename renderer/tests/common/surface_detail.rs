@@ -6,18 +6,22 @@
 use super::{STRATEGIES_AND_OPTIMAL, data_dir, reference, render};
 use glam::Vec3;
 use lumis::integrator::Settings;
-use lumis::scene::{Scene, TextureDesc, load_scene, parse_scene_in};
+use lumis::scene::{Scene, SceneDesc, TextureDesc, load_scene, parse_scene_in};
 use lumis::textures::Texture;
 use std::path::Path;
 use std::sync::Arc;
 
+/// `tests/data/mitsuba/NAME.xml`, imported.
+pub fn mitsuba_desc(name: &str) -> SceneDesc {
+    let path = data_dir().join("mitsuba").join(format!("{name}.xml"));
+    lumis::scene::mitsuba::load(&path, &[])
+        .unwrap_or_else(|e| panic!("{e}"))
+        .desc
+}
+
 /// `tests/data/mitsuba/NAME.xml`, imported and built.
 pub fn mitsuba_scene(name: &str) -> Arc<Scene> {
-    let path = data_dir().join("mitsuba").join(format!("{name}.xml"));
-    let desc = lumis::scene::mitsuba::load(&path, &[])
-        .unwrap_or_else(|e| panic!("{e}"))
-        .desc;
-    Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}")))
+    Arc::new(Scene::from_desc(&mitsuba_desc(name)).unwrap_or_else(|e| panic!("{e}")))
 }
 
 /// The gallery's `tests/data/gallery/docs/scenes/NAME.xml`, unmodified, at `scale` of its film
@@ -145,14 +149,15 @@ pub fn with_opacity(name: &str, opacity: Option<f32>) -> Arc<Scene> {
         .filter(|s| s.emission.max_element() > 0.0 || s.emission_texture.is_some())
         .filter_map(|s| s.material)
         .collect();
-    let in_mixes: Vec<usize> = desc
+    // A mix's or pair's parts take no opacity (their mix or pair does).
+    let parts: Vec<usize> = desc
         .materials
         .iter()
-        .filter_map(|m| m.mix.as_ref())
-        .flat_map(|m| m.materials)
+        .filter_map(|m| m.parts())
+        .flatten()
         .collect();
     for (i, m) in desc.materials.iter_mut().enumerate() {
-        if !emitters.contains(&i) && !in_mixes.contains(&i) {
+        if !emitters.contains(&i) && !parts.contains(&i) {
             m.opacity = opacity.map(|a| TextureDesc {
                 texture: Texture::Constant(glam::Vec3::splat(a)),
             });
@@ -189,4 +194,34 @@ pub fn assert_same_bits(
             what[1]
         );
     }
+}
+
+/// `xml_two_sided.xml` three ways, for the pair tests on the CPU and the GPU: its cylinder as a
+/// two-sided orange (`"two_sided": true`), as the pair of orange with itself, and as imported
+/// (the pair of orange outside and gold inside).
+pub fn two_sided_variants() -> [SceneDesc; 3] {
+    let desc = mitsuba_desc("xml_two_sided");
+    let index = |name: &str| desc.materials.iter().position(|m| m.name == name).unwrap();
+    let (orange, gold) = (index("orange"), index("gold"));
+    let pair = desc
+        .materials
+        .iter()
+        .position(|m| m.sides == Some([orange, gold]))
+        .expect("the cylinder's pair");
+    let mut same = desc.clone();
+    same.materials[pair].sides = Some([orange, orange]);
+    let mut flag = desc.clone();
+    assert!(!flag.materials[orange].two_sided, "imported one-sided");
+    flag.materials.push(lumis::scene::NamedMaterial {
+        name: "orange, two-sided".into(),
+        two_sided: true,
+        ..flag.materials[orange].clone()
+    });
+    let two_sided_orange = flag.materials.len() - 1;
+    for s in &mut flag.shapes {
+        if s.material == Some(pair) {
+            s.material = Some(two_sided_orange);
+        }
+    }
+    [flag, same, desc]
 }

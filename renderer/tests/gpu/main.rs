@@ -33,3 +33,4 @@ mod samples_per_dispatch;
 mod sobol_images;
 mod textured_emission;
 mod textured_images;
+mod two_sided;

@@ -161,6 +161,15 @@ fn gpu_xml_mask_matches_mitsuba() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// `xml_two_sided.xml` (Mitsuba's `twosided` with two BSDFs: `materials/two_sided.wgsl`, the
+/// pair resolved by the side of arrival in `materials/mix.wgsl`'s loop, its one-sided parts seen
+/// from the back).
+#[test]
+fn gpu_xml_two_sided_matches_the_cpu_and_mitsuba() {
+    let failures = check("xml_two_sided");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// [`check`], and for scenes lit by delta lights `mis-optimal` too at 12 spp with the CPU's
 /// seed (past its first stage, so that α and `opt_delta_light`'s moments count).
 fn check_delta(name: &str) -> Vec<String> {

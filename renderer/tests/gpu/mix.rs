@@ -10,7 +10,7 @@
 //!   differ, and a dropped carry or a wrong shift changes most values likewise.
 //! - [`resolve_matches_the_cpu`]: at the GPU's own hits (`scene_intersect`, 8k rays, seed 17/91)
 //!   of a scene with a mix nested in a mix, one weight a bitmap (in-memory, bilinear) and one a
-//!   constant, the material `mix_resolve` chooses equals `Scene::resolve_mix` at the same hit
+//!   constant, the material `material_resolve` chooses equals `Scene::resolve` at the same hit
 //!   (the GPU's point, t and barycentrics handed to the CPU). Exact, except where a textured
 //!   weight lies within 1e-3 of the hash (the two sides' texture coordinates differ by rounding,
 //!   ≤ 2e-5 but more near a sphere's poles (`renderer/tests/gpu/parity_textures.rs`), and the 8×8
@@ -224,7 +224,7 @@ fn resolve_scene() -> Scene {
     scene
 }
 
-/// `Scene::resolve_mix` step by step: the chosen material, and the smallest |u − w| over its
+/// `Scene::resolve` step by step: the chosen material, and the smallest |u − w| over its
 /// textured steps (∞ if none), at the hit; `salt_of` gives each mix's salt.
 fn cpu_chain(scene: &Scene, hit: &SurfaceHit, m0: u32, salt_of: impl Fn(u32) -> u32) -> (u32, f32) {
     let (mut m, mut margin) = (m0, f32::INFINITY);
@@ -275,7 +275,7 @@ fn resolve_matches_the_cpu() {
          var mi = NONE;
          if h.prim != NONE {
              let prim = prims[h.prim];
-             mi = mix_resolve(prim_material(prim), prim, h);
+             mi = material_resolve(prim_material(prim), prim, h, false).index;
          }
          outp(0u, vec4f(h.p, h.t));
          outp(1u, vec4f(bitcast<f32>(mi), bitcast<f32>(h.prim), h.b));",
@@ -307,8 +307,8 @@ fn resolve_matches_the_cpu() {
         let (want, margin) = cpu_chain(&scene, &hit, material, |m| m);
         assert_eq!(
             want,
-            scene.resolve_mix(&hit, material),
-            "the chain is resolve_mix"
+            scene.resolve(&hit, material, false),
+            "the chain is Scene::resolve"
         );
         if margin < 1e-3 {
             skipped += 1;

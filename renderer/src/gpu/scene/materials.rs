@@ -1,5 +1,6 @@
 //! Material records (`Material` in `materials/mod.wgsl`), one per [`Material`], and their kind tags;
-//! a mix's slot holds a mix record instead (`materials/mix.wgsl`), and a plastic with a textured α points
+//! a mix's slot holds a mix record instead (`materials/mix.wgsl`), a two-sided pair's a pair record
+//! (`materials/two_sided.wgsl`), and a plastic with a textured α points
 //! at its coat grid's tables instead of one table.
 //!
 //! A plastic's coat grid in `tables` ([`crate::materials::plastic_textured`]): the
@@ -15,7 +16,7 @@
 //! smooth coat), then R, w and nonlinear (0 or 1); its record holds the albedo in `a`, the tint
 //! and η in `b`, the microfacet slot in `c`.
 //! WGSL twin: `materials/mod.wgsl` (the record layout and the `switch` on [`MaterialTag`]),
-//! `materials/mix.wgsl` (a mix's record) and `materials/normal_map.wgsl` (the normal map's bits
+//! `materials/mix.wgsl` (a mix's record), `materials/two_sided.wgsl` (a pair's record) and `materials/normal_map.wgsl` (the normal map's bits
 //! of `h.y`, [`sides_word`]).
 
 use super::{bits, v4};
@@ -63,6 +64,10 @@ gpu_tags! {
         PlasticMitsuba => "MATERIAL_PLASTIC_MITSUBA",
         /// [`Material::ThinDielectric`].
         ThinDielectric => "MATERIAL_THIN_DIELECTRIC",
+        /// No [`Material`]: a two-sided pair's record
+        /// ([`crate::materials::two_sided::TwoSided`]), which `materials/mix.wgsl`'s resolve loop
+        /// resolves as it does a mix.
+        TwoSided => "MATERIAL_TWO_SIDED",
     }
 }
 
@@ -193,6 +198,14 @@ pub(super) fn encode(
                         mix_weights[index],
                     ],
                     a: [weight, 0.0, 0.0, bits(NONE)],
+                    b: [0.0; 4],
+                    c: [0.0, 0.0, 0.0, bits(NONE)],
+                };
+            }
+            if let Some(Some(pair)) = scene.sides.get(index) {
+                return GpuMaterial {
+                    h: [MaterialTag::TwoSided.gpu_tag(), pair.front, pair.back, NONE],
+                    a: [0.0, 0.0, 0.0, bits(NONE)],
                     b: [0.0; 4],
                     c: [0.0, 0.0, 0.0, bits(NONE)],
                 };

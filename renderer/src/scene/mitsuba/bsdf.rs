@@ -4,7 +4,8 @@
 //! lumis' materials.
 //!
 //! Mitsuba's BSDFs are one-sided (black from the back) unless wrapped in `twosided`, so a
-//! material is `"two_sided": false` unless it comes through a `twosided`; dielectrics have two
+//! material is `"two_sided": false` unless it comes through a `twosided` (one with two different
+//! BSDFs becomes a `"two_sided"` pair of the two, each translated as on its own); dielectrics have two
 //! media and neither. Mitsuba's defaults are filled in (diffuse reflectance 0.5, conductor
 //! `material` "none" = a perfect mirror, `bk7`/`polypropylene` inside and `air` outside, rough
 //! α 0.1, and Beckmann where no `distribution` is named; plastics become lumis' plastic with
@@ -37,7 +38,7 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
     let mut inner = el;
     let mut inner_plugin = ctx.plugin(el)?;
     let mut two_sided = false;
-    let mut normal_map = None;
+    let mut normal_map: Option<super::plugin::Plugin> = None;
     let mut map_outside = false;
     let mut mask = None;
     loop {
@@ -66,14 +67,25 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
                     [] => return Err(inner_plugin.error("a twosided BSDF needs a nested <bsdf>")),
                     [one] => *one,
                     [a, b] if std::ptr::eq(target(a), target(b)) => *a,
-                    [_, b, ..] => {
-                        return Err(b.el.pos.error(
-                            "a twosided BSDF with different front and back BSDFs is not \
-                             supported (lumis' two-sided materials are the same on both sides)",
-                        ));
+                    [a, b] => {
+                        inner_plugin.finish("one or two nested <bsdf>")?;
+                        if let Some(map) = &normal_map {
+                            let ty = map.ty;
+                            return Err(map.error(format!(
+                                "a {ty} around a twosided BSDF with two BSDFs is not supported \
+                                 (a {ty} inside it, around either BSDF, is)"
+                            )));
+                        }
+                        return two_sided_pair(ctx, el, &inner_plugin, [a, b], mask);
+                    }
+                    [_, _, c, ..] => {
+                        return Err(c
+                            .el
+                            .pos
+                            .error("a twosided BSDF has at most two nested <bsdf>"));
                     }
                 };
-                inner_plugin.finish("one or two (identical) nested <bsdf>")?;
+                inner_plugin.finish("one or two nested <bsdf>")?;
                 target(first)
             }
             "normalmap" | "bumpmap" if normal_map.is_none() => {
@@ -141,6 +153,48 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
         Some(map) => m["normal_map"] = normal_map_json(ctx, map, &format!("{path}.normal_map"))?,
         None => {}
     }
+    if let Some(mask) = &mask {
+        // Mitsuba's default opacity is ½.
+        m["opacity"] = scalar_param(ctx, mask, "opacity", 0.5, &format!("{path}.opacity"))?;
+        mask.finish("opacity, one nested <bsdf>")?;
+    }
+    ctx.materials.insert(name.clone(), m);
+    ctx.material_names
+        .insert(el as *const Element, Some(name.clone()));
+    Ok(Some(name))
+}
+
+/// A `twosided` with two different BSDFs (`parts`, front then back; `el` the outermost element,
+/// under `mask` if there is one): lumis' two-sided pair ([`crate::materials::two_sided`]) of the
+/// two BSDFs' materials, each translated (and named) as if on its own.
+fn two_sided_pair(
+    ctx: &mut Ctx,
+    el: &Element,
+    plugin: &super::plugin::Plugin,
+    parts: [&super::plugin::Prop; 2],
+    mask: Option<super::plugin::Plugin>,
+) -> Result<Option<String>, SceneError> {
+    let mut names = Vec::with_capacity(2);
+    for part in parts {
+        let part = target(part);
+        let ty = part.value("type").unwrap_or("");
+        // Mitsuba's twosided refuses every BSDF with a transmission or null component.
+        if matches!(
+            ty,
+            "dielectric" | "roughdielectric" | "thindielectric" | "null" | "mask"
+        ) {
+            return Err(part.pos.error(format!(
+                "a `{ty}` cannot be nested in twosided (Mitsuba refuses transmitting BSDFs there \
+                 too)"
+            )));
+        }
+        let name = material(ctx, part)?;
+        names.push(name.expect("only a null BSDF has no material"));
+    }
+    let name = ctx.material_name(el, el);
+    let path = crate::scene::walk::join("materials", &name);
+    ctx.origin(&path, plugin.pos());
+    let mut m = json!({"type": "two_sided", "front": names[0], "back": names[1]});
     if let Some(mask) = &mask {
         // Mitsuba's default opacity is ½.
         m["opacity"] = scalar_param(ctx, mask, "opacity", 0.5, &format!("{path}.opacity"))?;

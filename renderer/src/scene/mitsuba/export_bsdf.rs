@@ -2,7 +2,7 @@
 //! with the material's name as its `id` (the importer names a material by its id), wrapped in
 //! `twosided` (id on the wrapper) unless it is one-sided or a dielectric, in `normalmap` or
 //! `bumpmap` (inside the twosided) where it has one, and in `mask` (outermost) where it has an
-//! opacity; the inverse of
+//! opacity; a two-sided pair is a `twosided` of `<ref>`s to its two materials; the inverse of
 //! [`super::bsdf`] and [`super::texture`]: lumis' `ior` becomes `int_ior` with `ext_ior` 1,
 //! a reflectance conductor Mitsuba's `material="none"` (Fresnel 1) times
 //! `specular_reflectance`, α > 0 or a textured α the rough variant with `distribution="ggx"`,
@@ -28,6 +28,10 @@ impl Bsdfs {
     /// Marks material `index` as used; returns the id to `<ref>`.
     pub fn use_material(&mut self, materials: &[NamedMaterial], index: usize) -> String {
         if !self.used.contains(&index) {
+            // A pair's parts first: Mitsuba resolves a `<ref>` to an id declared before it.
+            for p in materials[index].sides.into_iter().flatten() {
+                self.use_material(materials, p);
+            }
             self.used.push(index);
         }
         materials[index].name.clone()
@@ -58,7 +62,7 @@ impl Bsdfs {
                     ),
                 ));
             }
-            material(&mut x, m, folder)?;
+            material(&mut x, m, materials, folder)?;
         }
         Ok(x.out)
     }
@@ -70,8 +74,14 @@ fn path_of(name: &str) -> String {
 }
 
 /// Whether the material reads texture coordinates (a non-constant texture in a slot, its
-/// opacity or its normal or bump map).
-pub(crate) fn is_textured(m: &NamedMaterial) -> bool {
+/// opacity or its normal or bump map, or one of its parts does); `all` are the scene's
+/// materials, which a mix or pair names (acyclic: the parser checked).
+pub(crate) fn is_textured(m: &NamedMaterial, all: &[NamedMaterial]) -> bool {
+    if m.parts()
+        .is_some_and(|p| p.iter().any(|&i| is_textured(&all[i], all)))
+    {
+        return true;
+    }
     let t = &m.textures;
     let map = m.normal_map.as_ref().map(|n| &n.texture);
     [
@@ -85,8 +95,37 @@ pub(crate) fn is_textured(m: &NamedMaterial) -> bool {
     .any(|s| s.is_some_and(|d| !d.texture.is_constant()))
 }
 
-/// One material as a declared `<bsdf>`.
-fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneError> {
+/// The `<bsdf>` elements of one material, outermost first: the material's name is the first's
+/// `id`, and each is closed at the end.
+struct Nest<'a> {
+    id: &'a str,
+    open: usize,
+}
+
+impl Nest<'_> {
+    fn open(&mut self, x: &mut Xml, ty: &str) {
+        if self.open == 0 {
+            x.open("bsdf", &[("type", ty), ("id", self.id)]);
+        } else {
+            x.open("bsdf", &[("type", ty)]);
+        }
+        self.open += 1;
+    }
+
+    fn close(self, x: &mut Xml) {
+        for _ in 0..self.open {
+            x.close("bsdf");
+        }
+    }
+}
+
+/// One material as a declared `<bsdf>`; `all` are the scene's materials, which a pair names.
+fn material(
+    x: &mut Xml,
+    m: &NamedMaterial,
+    all: &[NamedMaterial],
+    folder: &Path,
+) -> Result<(), SceneError> {
     let path = path_of(&m.name);
     if m.mix.is_some() {
         return Err(SceneError::new(
@@ -95,14 +134,14 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
              importer maps back (nor lumis' stochastic mix), so the scene would change",
         ));
     }
-    let wrap = m.two_sided && !m.material.transmits();
-    let ty = bsdf_type(m);
-    // The wrappers, outermost first, the id on the first: mask, then twosided around
-    // normalmap, the nesting whose back side lumis renders.
-    let mut wrappers = 0;
+    // The wrappers, outermost first: mask, then twosided around normalmap, the nesting whose
+    // back side lumis renders.
+    let mut nest = Nest {
+        id: &m.name,
+        open: 0,
+    };
     if let Some(opacity) = &m.opacity {
-        x.open("bsdf", &[("type", "mask"), ("id", &m.name)]);
-        wrappers += 1;
+        nest.open(x, "mask");
         texture_xml(
             x,
             "opacity",
@@ -112,13 +151,17 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
             &format!("{path}.opacity"),
         )?;
     }
-    if wrap {
-        if wrappers == 0 {
-            x.open("bsdf", &[("type", "twosided"), ("id", &m.name)]);
-        } else {
-            x.open("bsdf", &[("type", "twosided")]);
+    // A pair names its two materials, declared before it (`Bsdfs::use_material`).
+    if let Some(parts) = m.sides {
+        nest.open(x, "twosided");
+        for p in parts {
+            x.leaf("ref", &[("id", &all[p].name)]);
         }
-        wrappers += 1;
+        nest.close(x);
+        return Ok(());
+    }
+    if m.two_sided && !m.material.transmits() {
+        nest.open(x, "twosided");
     }
     if let Some(map) = &m.normal_map {
         // A bump map is Mitsuba's bumpmap, its heights the one nested texture.
@@ -126,12 +169,7 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
             None => ("normalmap", "normal_map", "normalmap"),
             Some(_) => ("bumpmap", "bump_map", "height"),
         };
-        if wrappers == 0 {
-            x.open("bsdf", &[("type", plugin), ("id", &m.name)]);
-        } else {
-            x.open("bsdf", &[("type", plugin)]);
-        }
-        wrappers += 1;
+        nest.open(x, plugin);
         texture_xml(
             x,
             texture,
@@ -152,11 +190,8 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
             }
         }
     }
-    if wrappers == 0 {
-        x.open("bsdf", &[("type", ty), ("id", &m.name)]);
-    } else {
-        x.open("bsdf", &[("type", ty)]);
-    }
+    let ty = bsdf_type(m);
+    nest.open(x, ty);
     let t = &m.textures;
     let tex = |slot: &Option<TextureDesc>| slot.clone().filter(|d| !d.texture.is_constant());
     match &m.material {
@@ -268,10 +303,7 @@ fn material(x: &mut Xml, m: &NamedMaterial, folder: &Path) -> Result<(), SceneEr
         }
         MaterialDesc::ThinDielectric { ior } => index(x, *ior),
     }
-    x.close("bsdf");
-    for _ in 0..wrappers {
-        x.close("bsdf");
-    }
+    nest.close(x);
     Ok(())
 }
 

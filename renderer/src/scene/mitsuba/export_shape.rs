@@ -44,7 +44,7 @@ pub(crate) fn shape(
 ) -> Result<(), SceneError> {
     let path = &s.json_path;
     let material = s.material.map(|i| &desc.materials[i]);
-    let textured = material.is_some_and(is_textured)
+    let textured = material.is_some_and(|m| is_textured(m, &desc.materials))
         || s.emission_texture
             .as_ref()
             .is_some_and(|t| !t.texture.is_constant());

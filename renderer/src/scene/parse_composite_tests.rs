@@ -1,4 +1,5 @@
-//! The `mix` material: parsing, its rules, writing it back, and its resolution per hit.
+//! Materials made of others, `mix` and `two_sided`: parsing, their rules, writing them back, and
+//! their resolution per hit.
 
 use crate::geometry::Ray;
 use crate::materials::Material;
@@ -166,10 +167,10 @@ fn counts(scene: &Scene, (u0, v0): (f32, f32), n: usize) -> Vec<usize> {
             .intersect(&Ray::new(target + Vec3::Y, -Vec3::Y))
             .unwrap();
         let material = scene.accel.primitives()[hit.prim as usize].material;
-        let m = scene.resolve_mix(&hit, material);
-        assert_eq!(m, scene.resolve_mix(&hit, material), "deterministic");
+        let m = scene.resolve(&hit, material, false);
+        assert_eq!(m, scene.resolve(&hit, material, false), "deterministic");
         assert_eq!(
-            *scene.material_at(&hit, material),
+            *scene.material_at(&hit, material, false),
             scene.materials[m as usize],
             "material_at is the resolved material"
         );
@@ -227,4 +228,156 @@ fn a_mix_resolves_per_hit_by_its_weight() {
     close(k[1], 0.5 * 0.3, "nested: b = ½ · 0.3");
     close(k[2], 0.5, "nested: c = ½");
     assert!(matches!(scene.materials[2], Material::Diffuse(_)));
+}
+
+#[test]
+fn a_two_sided_pair_names_front_and_back_and_writes_back() {
+    let s = with_materials(json!({
+        "pair": {"type": "two_sided", "front": "metal", "back": "white"},
+        "veiled": {"type": "two_sided", "front": "metal", "back": "white", "opacity": 0.5},
+        // A pair may hold a mix, and a mix a pair (with a two-sided partner).
+        "mixed": {"type": "two_sided", "front": "half", "back": "plastic"},
+        "half": {"type": "mix", "materials": ["pair", "white"], "weight": 0.5},
+    }));
+    let d = parse_scene_value(&s).unwrap();
+    let pair = &d.materials[index(&d, "pair")];
+    assert_eq!(pair.sides, Some([index(&d, "metal"), index(&d, "white")]));
+    assert!(pair.two_sided && pair.mix.is_none() && pair.textures.is_empty());
+    assert!(pair.opacity.is_none() && d.materials[index(&d, "veiled")].opacity.is_some());
+    // The front stands in for code that reads one BSDF.
+    assert_eq!(pair.material, d.materials[index(&d, "metal")].material);
+    assert_eq!(
+        d.materials[index(&d, "mixed")].material,
+        d.materials[index(&d, "white")].material,
+        "its front, the mix, favours its second at weight ½: white"
+    );
+    let written = d.to_json();
+    assert_eq!(
+        written["materials"]["veiled"],
+        json!({"type": "two_sided", "front": "metal", "back": "white", "opacity": 0.5})
+    );
+    assert_eq!(parse_scene_value(&written).unwrap(), d);
+}
+
+#[test]
+fn a_mix_keeps_its_opacity_when_written_back() {
+    let s = with_materials(json!({
+        "half": {"type": "mix", "materials": ["metal", "white"], "weight": 0.5, "opacity": 0.25},
+    }));
+    let d = parse_scene_value(&s).unwrap();
+    assert_eq!(d.to_json()["materials"]["half"]["opacity"], json!(0.25));
+    assert_eq!(parse_scene_value(&d.to_json()).unwrap(), d);
+}
+
+#[test]
+fn two_sided_pair_rules() {
+    let m = |v: Value| with_materials(json!({ "pair": v }));
+    let pair =
+        |front: &str, back: &str| m(json!({"type": "two_sided", "front": front, "back": back}));
+    let at = "materials.pair";
+    expect_err(
+        &pair("metal", "nope"),
+        &format!("{at}.back"),
+        "unknown material `nope` (defined: copper, metal, pair, plastic, white)",
+    );
+    expect_err(
+        &m(json!({"type": "two_sided", "front": "metal"})),
+        &format!("{at}.back"),
+        "missing required key `back`",
+    );
+    expect_err(
+        &m(json!({"type": "two_sided", "front": "metal", "back": "white", "two_sided": true})),
+        &format!("{at}.two_sided"),
+        "two-sided by definition",
+    );
+    expect_err(
+        &m(json!({"type": "two_sided", "front": "metal", "back": "white", "normal_map": {}})),
+        &format!("{at}.normal_map"),
+        "unknown key `normal_map`",
+    );
+    expect_err(
+        &pair("pair", "white"),
+        at,
+        "a two_sided pair cannot contain itself: pair → pair",
+    );
+    // Transmitting parts: a dielectric, a thin one, a mix with one.
+    for (name, v) in [
+        ("glass", json!({"type": "dielectric", "ior": 1.5})),
+        ("thin", json!({"type": "thin_dielectric", "ior": 1.5})),
+        (
+            "glassy",
+            json!({"type": "mix", "materials": ["white", "glass"], "weight": 0.1}),
+        ),
+    ] {
+        let mut s = pair("metal", name);
+        s["materials"][name] = v;
+        s["materials"]["glass"] = json!({"type": "dielectric", "ior": 1.5});
+        expect_err(
+            &s,
+            &format!("{at}.back"),
+            &format!("material `{name}` transmits light"),
+        );
+    }
+    let mut masked = pair("metal", "white");
+    masked["materials"]["white"]["opacity"] = json!(0.5);
+    expect_err(
+        &masked,
+        &format!("{at}.back"),
+        "a two_sided pair's sides cannot",
+    );
+    // A pair is two-sided: a mix of it and a one-sided material has two sets of sides.
+    let mut one_sided = with_materials(json!({
+        "pair": {"type": "two_sided", "front": "metal", "back": "white"},
+        "half": {"type": "mix", "materials": ["pair", "plastic"], "weight": 0.5},
+    }));
+    one_sided["materials"]["plastic"]["two_sided"] = json!(false);
+    expect_err(
+        &one_sided,
+        "materials.half.materials",
+        "differ in `two_sided`",
+    );
+}
+
+/// A pair resolves to its front for a path arriving on the front and to its back otherwise, at
+/// every hit, and through a mix the mix chooses first.
+#[test]
+fn a_two_sided_pair_resolves_by_the_side_of_arrival() {
+    let materials = json!({
+        "a": {"type": "diffuse", "albedo": [0.1, 0.1, 0.1]},
+        "b": {"type": "conductor", "alpha": 0.3, "reflectance": [0.9, 0.9, 0.9]},
+        "c": {"type": "diffuse", "albedo": [0.7, 0.7, 0.7]},
+        "m": {"type": "mix", "materials": ["pair", "c"], "weight": 0.5},
+        "pair": {"type": "two_sided", "front": "a", "back": "b"},
+    });
+    // Sorted by name: a, b, c, m, pair.
+    let scene = floor_scene(materials.clone(), "pair");
+    let ray = Ray::new(Vec3::new(0.3, 1.0, -0.2), -Vec3::Y);
+    let hit = scene.accel.intersect(&ray).unwrap();
+    let pair = scene.accel.primitives()[hit.prim as usize].material;
+    assert_eq!(scene.material_names[pair as usize], "pair");
+    assert!(scene.two_sided[pair as usize]);
+    assert_eq!(scene.resolve(&hit, pair, false), 0, "front: a");
+    assert_eq!(scene.resolve(&hit, pair, true), 1, "back: b");
+    assert_eq!(*scene.material_at(&hit, pair, true), scene.materials[1]);
+    // Through the mix: the pair where the mix chooses it, then by side; c either way.
+    let scene = floor_scene(materials, "m");
+    let mut seen = [[0; 5]; 2];
+    let mut rng = Rng::new(12, 0, 0);
+    for _ in 0..200 {
+        let o = Vec3::new(rng.next_f32() - 0.5, 1.0, rng.next_f32() - 0.5);
+        let hit = scene.accel.intersect(&Ray::new(o, -Vec3::Y)).unwrap();
+        for back in [false, true] {
+            seen[back as usize][scene.resolve(&hit, 3, back) as usize] += 1;
+        }
+    }
+    assert_eq!(
+        seen[0][1] + seen[1][0] + seen[0][3] + seen[0][4],
+        0,
+        "{seen:?}"
+    );
+    assert_eq!(
+        seen[0][0], seen[1][1],
+        "the mix chose the pair as often from either side"
+    );
+    assert!(seen[0][0] > 0 && seen[0][2] > 0, "{seen:?}");
 }
