@@ -417,7 +417,9 @@ fn kitchen_sink() -> SceneDesc {
                                 "raw": true, "uv_scale": [2, 2]}, "scale": -0.004,
                                 "shadowing": false}},
         "sheet": {"type": "thin_dielectric", "ior": 1.33},
-        "card": {"type": "two_sided", "front": "tinted", "back": "glossy"}
+        "card": {"type": "two_sided", "front": "tinted", "back": "glossy"},
+        "blend": {"type": "mix", "materials": ["plastic", "tinted"],
+                  "weight": {"type": "checkerboard", "color0": 0.2, "color1": 0.9, "uv_scale": [3, 2]}}
       },
       "shapes": [
         {"type": "quad", "corner": [-3, 0, -3], "edge_u": [6, 0, 0], "edge_v": [0, 0, 6],
@@ -458,7 +460,8 @@ fn kitchen_sink() -> SceneDesc {
         {"type": "quad", "corner": [-0.6, 0.2, -2.5], "edge_u": [1.2, 0, 0.1],
          "edge_v": [0, 1.2, 0], "material": "sheet"},
         {"type": "quad", "corner": [0.9, 0, -1.6], "edge_u": [0.3, 0, 0.6],
-         "edge_v": [0, 0.9, 0], "material": "card"}
+         "edge_v": [0, 0.9, 0], "material": "card"},
+        {"type": "sphere", "center": [-1.0, 0.3, -1.8], "radius": 0.3, "material": "blend"}
       ],
       "lights": [
         {"type": "point", "position": [1.5, 2.0, -1.0], "intensity": [2, 1.5, 1]},
@@ -683,15 +686,30 @@ fn what_mitsuba_cannot_take_is_an_error_naming_the_json_path() {
         )
     };
     let cases = [
+        // Mitsuba's blendbsdf mis-weighs a delta lobe.
         (
             base(
                 r#""a": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]},
-                   "b": {"type": "diffuse", "albedo": [0.1, 0.1, 0.1]},
+                   "b": {"type": "conductor", "alpha": 0, "reflectance": [1, 1, 1]},
                    "m": {"type": "mix", "materials": ["a", "b"], "weight": 0.5}"#,
                 r#"{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}"#,
             ),
             "materials.m",
-            "mix",
+            "a mix of `b`, which has a delta lobe, cannot be exported",
+        ),
+        // A mix's textured weight reads texture coordinates, which Mitsuba gives a polygon
+        // otherwise.
+        (
+            base(
+                r#""a": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]},
+                   "b": {"type": "diffuse", "albedo": [0.1, 0.1, 0.1]},
+                   "m": {"type": "mix", "materials": ["a", "b"],
+                         "weight": {"type": "checkerboard"}}"#,
+                r#"{"type": "polygon", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
+                    "material": "m"}"#,
+            ),
+            "shapes[0]",
+            "textured polygon",
         ),
         (
             base(

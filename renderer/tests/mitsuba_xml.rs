@@ -742,6 +742,96 @@ fn twosided_with_two_bsdfs_becomes_a_pair() {
     );
 }
 
+/// Mitsuba's `blendbsdf` becomes a `mix` of its two BSDFs' materials (each translated as on its
+/// own, in document order, which is Mitsuba 3.9.1's: weight 0 renders the first, checked once
+/// with ids in either alphabetical order), its `weight` a number or a texture read as a scalar
+/// (required: Mitsuba 3.9.1 refuses a blend without one), under a mask the mix's opacity; a null or masked BSDF in it, a BSDF with a delta
+/// lobe in it (Mitsuba 3.9.1's blend mis-weighs those, docs/mitsuba.md), one BSDF, and a
+/// twosided or normalmap around it are located errors.
+#[test]
+fn blendbsdf_becomes_a_mix() {
+    let dir = Dir::new("blend");
+    let body = r#"<bsdf type="roughconductor" id="gold"><float name="alpha" value="0.3"/></bsdf>
+<shape type="sphere"><bsdf type="blendbsdf" id="half"><float name="weight" value="0.5"/>
+    <bsdf type="diffuse" id="z_first"><rgb name="reflectance" value="0.2"/></bsdf><ref id="gold"/></bsdf></shape>
+<shape type="sphere"><bsdf type="mask" id="veiled"><float name="opacity" value="0.4"/><bsdf type="blendbsdf">
+    <texture name="weight" type="checkerboard"><float name="color0" value="0.1"/><float name="color1" value="0.7"/></texture>
+    <ref id="gold"/><bsdf type="roughconductor" id="rough"/></bsdf></bsdf></shape>"#;
+    let m = ok(&dir, body);
+    let want = expected(
+        &dir,
+        json!({
+            "materials": {
+                "gold": {"type": "conductor", "alpha": 0.3, "distribution": "beckmann",
+                         "reflectance": [1, 1, 1], "two_sided": false},
+                "z_first": {"type": "diffuse", "albedo": [0.2, 0.2, 0.2], "two_sided": false},
+                "rough": {"type": "conductor", "alpha": 0.1, "distribution": "beckmann",
+                          "reflectance": [1, 1, 1], "two_sided": false},
+                "half": {"type": "mix", "materials": ["z_first", "gold"], "weight": 0.5},
+                "veiled": {"type": "mix", "materials": ["gold", "rough"], "opacity": 0.4,
+                           "weight": {"type": "checkerboard", "color0": 0.7, "color1": 0.1}},
+            },
+            "shapes": unit_spheres(&["half", "veiled"]),
+        }),
+    );
+    assert_same(&m.desc, &want);
+    for (inner, ty, why) in [
+        (r#"<bsdf type="null"/>"#, "null", ""),
+        (
+            r#"<bsdf type="mask"><bsdf type="diffuse"/></bsdf>"#,
+            "mask",
+            "",
+        ),
+        // Delta lobes, which Mitsuba's blend mis-weighs: smooth, and inside a wrapper.
+        (
+            r#"<bsdf type="conductor"/>"#,
+            "conductor",
+            " (a BSDF with a delta lobe)",
+        ),
+        (
+            r#"<bsdf type="twosided"><bsdf type="plastic"/></bsdf>"#,
+            "twosided",
+            " (a BSDF with a delta lobe)",
+        ),
+        (
+            r#"<bsdf type="thindielectric"/>"#,
+            "thindielectric",
+            " (a BSDF with a delta lobe)",
+        ),
+    ] {
+        refused(
+            &dir,
+            &format!(
+                r#"<shape type="sphere"><bsdf type="blendbsdf"><float name="weight" value="0.5"/><bsdf type="diffuse"/>{inner}</bsdf></shape>"#
+            ),
+            &format!("<bsdf type=\"{ty}"),
+            "scene/shape/bsdf/bsdf",
+            &format!("a `{ty}`{why} in a blendbsdf is not supported"),
+        );
+    }
+    refused(
+        &dir,
+        r#"<shape type="sphere"><bsdf type="blendbsdf"><bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf></shape>"#,
+        "<bsdf type=\"blendbsdf",
+        "scene/shape/bsdf",
+        "a blendbsdf needs a `weight`",
+    );
+    refused(
+        &dir,
+        r#"<shape type="sphere"><bsdf type="twosided"><bsdf type="blendbsdf"><float name="weight" value="0.5"/><bsdf type="diffuse"/><bsdf type="conductor"/></bsdf></bsdf></shape>"#,
+        "<bsdf type=\"twosided",
+        "scene/shape/bsdf",
+        "a twosided around a blendbsdf is not supported",
+    );
+    refused(
+        &dir,
+        r#"<shape type="sphere"><bsdf type="bumpmap"><texture type="checkerboard"/><bsdf type="blendbsdf"><bsdf type="diffuse"/><bsdf type="conductor"/></bsdf></bsdf></shape>"#,
+        "<bsdf type=\"bumpmap",
+        "scene/shape/bsdf",
+        "a normalmap or bumpmap around a blendbsdf is not supported",
+    );
+}
+
 /// Textured alpha_u and alpha_v (each a number or a texture) become the scene format's textured
 /// pair: α_u's texture in `alpha`, α_v's (a number as a constant) in `alpha_v`.
 #[test]

@@ -443,6 +443,22 @@ fn xml_two_sided_swapped_sides_are_detected() {
     assert_detected("xml_two_sided", &m, 2880, "with the sides swapped");
 }
 
+/// `xml_blend.xml` (Mitsuba's `blendbsdf`, imported as lumis' stochastic mix: a sphere of rough
+/// plastic and rough copper by a bilinear 8-bit texture weight, a panel of a diffuse and a nested
+/// blend at constant weights) against its reference, seeds 2970–2974.
+#[test]
+fn xml_blend_matches_its_mitsuba_reference() {
+    every_strategy("xml_blend", [256, 256, 256, 256, 256], 2970);
+}
+
+/// Power: `xml_blend.xml` with `-D w=0.7` (the panel's weight the wrong way round: 0.7 for 0.3)
+/// fails, MIS 256 spp, seed 2980.
+#[test]
+fn xml_blend_reversed_weight_is_detected() {
+    let m = import("xml_blend", &[("w", "0.7")]);
+    assert_detected("xml_blend", &m, 2980, "with w=0.7");
+}
+
 /// `xml_textured_shapes.xml` (Mitsuba's texture coordinates on spheres and disks turned by
 /// their `to_world`: a checkered sphere with a tilted pole, a checkered disk turned about its
 /// normal, a sphere light with a checkered radiance, anisotropic gold about a tilted pole)

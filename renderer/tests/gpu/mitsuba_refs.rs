@@ -161,6 +161,16 @@ fn gpu_xml_mask_matches_mitsuba() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// `xml_blend.xml` (Mitsuba's `blendbsdf` as lumis' mix: `materials/mix.wgsl` with a textured
+/// and a constant weight, nested) against Mitsuba; against the CPU by the z-test in every
+/// strategy (`renderer/tests/gpu/mix.rs`), since a mix's choice hashes the hit's distance, whose
+/// last bits the two sides round differently.
+#[test]
+fn gpu_xml_blend_matches_mitsuba() {
+    let failures = check_with("xml_blend", false);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// `xml_two_sided.xml` (Mitsuba's `twosided` with two BSDFs: `materials/two_sided.wgsl`, the
 /// pair resolved by the side of arrival in `materials/mix.wgsl`'s loop, its one-sided parts seen
 /// from the back).

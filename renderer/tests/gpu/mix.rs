@@ -35,6 +35,13 @@
 //!   checkerboard of 0.02 and 0.5 (IOR 1.5), under a quad light. The CPU's render of the same
 //!   scene with the inner mix's weight inverted (0.9/0.1) must fail the same test: the test's
 //!   power against a swapped choice.
+//! - [`the_gpu_renders_the_cpus_blend_in_every_strategy`]: the scene
+//!   `tests/data/mitsuba/xml_blend.xml` (Mitsuba's `blendbsdf`, which the importer maps onto
+//!   mixes: a texture weight, a constant
+//!   one, a blend nested in a blend), GPU against CPU in every strategy by the block z-test (8×8
+//!   blocks, both films' variances, the suite's two stages; 32 spp, GPU seeds 4640 + i, CPU
+//!   5640 + i). The CPU agrees with Mitsuba's image by `renderer/tests/mitsuba_xml_refs.rs`
+//!   (`xml_blend_matches_its_mitsuba_reference`), the GPU's MIS by `gpu/mitsuba_refs.rs`.
 
 use crate::common;
 use crate::gpu_common;
@@ -507,4 +514,16 @@ fn gpu_mix_scene_matches_the_cpu() {
         decision.is_err(),
         "the z-test does not see an inverted mix weight"
     );
+}
+
+#[test]
+fn the_gpu_renders_the_cpus_blend_in_every_strategy() {
+    let scene = common::surface_detail::mitsuba_scene("xml_blend");
+    assert_eq!(scene.mixes.iter().flatten().count(), 3);
+    let Some(failures) =
+        gpu_common::images::gpu_vs_cpu_every_strategy("gpu xml_blend", &scene, 32, 4640, 8)
+    else {
+        return;
+    };
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -221,7 +221,7 @@ fn a_bumpmap_maps_onto_the_materials_bump_map() {
 #[test]
 fn refusals_name_file_line_and_element() {
     let dir = Dir::new("refusals");
-    let cases: [(&str, &str, &str, &str); 29] = [
+    let cases: [(&str, &str, &str, &str); 30] = [
         (
             r#"<emitter type="sunsky"/>"#,
             "sunsky",
@@ -286,7 +286,13 @@ fn refusals_name_file_line_and_element() {
             r#"<shape type="sphere"><bsdf type="blendbsdf"/></shape>"#,
             "blendbsdf",
             "scene/shape/bsdf",
-            "no BSDF mixtures",
+            "a blendbsdf needs two nested <bsdf>, it has 0",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="principled"/></shape>"#,
+            "principled",
+            "scene/shape/bsdf",
+            "BSDF type `principled` is not supported; lumis maps",
         ),
         (
             r#"<shape type="sphere"><bsdf type="mask"><bsdf type="mask"><bsdf type="diffuse"/></bsdf></bsdf></shape>"#,

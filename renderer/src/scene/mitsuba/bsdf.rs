@@ -25,7 +25,8 @@ use serde_json::{Value as Json, json};
 
 /// The BSDF types lumis maps, for messages.
 const SUPPORTED: &str = "diffuse, conductor, roughconductor, plastic, roughplastic, dielectric, \
-                         roughdielectric, thindielectric, twosided, normalmap, bumpmap, mask, null";
+                         roughdielectric, thindielectric, twosided, normalmap, bumpmap, mask, \
+                         blendbsdf, null";
 
 /// The scene format's material for BSDF element `el` (translated once, then named again),
 /// or `None` for a `null` BSDF.
@@ -76,7 +77,14 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
                                  (a {ty} inside it, around either BSDF, is)"
                             )));
                         }
-                        return two_sided_pair(ctx, el, &inner_plugin, [a, b], mask);
+                        return composite(
+                            ctx,
+                            el,
+                            &inner_plugin,
+                            [a, b],
+                            mask,
+                            Composite::TwoSided,
+                        );
                     }
                     [_, _, c, ..] => {
                         return Err(c
@@ -111,6 +119,27 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
             "a {ty} around a twosided BSDF is not supported: its back side is not what lumis \
              renders (a twosided around the {ty} is)"
         )));
+    }
+    if inner_plugin.ty == "blendbsdf" {
+        // Its parts are one-sided as Mitsuba's BSDFs are, and a mix's sides are its materials'.
+        if let Some(outer) = normal_map.as_ref().or(two_sided.then_some(&inner_plugin)) {
+            let what = if normal_map.is_some() {
+                "a normalmap or bumpmap"
+            } else {
+                "a twosided"
+            };
+            return Err(outer.error(format!(
+                "{what} around a blendbsdf is not supported (around either of its BSDFs, it is)"
+            )));
+        }
+        let nested = inner_plugin.objects("bsdf");
+        let [a, b] = nested.as_slice() else {
+            return Err(inner_plugin.error(format!(
+                "a blendbsdf needs two nested <bsdf>, it has {}",
+                nested.len()
+            )));
+        };
+        return composite(ctx, el, &inner_plugin, [a, b], mask, Composite::Blend);
     }
     if two_sided
         && matches!(
@@ -164,37 +193,82 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
     Ok(Some(name))
 }
 
-/// A `twosided` with two different BSDFs (`parts`, front then back; `el` the outermost element,
-/// under `mask` if there is one): lumis' two-sided pair ([`crate::materials::two_sided`]) of the
-/// two BSDFs' materials, each translated (and named) as if on its own.
-fn two_sided_pair(
+/// What a material made of two Mitsuba BSDFs is.
+#[derive(Clone, Copy, PartialEq)]
+enum Composite {
+    /// A `twosided` with two different BSDFs: lumis' two-sided pair
+    /// ([`crate::materials::two_sided`]), front then back.
+    TwoSided,
+    /// A `blendbsdf`: lumis' mix ([`crate::materials::mix`]), whose choice of the second BSDF
+    /// with probability `weight` at each hit has the blend's expected image.
+    Blend,
+}
+
+/// A material made of two BSDFs (`parts`, in document order; `el` the outermost element,
+/// under `mask` if there is one): each translated (and named) as if on its own.
+fn composite(
     ctx: &mut Ctx,
     el: &Element,
     plugin: &super::plugin::Plugin,
     parts: [&super::plugin::Prop; 2],
     mask: Option<super::plugin::Plugin>,
+    kind: Composite,
 ) -> Result<Option<String>, SceneError> {
     let mut names = Vec::with_capacity(2);
     for part in parts {
         let part = target(part);
         let ty = part.value("type").unwrap_or("");
-        // Mitsuba's twosided refuses every BSDF with a transmission or null component.
-        if matches!(
-            ty,
-            "dielectric" | "roughdielectric" | "thindielectric" | "null" | "mask"
-        ) {
+        // Mitsuba's twosided refuses every BSDF with a transmission or null component; lumis'
+        // mix and pair take no null lobe and no opacity on their parts (a ray meets or passes a
+        // surface before its material is chosen).
+        let refused = match kind {
+            Composite::TwoSided => matches!(
+                ty,
+                "dielectric" | "roughdielectric" | "thindielectric" | "null" | "mask"
+            ),
+            Composite::Blend => matches!(ty, "null" | "mask"),
+        };
+        if refused {
+            let msg = match kind {
+                Composite::TwoSided => format!(
+                    "a `{ty}` cannot be nested in twosided (Mitsuba refuses transmitting BSDFs \
+                     there too)"
+                ),
+                Composite::Blend => format!(
+                    "a `{ty}` in a blendbsdf is not supported (lumis' blend chooses one of its \
+                     BSDFs where a ray has met the surface; a mask around the blendbsdf is)"
+                ),
+            };
+            return Err(part.pos.error(msg));
+        }
+        let name = material(ctx, part)?.expect("only a null BSDF has no material");
+        if kind == Composite::Blend && has_delta_lobe(ctx, &name) {
             return Err(part.pos.error(format!(
-                "a `{ty}` cannot be nested in twosided (Mitsuba refuses transmitting BSDFs there \
-                 too)"
+                "a `{ty}` (a BSDF with a delta lobe) in a blendbsdf is not supported: Mitsuba \
+                 3.9.1's blendbsdf weighs a delta lobe's sample against its partner's density, \
+                 so its image is not the blend's, which lumis renders (docs/mitsuba.md); a \
+                 rough variant blends alike in both"
             )));
         }
-        let name = material(ctx, part)?;
-        names.push(name.expect("only a null BSDF has no material"));
+        names.push(name);
     }
     let name = ctx.material_name(el, el);
     let path = crate::scene::walk::join("materials", &name);
     ctx.origin(&path, plugin.pos());
-    let mut m = json!({"type": "two_sided", "front": names[0], "back": names[1]});
+    let mut m = match kind {
+        Composite::TwoSided => json!({"type": "two_sided", "front": names[0], "back": names[1]}),
+        Composite::Blend => {
+            // 0 is the first BSDF, 1 the second. Mitsuba documents a default of ½ but 3.9.1
+            // refuses a blend without one.
+            if !plugin.has("weight") {
+                return Err(plugin
+                    .error("a blendbsdf needs a `weight` (Mitsuba 3.9.1 refuses one without)"));
+            }
+            let weight = scalar_param(ctx, plugin, "weight", 0.5, &format!("{path}.weight"))?;
+            plugin.finish("weight, two nested <bsdf>")?;
+            json!({"type": "mix", "materials": names, "weight": weight})
+        }
+    };
     if let Some(mask) = &mask {
         // Mitsuba's default opacity is ½.
         m["opacity"] = scalar_param(ctx, mask, "opacity", 0.5, &format!("{path}.opacity"))?;
@@ -204,6 +278,25 @@ fn two_sided_pair(
     ctx.material_names
         .insert(el as *const Element, Some(name.clone()));
     Ok(Some(name))
+}
+
+/// Whether imported material `name` has a delta lobe (a smooth conductor, plastic coat or
+/// dielectric, a thin dielectric), itself or in a part: what Mitsuba's `blendbsdf` mis-weighs.
+fn has_delta_lobe(ctx: &Ctx, name: &str) -> bool {
+    let Some(m) = ctx.materials.get(name) else {
+        return false;
+    };
+    let part = |key: &str| m[key].as_str().is_some_and(|p| has_delta_lobe(ctx, p));
+    match m["type"].as_str() {
+        Some("thin_dielectric") => true,
+        Some("conductor" | "plastic" | "dielectric") => m["alpha"].as_f64() == Some(0.0),
+        Some("two_sided") => part("front") || part("back"),
+        Some("mix") => m["materials"].as_array().is_some_and(|ps| {
+            ps.iter()
+                .any(|p| p.as_str().is_some_and(|p| has_delta_lobe(ctx, p)))
+        }),
+        _ => false,
+    }
 }
 
 /// A `normalmap`'s parameters as the material's `normal_map` object (its nested BSDF is read
@@ -357,7 +450,6 @@ fn bsdf(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, Sc
                      twosided)"
                 }
                 "mask" => " here (a material has one mask)",
-                "blendbsdf" => " (lumis has no BSDF mixtures)",
                 _ => "",
             };
             return Err(b.error(format!(

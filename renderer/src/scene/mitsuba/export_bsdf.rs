@@ -2,7 +2,8 @@
 //! with the material's name as its `id` (the importer names a material by its id), wrapped in
 //! `twosided` (id on the wrapper) unless it is one-sided or a dielectric, in `normalmap` or
 //! `bumpmap` (inside the twosided) where it has one, and in `mask` (outermost) where it has an
-//! opacity; a two-sided pair is a `twosided` of `<ref>`s to its two materials; the inverse of
+//! opacity; a two-sided pair is a `twosided` and a mix a `blendbsdf` (its weight read as a scalar)
+//! of `<ref>`s to its two materials; the inverse of
 //! [`super::bsdf`] and [`super::texture`]: lumis' `ior` becomes `int_ior` with `ext_ior` 1,
 //! a reflectance conductor Mitsuba's `material="none"` (Fresnel 1) times
 //! `specular_reflectance`, α > 0 or a textured α the rough variant with `distribution="ggx"`,
@@ -28,8 +29,9 @@ impl Bsdfs {
     /// Marks material `index` as used; returns the id to `<ref>`.
     pub fn use_material(&mut self, materials: &[NamedMaterial], index: usize) -> String {
         if !self.used.contains(&index) {
-            // A pair's parts first: Mitsuba resolves a `<ref>` to an id declared before it.
-            for p in materials[index].sides.into_iter().flatten() {
+            // A mix's or pair's parts first: Mitsuba resolves a `<ref>` to an id declared
+            // before it.
+            for p in materials[index].parts().into_iter().flatten() {
                 self.use_material(materials, p);
             }
             self.used.push(index);
@@ -74,7 +76,7 @@ fn path_of(name: &str) -> String {
 }
 
 /// Whether the material reads texture coordinates (a non-constant texture in a slot, its
-/// opacity or its normal or bump map, or one of its parts does); `all` are the scene's
+/// opacity, its normal or bump map or a mix's weight, or one of its parts does); `all` are the scene's
 /// materials, which a mix or pair names (acyclic: the parser checked).
 pub(crate) fn is_textured(m: &NamedMaterial, all: &[NamedMaterial]) -> bool {
     if m.parts()
@@ -84,7 +86,9 @@ pub(crate) fn is_textured(m: &NamedMaterial, all: &[NamedMaterial]) -> bool {
     }
     let t = &m.textures;
     let map = m.normal_map.as_ref().map(|n| &n.texture);
+    let weight = m.mix.as_ref().and_then(|x| x.weight_texture.as_ref());
     [
+        weight,
         t.albedo.as_ref(),
         t.reflectance.as_ref(),
         t.alpha.as_ref(),
@@ -127,13 +131,6 @@ fn material(
     folder: &Path,
 ) -> Result<(), SceneError> {
     let path = path_of(&m.name);
-    if m.mix.is_some() {
-        return Err(SceneError::new(
-            path,
-            "a `mix` material cannot be exported: Mitsuba's blendbsdf is not what lumis' \
-             importer maps back (nor lumis' stochastic mix), so the scene would change",
-        ));
-    }
     // The wrappers, outermost first: mask, then twosided around normalmap, the nesting whose
     // back side lumis renders.
     let mut nest = Nest {
@@ -151,9 +148,41 @@ fn material(
             &format!("{path}.opacity"),
         )?;
     }
-    // A pair names its two materials, declared before it (`Bsdfs::use_material`).
-    if let Some(parts) = m.sides {
-        nest.open(x, "twosided");
+    // A mix or pair names its two materials, declared before it (`Bsdfs::use_material`).
+    if let Some(parts) = m.parts() {
+        match &m.mix {
+            // Mitsuba's blend has lumis' mix's expected image (docs/scene-format.md), but for
+            // a delta lobe, which it mis-weighs (docs/mitsuba.md).
+            Some(mix) => {
+                if let Some(&p) = parts.iter().find(|&&p| has_delta_lobe(&all[p], all)) {
+                    return Err(SceneError::new(
+                        path,
+                        format!(
+                            "a mix of `{}`, which has a delta lobe, cannot be exported: Mitsuba \
+                             3.9.1's blendbsdf weighs a delta lobe's sample against its \
+                             partner's density, so its image would not be lumis' mix's",
+                            all[p].name
+                        ),
+                    ));
+                }
+                nest.open(x, "blendbsdf");
+                let weight = match &mix.weight_texture {
+                    Some(t) => t.clone(),
+                    None => TextureDesc {
+                        texture: Texture::Constant(Vec3::splat(mix.weight as f32)),
+                    },
+                };
+                texture_xml(
+                    x,
+                    "weight",
+                    &weight,
+                    true,
+                    folder,
+                    &format!("{path}.weight"),
+                )?;
+            }
+            None => nest.open(x, "twosided"),
+        }
         for p in parts {
             x.leaf("ref", &[("id", &all[p].name)]);
         }
@@ -307,7 +336,23 @@ fn material(
     Ok(())
 }
 
-/// The Mitsuba plugin of a (non-mix) material.
+/// Whether `m` has a delta lobe (a smooth conductor, plastic coat or dielectric with no textured
+/// α, a thin dielectric), itself or in a part; `all` are the scene's materials.
+fn has_delta_lobe(m: &NamedMaterial, all: &[NamedMaterial]) -> bool {
+    if let Some(parts) = m.parts() {
+        return parts.iter().any(|&p| has_delta_lobe(&all[p], all));
+    }
+    let smooth = |alpha: f64| alpha == 0.0 && m.textures.alpha.is_none();
+    match &m.material {
+        MaterialDesc::Diffuse { .. } => false,
+        MaterialDesc::ThinDielectric { .. } => true,
+        MaterialDesc::Conductor { alpha, .. }
+        | MaterialDesc::Plastic { alpha, .. }
+        | MaterialDesc::Dielectric { alpha, .. } => smooth(*alpha),
+    }
+}
+
+/// The Mitsuba plugin of a material with a BSDF of its own (no mix, no pair).
 fn bsdf_type(m: &NamedMaterial) -> &'static str {
     let textured = m
         .textures
