@@ -1,12 +1,13 @@
 //! BSDFs: `diffuse`, `conductor`/`roughconductor`, `plastic`/`roughplastic`,
-//! `dielectric`/`roughdielectric`, `thindielectric`, `null`, and the wrappers `twosided`,
-//! `normalmap`/`bumpmap` and `mask` (a material's `opacity`, [`crate::materials::mask`]) onto
+//! `dielectric`/`roughdielectric`, `thindielectric`, `null`, the wrappers `twosided`,
+//! `normalmap`/`bumpmap` and `mask` (a material's `opacity`, [`crate::materials::mask`]), and
+//! `blendbsdf` (a `mix`, but around a delta lobe, which Mitsuba 3.9.1's blend mis-weighs) onto
 //! lumis' materials.
 //!
 //! Mitsuba's BSDFs are one-sided (black from the back) unless wrapped in `twosided`, so a
 //! material is `"two_sided": false` unless it comes through a `twosided` (one with two different
-//! BSDFs becomes a `"two_sided"` pair of the two, each translated as on its own); dielectrics have two
-//! media and neither. Mitsuba's defaults are filled in (diffuse reflectance 0.5, conductor
+//! BSDFs becomes a `"two_sided"` pair of the two, each translated as on its own); dielectrics
+//! have two media and neither. Mitsuba's defaults are filled in (diffuse reflectance 0.5, conductor
 //! `material` "none" = a perfect mirror, `bk7`/`polypropylene` inside and `air` outside, rough
 //! α 0.1, and Beckmann where no `distribution` is named; plastics become lumis' plastic with
 //! Mitsuba's coupling, `"model": "mitsuba"`), and an index pair becomes lumis' relative `ior` =
