@@ -165,10 +165,7 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
         ctx.material_names.insert(el as *const Element, None);
         return Ok(None);
     }
-    let name = ctx.material_name(el, inner);
-    // Quoted as the JSON front end quotes it in its messages (`materials."diffuse@3:5"`).
-    let path = crate::scene::walk::join("materials", &name);
-    ctx.origin(&path, inner_plugin.pos());
+    let (name, path) = name_material(ctx, el, inner, inner_plugin.pos());
     let mut m = bsdf(ctx, &inner_plugin, &path)?;
     if !matches!(
         inner_plugin.ty,
@@ -183,7 +180,35 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
         Some(map) => m["normal_map"] = normal_map_json(ctx, map, &format!("{path}.normal_map"))?,
         None => {}
     }
-    if let Some(mask) = &mask {
+    add_material(ctx, el, name, &path, m, mask.as_ref())
+}
+
+/// The name of the material of element `el` (whose BSDF is `inner`) and its JSON path, with `pos`
+/// recorded as where it comes from.
+fn name_material(
+    ctx: &mut Ctx,
+    el: &Element,
+    inner: &Element,
+    pos: &super::xml::Pos,
+) -> (String, String) {
+    let name = ctx.material_name(el, inner);
+    // Quoted as the JSON front end quotes it in its messages (`materials."diffuse@3:5"`).
+    let path = crate::scene::walk::join("materials", &name);
+    ctx.origin(&path, pos);
+    (name, path)
+}
+
+/// Adds `m`, material `name` at `path`, with `mask`'s opacity where there is one, as the material
+/// of element `el`.
+fn add_material(
+    ctx: &mut Ctx,
+    el: &Element,
+    name: String,
+    path: &str,
+    mut m: Json,
+    mask: Option<&super::plugin::Plugin>,
+) -> Result<Option<String>, SceneError> {
+    if let Some(mask) = mask {
         // Mitsuba's default opacity is ½.
         m["opacity"] = scalar_param(ctx, mask, "opacity", 0.5, &format!("{path}.opacity"))?;
         mask.finish("opacity, one nested <bsdf>")?;
@@ -253,10 +278,8 @@ fn composite(
         }
         names.push(name);
     }
-    let name = ctx.material_name(el, el);
-    let path = crate::scene::walk::join("materials", &name);
-    ctx.origin(&path, plugin.pos());
-    let mut m = match kind {
+    let (name, path) = name_material(ctx, el, el, plugin.pos());
+    let m = match kind {
         Composite::TwoSided => json!({"type": "two_sided", "front": names[0], "back": names[1]}),
         Composite::Blend => {
             // 0 is the first BSDF, 1 the second. Mitsuba documents a default of ½ but 3.9.1
@@ -270,15 +293,7 @@ fn composite(
             json!({"type": "mix", "materials": names, "weight": weight})
         }
     };
-    if let Some(mask) = &mask {
-        // Mitsuba's default opacity is ½.
-        m["opacity"] = scalar_param(ctx, mask, "opacity", 0.5, &format!("{path}.opacity"))?;
-        mask.finish("opacity, one nested <bsdf>")?;
-    }
-    ctx.materials.insert(name.clone(), m);
-    ctx.material_names
-        .insert(el as *const Element, Some(name.clone()));
-    Ok(Some(name))
+    add_material(ctx, el, name, &path, m, mask.as_ref())
 }
 
 /// Whether imported material `name` has a delta lobe (a smooth conductor, plastic coat or
