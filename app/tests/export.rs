@@ -105,8 +105,9 @@ fn export_writes_xml_and_ply_that_render_like_the_json() {
 fn an_inexpressible_scene_is_one_error_line_and_writes_nothing() {
     let dir = TempDir::new("err");
     let json = dir.0.join("mix.json");
-    let mix = r#", "dark": {"type": "diffuse", "albedo": [0.1, 0.1, 0.1]},
-        "m": {"type": "mix", "materials": ["floor", "dark"], "weight": 0.5}"#;
+    // A mix with a delta lobe: Mitsuba's blendbsdf would weigh it differently (docs/mitsuba.md).
+    let mix = r#", "mirror": {"type": "conductor", "alpha": 0, "reflectance": [0.9, 0.9, 0.9]},
+        "m": {"type": "mix", "materials": ["floor", "mirror"], "weight": 0.5}"#;
     std::fs::write(&json, scene("m", mix)).unwrap();
     let xml = dir.0.join("out.xml");
     let out = lumis(&[
