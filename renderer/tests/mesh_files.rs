@@ -292,6 +292,7 @@ fn mesh_attributes_reach_the_scene_in_world_space() {
                 .map(|i| Vec2::new(i as f32 * 0.1, 1.0 - i as f32 * 0.2))
                 .collect(),
         ),
+        attributes: Vec::new(),
     };
     lumis::scene::mesh::ply::write(
         &dir.join("attr.ply"),

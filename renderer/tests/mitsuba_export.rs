@@ -528,6 +528,20 @@ fn masks_round_trip_at_unlimited_depth() {
     assert!(err.to_string().contains("materials.raw.opacity"), "{err}");
 }
 
+/// Mitsuba's `mesh_attribute` textures (`tests/data/mitsuba/xml_mesh_attribute.xml`: vertex and
+/// face attributes of a PLY file without texture coordinates, a scaled 8-bit one, a scalar one as
+/// α) go out as `mesh_attribute` on the same file and come back rendering the same image, bit
+/// for bit.
+#[test]
+fn mesh_attribute_textures_round_trip() {
+    let xml = common::data_dir()
+        .join("mitsuba")
+        .join("xml_mesh_attribute.xml");
+    let m = lumis::scene::mitsuba::load(&xml, &[]).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(m.desc.mesh_attributes.len(), 3);
+    assert_round_trip(&m.desc, "mesh_attribute");
+}
+
 /// A gaussian pixel filter goes out as Mitsuba's `gaussian` rfilter and comes back as the same
 /// filter (the same image, bit for bit); a radius other than Mitsuba's 4σ is refused by path.
 #[test]

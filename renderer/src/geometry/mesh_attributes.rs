@@ -1,7 +1,8 @@
 //! Vertex attributes of mesh triangles: shading normals and texture coordinates, stored once per
 //! vertex (as the file has them, normals already in world space) and found from a hit's
-//! barycentrics. Triangles without attributes (the JSON shapes, `face_normals` meshes without
-//! UVs) have none stored and cost nothing.
+//! barycentrics, and the named vertex and face attributes that `mesh_attribute` textures read
+//! ([`MeshAttributes::named`]). Triangles without attributes (the JSON shapes, `face_normals`
+//! meshes without UVs) have none stored and cost nothing.
 //!
 //! Conventions (Mitsuba 3's, so that references agree):
 //! - **UVs** follow the image-row convention of textures (`v = 0` is the top row): glTF and PLY
@@ -31,6 +32,22 @@ pub struct AttrMesh {
     pub uv_base: u32,
     /// [`HAS_NORMALS`] | [`HAS_UVS`].
     pub flags: u32,
+    /// Index of its entry for slot 0 in [`MeshAttributes::named_slots`] (one entry per slot
+    /// follows), or [`NONE`] where the scene's textures read no named attribute.
+    pub named: u32,
+}
+
+/// Where one mesh's values of one named attribute (a texture slot) start.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NamedSlot {
+    /// Index of its vertex 0's or face 0's value in [`MeshAttributes::named_values`]; [`NONE`]
+    /// where the mesh lacks the attribute.
+    pub base: u32,
+    /// The attribute record of the mesh's face 0: a mesh with named attributes has one record
+    /// per face, in file order, so face `k`'s is `first_triangle + k`.
+    pub first_triangle: u32,
+    /// One value per face (`face_…`), not per vertex.
+    pub per_face: bool,
 }
 
 /// One triangle's vertices in its mesh (16 bytes a triangle: the attributes themselves are
@@ -54,6 +71,10 @@ pub struct MeshAttributes {
     pub meshes: Vec<AttrMesh>,
     /// Per attributed triangle.
     pub triangles: Vec<AttrTriangle>,
+    /// Per mesh with named attributes, one entry per slot.
+    pub named_slots: Vec<NamedSlot>,
+    /// The named attributes' values (one component stored in all three).
+    pub named_values: Vec<Vec3>,
 }
 
 impl MeshAttributes {
@@ -95,6 +116,30 @@ impl MeshAttributes {
             return None;
         }
         Some(tri.v.map(|i| self.uvs[(mesh.uv_base + i) as usize]))
+    }
+
+    /// The value of named attribute `slot` at barycentrics `b = (b1, b2)` of triangle `attr`: a
+    /// vertex attribute interpolated as Mitsuba's `Mesh::eval_attribute`, a face attribute the
+    /// face's; black where the triangle's mesh lacks it (or `attr` is [`NONE`]).
+    #[inline]
+    pub fn named(&self, slot: u32, attr: u32, b: Vec2) -> Vec3 {
+        if attr == NONE {
+            return Vec3::ZERO;
+        }
+        let tri = &self.triangles[attr as usize];
+        let mesh = &self.meshes[tri.mesh as usize];
+        if mesh.named == NONE {
+            return Vec3::ZERO;
+        }
+        let s = &self.named_slots[(mesh.named + slot) as usize];
+        if s.base == NONE {
+            Vec3::ZERO
+        } else if s.per_face {
+            self.named_values[(s.base + attr - s.first_triangle) as usize]
+        } else {
+            let [v0, v1, v2] = tri.v.map(|i| self.named_values[(s.base + i) as usize]);
+            (1.0 - b.x - b.y) * v0 + b.x * v1 + b.y * v2
+        }
     }
 
     /// The texture coordinates at barycentrics `b = (b1, b2)` of triangle `attr`: interpolated
@@ -146,6 +191,7 @@ mod tests {
             normal_base: 0,
             uv_base: 0,
             flags,
+            named: NONE,
         });
         a.triangles.push(AttrTriangle {
             v: [0, 1, 2],
@@ -201,6 +247,47 @@ mod tests {
         assert!((a.uv(0, b) - (0.25 * t[0] + 0.25 * t[1] + 0.5 * t[2])).length() < 1e-7);
         assert_eq!(one_triangle(Some([Vec3::Z; 3]), None).uv(0, b), b);
         assert_eq!(a.uv(NONE, b), b);
+    }
+
+    #[test]
+    fn named_attributes_interpolate_per_vertex_and_are_constant_per_face() {
+        let mut a = one_triangle(None, None);
+        // Slot 0: a vertex attribute; slot 1: a face attribute; slot 2: missing.
+        a.named_values = vec![Vec3::X, Vec3::Y, Vec3::Z, Vec3::new(0.1, 0.2, 0.3)];
+        a.meshes[0].named = 0;
+        a.named_slots = vec![
+            NamedSlot {
+                base: 0,
+                first_triangle: 0,
+                per_face: false,
+            },
+            NamedSlot {
+                base: 3,
+                first_triangle: 0,
+                per_face: true,
+            },
+            NamedSlot {
+                base: NONE,
+                first_triangle: 0,
+                per_face: false,
+            },
+        ];
+        let b = Vec2::new(0.25, 0.5);
+        assert_eq!(a.named(0, 0, Vec2::ZERO), Vec3::X);
+        assert_eq!(a.named(0, 0, Vec2::X), Vec3::Y);
+        assert_eq!(a.named(0, 0, Vec2::Y), Vec3::Z);
+        assert!((a.named(0, 0, b) - Vec3::new(0.25, 0.25, 0.5)).length() < 1e-7);
+        assert_eq!(a.named(1, 0, b), Vec3::new(0.1, 0.2, 0.3));
+        assert_eq!(a.named(2, 0, b), Vec3::ZERO);
+        assert_eq!(a.named(0, NONE, b), Vec3::ZERO);
+        // A second face of the mesh reads the next face value.
+        a.triangles.push(AttrTriangle {
+            v: [2, 1, 0],
+            mesh: 0,
+        });
+        a.named_values.push(Vec3::ONE);
+        assert_eq!(a.named(1, 1, b), Vec3::ONE);
+        assert_eq!(a.named(0, 1, Vec2::ZERO), Vec3::Z);
     }
 
     #[test]

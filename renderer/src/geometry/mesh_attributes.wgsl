@@ -1,11 +1,13 @@
 // Vertex attributes of mesh triangles (shading normals, texture coordinates) found from a hit's
-// barycentrics, the twin of `geometry/mesh_attributes.rs`, same expressions in the same order,
+// barycentrics, the twin of `geometry/mesh_attributes.rs` (and of the lookup of
+// `textures/mesh_attribute.rs`), same expressions in the same order,
 // same fallbacks. The records live in `vertex_data` at the offsets `params.attr` (written by
 // `gpu/scene/attributes.rs`):
 //   triangles (params.attr.x), indexed by a primitive's attr: bits of (v0, v1, v2, mesh);
-//   meshes (params.attr.y): bits of (normal_base, uv_base, flags, 0);
+//   meshes (params.attr.y): bits of (normal_base, uv_base, flags, first named slot or NONE);
 //   normals (params.attr.z): (x, y, z, 0), unit and in world space;
-//   uvs (params.attr.w): two per vec4, vertex i in .xy of vec4 i/2 if i is even, .zw if odd.
+//   uvs (params.attr.w): two per vec4, vertex i in .xy of vec4 i/2 if i is even, .zw if odd;
+//   named slots and values, at the absolute indices the meshes and slots hold.
 // Only in programs that need it: shading normals under HAS_SHADING_NORMALS, texture coordinates
 // under HAS_MESH_UVS (textures, or the tangents of anisotropic materials), their interpolation
 // under HAS_TEXTURES.
@@ -78,6 +80,34 @@ fn shading_normal(attr: u32, b: vec2f, ng: vec3f) -> ShadingNormal {
     return ShadingNormal(true, interpolate_normal(n0, n1, n2, b, ng));
 }
 
+// #endif
+
+// #if HAS_MESH_ATTRIBUTES
+// `MeshAttributes::named`: named attribute `slot` at barycentrics b of triangle `attr`, a vertex
+// attribute interpolated, a face attribute the face's; black where the mesh lacks it or attr is
+// NONE. A mesh record's w and a slot record's x are absolute `vertex_data` indices
+// (`gpu/scene/attributes.rs`).
+fn mesh_named(slot: u32, attr: u32, b: vec2f) -> vec3f {
+    if attr == NONE {
+        return vec3f(0.0);
+    }
+    let tri = attr_triangle(attr);
+    let mesh = attr_mesh(tri.w);
+    if mesh.w == NONE {
+        return vec3f(0.0);
+    }
+    let s = bitcast<vec4<u32>>(vertex_data[mesh.w + slot]);
+    if s.x == NONE {
+        return vec3f(0.0);
+    }
+    if s.z != 0u {
+        return vertex_data[s.x + attr - s.y].xyz;
+    }
+    let v0 = vertex_data[s.x + tri.x].xyz;
+    let v1 = vertex_data[s.x + tri.y].xyz;
+    let v2 = vertex_data[s.x + tri.z].xyz;
+    return (1.0 - b.x - b.y) * v0 + b.x * v1 + b.y * v2;
+}
 // #endif
 
 // #if HAS_TEXTURES

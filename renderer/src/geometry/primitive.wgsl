@@ -166,6 +166,14 @@ fn surface_uv(p: Prim, hit: SurfaceHit) -> vec2f {
     }
 }
 
+// #if HAS_TEXTURES
+// `Scene::tex_point`: where textures are looked up at `hit` on primitive `p`.
+fn surface_tex(p: Prim, hit: SurfaceHit) -> TexPoint {
+    let attr = select(NONE, prim_attr(p), prim_kind(p) == SHAPE_TRIANGLE);
+    return TexPoint(surface_uv(p, hit), attr, hit.b);
+}
+// #endif
+
 // `Scene::uv_at` of point y on the sphere (centre, radius, frame): hits and sphere lights'
 // samples.
 fn sphere_uv(center: vec3f, radius: f32, frame: Frame, y: vec3f) -> vec2f {

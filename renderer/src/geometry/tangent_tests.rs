@@ -38,11 +38,13 @@ fn one_triangle(uvs: [Vec2; 3]) -> MeshAttributes {
             normal_base: 0,
             uv_base: 0,
             flags: HAS_UVS,
+            named: NONE,
         }],
         triangles: vec![AttrTriangle {
             v: [0, 1, 2],
             mesh: 0,
         }],
+        ..MeshAttributes::default()
     }
 }
 

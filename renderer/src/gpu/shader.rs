@@ -194,6 +194,9 @@ pub struct Features {
     /// it follows the scene's data (the opacity records lead `tables` only in a scene with
     /// masks), so a program with it reads that scene's records only.
     pub has_masks: bool,
+    /// `mesh_attribute` textures: the named attribute lookup of `geometry/mesh_attributes.wgsl`
+    /// (texture lookups as with [`Features::has_textures`]).
+    pub has_mesh_attributes: bool,
 }
 
 impl Features {
@@ -232,6 +235,7 @@ impl Features {
             has_signed_filter: true,
             has_normal_maps: true,
             has_masks: true,
+            has_mesh_attributes: true,
         }
     }
 
@@ -252,6 +256,7 @@ impl Features {
             has_signed_filter: scene.camera.filter.is_signed(),
             has_normal_maps: !scene.normal_maps.is_empty(),
             has_masks: !scene.opacity.is_empty(),
+            has_mesh_attributes: !scene.attributes.named_slots.is_empty(),
             ..Features::default()
         };
         // A mix's textured weight is looked up like a material's texture.
@@ -343,7 +348,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 38] {
+    fn defines(&self) -> [(&'static str, bool); 39] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -400,6 +405,10 @@ impl Features {
             ("HAS_SIGNED_FILTER", self.has_signed_filter),
             ("HAS_NORMAL_MAPS", self.has_normal_maps),
             ("HAS_MASKS", self.has_masks),
+            (
+                "HAS_MESH_ATTRIBUTES",
+                self.textures() && self.has_mesh_attributes,
+            ),
             // The mutation points of `crate::mutants` (only with the `mutants` feature).
             ("MUTANTS", cfg!(feature = "mutants")),
         ]

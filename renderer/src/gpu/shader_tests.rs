@@ -558,6 +558,7 @@ mod shading_normal_specialisation {
             indices: vec![[0, 1, 2]],
             normals: normals.then(|| vec![Vec3::Z, Vec3::new(0.1, 0.0, 1.0), Vec3::Z]),
             uvs: None,
+            attributes: Vec::new(),
         };
         obj::write(&file, &mesh).unwrap();
         let json = format!(

@@ -289,13 +289,13 @@ fn trace<const TRANSMISSION: bool>(
         // A normal or bump map tilts the frame the material sees, about the frame of ∂p/∂u
         // (`materials/normal_map.rs`, `materials/bump_map.rs`).
         let mut perturbation = None;
-        if let Some((map, uv)) = detail_map {
+        if let Some((map, at)) = detail_map {
             // A bump map's ∂p/∂u, kept for the base frame (`dp_duv`'s is `dp_du`'s, bit for bit).
             let mut bump_dp_du = None;
             let tilt = match map.height_scale {
-                None => Some(NormalMap::decode(map.texture.eval(uv))),
+                None => Some(NormalMap::decode(map.texture.eval(at))),
                 // In the front's frame, which `seen_from` mirrors on the back as for a texel.
-                Some(scale) => map.texture.eval_1_grad(uv).and_then(|g| {
+                Some(scale) => map.texture.eval_1_grad(at.uv).and_then(|g| {
                     let (dp_du, dp_dv) = tangent::dp_duv(prim, &scene.attributes, &hit)?;
                     bump_dp_du = Some(dp_du);
                     let ns_front = if back { -ns } else { ns };

@@ -328,16 +328,16 @@ fn radiance(camera_ray: Ray) -> vec3f {
 // #if HAS_TEXTURES
         // `Scene::shading_at`: the hit's texture coordinates, once for the material's textures
         // and its normal or bump map.
-        var uv = vec2f(0.0);
+        var at = tex_uv(vec2f(0.0));
         var needs_uv = material_textured(m);
 // #if HAS_NORMAL_MAPS
         needs_uv = needs_uv || normal_map_texture(m) != 0u;
 // #endif
         if needs_uv {
-            uv = surface_uv(prim, hit);
+            at = surface_tex(prim, hit);
         }
         if material_textured(m) {
-            m = material_at(m, uv);
+            m = material_at(m, at);
         }
 // #endif
         // `n`: the geometric normal, which decides sides and ray offsets; the BSDF lives in the
@@ -404,9 +404,9 @@ fn radiance(camera_ray: Ray) -> vec3f {
                 let ns_front = select(frame.n, -frame.n, back);
                 let front = tangent_frame(ns_front, d.du);
                 dp_du = d.du;
-                tilt = bump_normal(scale * texture_eval_1_grad(nm - 1u, uv), d.du, d.dv, ns_front, hit.n, front);
+                tilt = bump_normal(scale * texture_eval_1_grad(nm - 1u, at.uv), d.du, d.dv, ns_front, hit.n, front);
             } else {
-                tilt = vec4f(2.0 * texture_eval(nm - 1u, uv) - vec3f(1.0), 1.0);
+                tilt = vec4f(2.0 * texture_eval(nm - 1u, at) - vec3f(1.0), 1.0);
             }
             if tilt.w != 0.0 {
                 if !bump {

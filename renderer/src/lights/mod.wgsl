@@ -295,7 +295,7 @@ fn light_emitted(l: Light, p: Prim, hit: SurfaceHit, le: vec3f) -> vec3f {
     if t == NONE || all(le == vec3f(0.0)) {
         return le;
     }
-    return texture_eval(t, surface_uv(p, hit));
+    return texture_eval(t, surface_tex(p, hit));
 }
 
 // #if HAS_LIGHTS
@@ -303,41 +303,48 @@ fn light_emitted(l: Light, p: Prim, hit: SurfaceHit, le: vec3f) -> vec3f {
 // rule of the primitive under it (`surface_uv`): a triangle light's attributes, the quad's
 // triangle holding the point, a polygon's triangle (no attributes: its barycentrics).
 fn light_uv(l: Light, s: LightSample) -> vec2f {
+    return light_tex(l, s).uv;
+}
+
+// `Scene::light_uv`'s point for textures: a triangle light's (or quad's triangle's) record and
+// barycentrics with its texture coordinates.
+fn light_tex(l: Light, s: LightSample) -> TexPoint {
     switch l.h.x {
 // #if HAS_TRIANGLE_LIGHT
         case LIGHT_TRIANGLE: {
-            return mesh_uv(l.h.y, s.b);
+            return TexPoint(mesh_uv(l.h.y, s.b), l.h.y, s.b);
         }
 // #endif
 // #if HAS_POLYGON_LIGHT
         case LIGHT_POLYGON: {
-            return mesh_uv(NONE, s.b);
+            return tex_uv(mesh_uv(NONE, s.b));
         }
 // #endif
 // #if HAS_QUAD_LIGHT
         case LIGHT_QUAD: {
             let tp = quad_light_triangle_point(l, s.p);
-            return mesh_uv(select(l.h.y + tp.k, NONE, l.h.y == NONE), tp.b);
+            let attr = select(l.h.y + tp.k, NONE, l.h.y == NONE);
+            return TexPoint(mesh_uv(attr, tp.b), attr, tp.b);
         }
 // #endif
 // #if HAS_DISK_LIGHT
         case LIGHT_DISK: {
-            return disk_uv(l.a.xyz, l.b.xyz, l.c.xyz, l.a.w, s.p);
+            return tex_uv(disk_uv(l.a.xyz, l.b.xyz, l.c.xyz, l.a.w, s.p));
         }
 // #endif
 // #if HAS_SPHERE_LIGHT
         case LIGHT_SPHERE: {
-            return sphere_uv(l.a.xyz, l.a.w, Frame(l.b.xyz, l.c.xyz, l.d.xyz), s.p);
+            return tex_uv(sphere_uv(l.a.xyz, l.a.w, Frame(l.b.xyz, l.c.xyz, l.d.xyz), s.p));
         }
 // #endif
 // #if HAS_DELTA_LIGHT
         // A spot's or projector's sample carries its texture coordinates.
         case LIGHT_SPOT, LIGHT_PROJECTOR: {
-            return s.b;
+            return tex_uv(s.b);
         }
 // #endif
         default: {
-            return vec2f(unknown_tag());
+            return tex_uv(vec2f(unknown_tag()));
         }
     }
 }
@@ -350,7 +357,7 @@ fn light_sample_textured(l: Light, s: LightSample) -> LightSample {
         return s;
     }
     var out = s;
-    out.le = texture_eval(t, light_uv(l, s));
+    out.le = texture_eval(t, light_tex(l, s));
 // #if HAS_DELTA_LIGHT
     // A delta light's radiance is its intensity and falloff, modulated by the texture.
     if light_is_delta(l) {

@@ -14,8 +14,8 @@ fn mask_meets(id: u32, ray: Ray, t: f32) -> bool {
     if record == NONE {
         return true;
     }
-    let uv = surface_uv(p, shape_surface_hit(p, ray, t, id));
-    return mask_kept(texture_eval_scalar(record, uv), ray.o, t, id);
+    let at = surface_tex(p, shape_surface_hit(p, ray, t, id));
+    return mask_kept(texture_eval_scalar(record, at), ray.o, t, id);
 }
 
 // `kept`: with probability alpha.

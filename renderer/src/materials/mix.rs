@@ -15,8 +15,8 @@
 //! `gpu/u64.wgsl` (the u64 arithmetic, emulated in u32 pairs).
 
 use crate::sampler::owen;
-use crate::textures::Texture;
-use glam::{Vec2, Vec3};
+use crate::textures::{TexPoint, Texture};
+use glam::Vec3;
 
 /// A mix of two materials of a scene.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,13 +30,13 @@ pub struct Mix {
 
 impl Mix {
     /// The material chosen at a hit: `p` and `t` are the hit's point and ray distance, `salt`
-    /// the mix's own index, `uv` gives the texture coordinates (called only for a textured
-    /// weight).
+    /// the mix's own index, `at` gives where textures are looked up (called only for a
+    /// textured weight).
     #[inline]
-    pub fn choose(&self, p: Vec3, t: f32, salt: u32, uv: impl FnOnce() -> Vec2) -> u32 {
+    pub fn choose<'a>(&self, p: Vec3, t: f32, salt: u32, at: impl FnOnce() -> TexPoint<'a>) -> u32 {
         let w = match &self.weight {
             Texture::Constant(c) => c.x,
-            tex => tex.eval_scalar(uv()),
+            tex => tex.eval_scalar(at()),
         };
         self.materials[choice(w, hash_unit(p, t, salt))]
     }
@@ -145,6 +145,6 @@ mod tests {
         };
         let chosen = mix.choose(p, t, 3, || unreachable!("a constant weight needs no uv"));
         assert_eq!(chosen, [4, 9][choice(0.5, u)]);
-        assert_eq!(chosen, mix.choose(p, t, 3, || Vec2::ZERO));
+        assert_eq!(chosen, mix.choose(p, t, 3, || glam::Vec2::ZERO.into()));
     }
 }

@@ -64,7 +64,7 @@ fn material_resolve(mi_in: u32, prim: Prim, hit: SurfaceHit, back: bool) -> Reso
         var w = m.a.x;
 // #if HAS_TEXTURES
         if m.h.w != NONE {
-            w = texture_eval_scalar(m.h.w, surface_uv(prim, hit));
+            w = texture_eval_scalar(m.h.w, surface_tex(prim, hit));
         }
 // #endif
         let pick = mix_choice(w, mix_hash_unit(hit.p, hit.t, mi));

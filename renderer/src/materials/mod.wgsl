@@ -214,10 +214,10 @@ fn material_textured(m: Material) -> bool {
     return bitcast<u32>(m.a.w) != NONE || bitcast<u32>(m.c.w) != NONE;
 }
 
-// `MaterialTextures::at`: `m` with its textures evaluated at `uv`, and its has-a-smooth-part flag
+// `MaterialTextures::at`: `m` with its textures evaluated at `at`, and its has-a-smooth-part flag
 // recomputed for the values found (`Material::has_smooth_part`). The one place a material's
 // parameters come from textures: further texturable kinds plug in here.
-fn material_at(m_in: Material, uv: vec2f) -> Material {
+fn material_at(m_in: Material, at: TexPoint) -> Material {
     var m = m_in;
     let colour = bitcast<u32>(m.a.w);
     let slot = bitcast<u32>(m.c.w);
@@ -227,12 +227,12 @@ fn material_at(m_in: Material, uv: vec2f) -> Material {
         case MATERIAL_DIFFUSE, MATERIAL_PLASTIC, MATERIAL_PLASTIC_MITSUBA: {
             // `Plastic::set_albedo` sets the albedo only: the coat's table and norm stay.
             if colour != NONE {
-                m.a = vec4f(texture_eval(colour, uv), m.a.w);
+                m.a = vec4f(texture_eval(colour, at), m.a.w);
             }
 // #if HAS_PLASTIC
             // A plastic's α: its coat from the grid (`Plastic::set_alpha_from_grid`).
             if m.h.x == MATERIAL_PLASTIC && alpha != NONE {
-                m = plastic_alpha_from_grid(m, texture_eval_scalar(alpha, uv));
+                m = plastic_alpha_from_grid(m, texture_eval_scalar(alpha, at));
             }
 // #endif
         }
@@ -240,16 +240,16 @@ fn material_at(m_in: Material, uv: vec2f) -> Material {
         case MATERIAL_CONDUCTOR: {
             // A textured reflectance is a tint, whatever the constant's Fresnel.
             if colour != NONE {
-                m.a = vec4f(texture_eval(colour, uv), m.a.w);
+                m.a = vec4f(texture_eval(colour, at), m.a.w);
                 m.h.z = FRESNEL_TINT;
             }
             if alpha != NONE {
-                m.c = vec4f(textured_alphas(alpha, alpha_v, uv), m.c.zw);
+                m.c = vec4f(textured_alphas(alpha, alpha_v, at), m.c.zw);
             }
         }
         case MATERIAL_DIELECTRIC: {
             if alpha != NONE {
-                m.c = vec4f(textured_alphas(alpha, alpha_v, uv), m.c.zw);
+                m.c = vec4f(textured_alphas(alpha, alpha_v, at), m.c.zw);
             }
         }
         // Nothing of it is texturable (`MaterialTextures::check`).
@@ -264,12 +264,12 @@ fn material_at(m_in: Material, uv: vec2f) -> Material {
 
 // `MaterialTextures::microfacet_at`: (α_u, α_v) from the α texture and, if any, the α_v one; the
 // narrower raised to SMOOTH_ALPHA where the lobe is rough (`Microfacet::new`).
-fn textured_alphas(alpha: u32, alpha_v: u32, uv: vec2f) -> vec2f {
-    let u = texture_eval_scalar(alpha, uv);
+fn textured_alphas(alpha: u32, alpha_v: u32, at: TexPoint) -> vec2f {
+    let u = texture_eval_scalar(alpha, at);
     if alpha_v == NONE {
         return vec2f(u);
     }
-    var a = vec2f(u, texture_eval_scalar(alpha_v, uv));
+    var a = vec2f(u, texture_eval_scalar(alpha_v, at));
     if !(max(a.x, a.y) < SMOOTH_ALPHA) {
         a = max(a, vec2f(SMOOTH_ALPHA));
     }

@@ -11,8 +11,7 @@
 
 use super::plastic_textured::CoatGrid;
 use super::{ConductorFresnel, Material, Microfacet, Plastic};
-use crate::textures::Texture;
-use glam::Vec2;
+use crate::textures::{TexPoint, Texture};
 
 /// The textures of one material's slots (`None`: the material's constant).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -80,8 +79,10 @@ impl MaterialTextures {
         }
     }
 
-    /// `base` with its textured parameters evaluated at `uv`.
-    pub fn at(&self, base: &Material, uv: Vec2) -> Material {
+    /// `base` with its textured parameters evaluated at `uv` (a [`TexPoint`], or texture
+    /// coordinates off any mesh).
+    pub fn at<'a>(&self, base: &Material, uv: impl Into<TexPoint<'a>>) -> Material {
+        let uv = uv.into();
         let mut m = base.clone();
         match &mut m {
             Material::Diffuse(d) => {
@@ -122,7 +123,7 @@ impl MaterialTextures {
 
     /// `base`'s distribution with the roughness of textures `alpha` (α_u) and `alpha_v` at `uv`;
     /// isotropic without `alpha_v`.
-    fn microfacet_at(&self, base: Microfacet, alpha: &Texture, uv: Vec2) -> Microfacet {
+    fn microfacet_at(&self, base: Microfacet, alpha: &Texture, uv: TexPoint) -> Microfacet {
         let u = alpha.eval_scalar(uv);
         match &self.alpha_v {
             Some(v) => Microfacet::new(base.distribution, u, v.eval_scalar(uv)),
@@ -136,7 +137,7 @@ mod tests {
     use super::*;
     use crate::materials::{Conductor, Dielectric, Diffuse, Microfacet, Plastic};
     use crate::textures::Checkerboard;
-    use glam::Vec3;
+    use glam::{Vec2, Vec3};
 
     fn checker(a: Vec3, b: Vec3) -> Texture {
         Texture::Checkerboard(Checkerboard {

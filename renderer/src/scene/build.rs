@@ -12,7 +12,7 @@ use crate::camera::Camera;
 use crate::geometry::cylinder::Cylinder;
 use crate::geometry::disk::Disk;
 use crate::geometry::mesh_attributes::{
-    AttrMesh, AttrTriangle, HAS_NORMALS, HAS_UVS, MeshAttributes, normal_matrix,
+    AttrMesh, AttrTriangle, HAS_NORMALS, HAS_UVS, MeshAttributes, NamedSlot, normal_matrix,
 };
 use crate::geometry::primitive::{NONE, Primitive, Shape};
 use crate::geometry::sphere::Sphere;
@@ -383,6 +383,7 @@ fn add_mesh(
         normal_base: attributes.normals.len() as u32,
         uv_base: attributes.uvs.len() as u32,
         flags: normals.map_or(0, |_| HAS_NORMALS) | uvs.map_or(0, |_| HAS_UVS),
+        named: NONE,
     };
     attributes
         .normals
@@ -390,6 +391,37 @@ fn add_mesh(
     attributes.uvs.extend_from_slice(uvs.unwrap_or_default());
     attributes.meshes.push(mesh);
     attributes.meshes.len() as u32 - 1
+}
+
+/// Appends the values of mesh `m`'s attributes that textures read (`names`, in slot order), its
+/// faces' records to follow from the next triangle record on.
+fn add_named(
+    attributes: &mut MeshAttributes,
+    m: u32,
+    mesh: &crate::scene::mesh::MeshData,
+    names: &[String],
+) {
+    attributes.meshes[m as usize].named = attributes.named_slots.len() as u32;
+    let first_triangle = attributes.triangles.len() as u32;
+    for name in names {
+        let slot = match mesh.attributes.iter().find(|a| a.name == *name) {
+            Some(a) => {
+                let base = attributes.named_values.len() as u32;
+                attributes.named_values.extend_from_slice(&a.values);
+                NamedSlot {
+                    base,
+                    first_triangle,
+                    per_face: a.kind() == crate::scene::mesh::AttributeKind::Face,
+                }
+            }
+            None => NamedSlot {
+                base: NONE,
+                first_triangle,
+                per_face: false,
+            },
+        };
+        attributes.named_slots.push(slot);
+    }
 }
 
 /// A quad's light, whose two triangles' vertex attributes start at `attr`.
@@ -519,17 +551,19 @@ impl Scene {
                 Ok(lights.len() as u32 - 1)
             };
             // Triangles with attribute indices `attr` (`None`: no attributes) into `attributes`.
+            // A triangle given attributes has its record whether it is kept or dropped
+            // (degenerate), so that a mesh's face k has record `first + k` (face attributes).
             let mut push_tris =
                 |tris: &[[Vec3; 3]],
                  light: u32,
                  attributes: &mut MeshAttributes,
                  attr: &dyn Fn(usize) -> Option<AttrTriangle>| {
                     for (i, t) in tris.iter().enumerate() {
+                        let attr = attr(i).map_or(NONE, |a| {
+                            attributes.triangles.push(a);
+                            attributes.triangles.len() as u32 - 1
+                        });
                         if let Some(shape) = Shape::triangle(*t) {
-                            let attr = attr(i).map_or(NONE, |a| {
-                                attributes.triangles.push(a);
-                                attributes.triangles.len() as u32 - 1
-                            });
                             prims.push(Primitive {
                                 shape,
                                 material: mat,
@@ -608,12 +642,18 @@ impl Scene {
                                 .map(|n| (m * n.as_dvec3()).normalize_or_zero().as_vec3())
                                 .collect::<Vec<_>>()
                         });
-                        if normals.is_some() || mesh.uvs.is_some() {
-                            attr_mesh = Some(add_mesh(
-                                &mut attributes,
-                                normals.as_deref(),
-                                mesh.uvs.as_deref(),
-                            ));
+                        let named = !desc.mesh_attributes.is_empty()
+                            && mesh
+                                .attributes
+                                .iter()
+                                .any(|a| desc.mesh_attributes.contains(&a.name));
+                        if normals.is_some() || mesh.uvs.is_some() || named {
+                            let m =
+                                add_mesh(&mut attributes, normals.as_deref(), mesh.uvs.as_deref());
+                            if named {
+                                add_named(&mut attributes, m, mesh, &desc.mesh_attributes);
+                            }
+                            attr_mesh = Some(m);
                         }
                     }
                     for idx in indices {

@@ -33,6 +33,9 @@ pub struct SceneDesc {
     pub lights: Vec<LightDesc>,
     /// Things that were accepted but look wrong (e.g. dropped degenerate triangles).
     pub warnings: Vec<String>,
+    /// The mesh attributes that `mesh_attribute` textures read, in the order of their slots
+    /// ([`crate::textures::MeshAttributeTexture::slot`]); empty in most scenes.
+    pub mesh_attributes: Vec<String>,
 }
 
 /// What a ray that hits nothing sees.
@@ -385,6 +388,13 @@ impl TextureDesc {
                     "type": "checkerboard", "color0": color(c.color0), "color1": color(c.color1),
                 });
                 uv_keys(&mut obj, &c.uv);
+                obj
+            }
+            Texture::MeshAttribute(m) => {
+                let mut obj = json!({"type": "mesh_attribute", "name": m.name});
+                if m.scale != 1.0 {
+                    obj["scale"] = json!(m.scale);
+                }
                 obj
             }
         }

@@ -20,6 +20,7 @@ mod parse_composite;
 mod parse_lights;
 mod parse_materials;
 mod parse_mesh;
+mod parse_mesh_attribute;
 mod parse_mesh_file;
 mod parse_shapes;
 mod parse_surface_detail;

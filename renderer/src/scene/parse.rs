@@ -173,13 +173,16 @@ pub(crate) fn parse_scene_value_preloaded(
         None => Vec::new(),
     };
     let mut warnings = Vec::new();
-    let shapes = parse_shapes(
+    let mut materials = materials;
+    let mut shapes = parse_shapes(
         array(root.req("shapes")?, "shapes")?,
         &materials,
         folder,
         &mut textures,
         &mut warnings,
     )?;
+    let mesh_attributes =
+        super::parse_mesh_attribute::bind_mesh_attributes(&mut materials, &mut shapes)?;
     let lights = match root.get("lights") {
         Some(v) => super::parse_lights::parse_lights(array(v, "lights")?, &mut textures)?,
         None => Vec::new(),
@@ -193,6 +196,7 @@ pub(crate) fn parse_scene_value_preloaded(
         shapes,
         lights,
         warnings,
+        mesh_attributes,
     })
 }
 

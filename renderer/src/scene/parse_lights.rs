@@ -5,6 +5,7 @@
 use super::desc::{LightDesc, LookAt};
 use super::error::SceneError;
 use super::parse::MAX_RADIANCE;
+use super::parse_mesh_attribute::off_mesh;
 use super::parse_texture::{TextureLoader, TextureUse, texture_at};
 use super::walk::{Obj, check_components};
 use glam::DVec3;
@@ -105,6 +106,9 @@ fn parse_light(obj: &Obj, loader: &mut TextureLoader) -> Result<LightDesc, Scene
                 ));
             }
             let texture = texture_at(obj, "texture", TextureUse::Emission, loader)?;
+            if let Some(t) = &texture {
+                off_mesh(t, &obj.at("texture"), "a spot light")?;
+            }
             if obj.get("texture").is_some() && texture.is_none() {
                 return Err(SceneError::new(
                     obj.at("texture"),
@@ -144,6 +148,9 @@ fn parse_light(obj: &Obj, loader: &mut TextureLoader) -> Result<LightDesc, Scene
         "projector" => {
             let frame = look_at(obj)?;
             let texture = texture_at(obj, "irradiance", TextureUse::Emission, loader)?;
+            if let Some(t) = &texture {
+                off_mesh(t, &obj.at("irradiance"), "a projector")?;
+            }
             // Mitsuba's rule: the field of view on `fov_axis` of the image's aspect (a
             // constant's is 1).
             let (w, h) = texture.as_ref().map_or((1, 1), |t| t.texture.resolution());

@@ -3,7 +3,7 @@
 
 use super::desc::GeometryDesc;
 use super::error::SceneError;
-use super::mesh::{MeshData, load_mesh_index, normals};
+use super::mesh::{MeshData, normals};
 use super::parse_mesh::{dropped_list, has_zero_area};
 use super::parse_texture::TextureLoader;
 use super::walk::{Obj, array, integer, number};
@@ -54,9 +54,8 @@ pub(crate) fn mesh(
         ));
     }
     let data = match loader.take_mesh(&file) {
-        Some(data) => data,
-        None => load_mesh_index(&file, shape_index)
-            .map_err(|e| SceneError::new(&file_path, e.to_string()))?,
+        Some(data) => Arc::new(data),
+        None => loader.mesh(&file, shape_index, &file_path)?,
     };
 
     let world: Vec<DVec3> = data
@@ -115,8 +114,34 @@ pub(crate) fn mesh(
                     .collect(),
             )
         }
-        false => data.normals,
+        false => None,
     };
+    // A file read once serves every shape that places it unchanged (instances).
+    if dropped.is_empty() && normals.is_none() {
+        return Ok(GeometryDesc::Mesh {
+            file,
+            shape_index,
+            to_world,
+            face_normals,
+            recompute_normals,
+            mesh: data,
+        });
+    }
+    let normals = normals.or_else(|| data.normals.clone());
+    // Face attributes follow the kept triangles.
+    let mut attributes = data.attributes.clone();
+    if !dropped.is_empty() {
+        for a in attributes
+            .iter_mut()
+            .filter(|a| a.kind() == super::mesh::AttributeKind::Face)
+        {
+            let mut k = 0;
+            a.values.retain(|_| {
+                k += 1;
+                dropped.binary_search(&(k - 1)).is_err()
+            });
+        }
+    }
     Ok(GeometryDesc::Mesh {
         file,
         shape_index,
@@ -124,9 +149,11 @@ pub(crate) fn mesh(
         face_normals,
         recompute_normals,
         mesh: Arc::new(MeshData {
+            positions: data.positions.clone(),
             indices: kept,
             normals,
-            ..data
+            uvs: data.uvs.clone(),
+            attributes,
         }),
     })
 }

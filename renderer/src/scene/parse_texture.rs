@@ -43,7 +43,7 @@ pub(crate) enum TextureUse {
 }
 
 impl TextureUse {
-    fn is_scalar(self) -> bool {
+    pub(crate) fn is_scalar(self) -> bool {
         matches!(
             self,
             TextureUse::Alpha | TextureUse::Weight | TextureUse::Opacity
@@ -51,7 +51,7 @@ impl TextureUse {
     }
 
     /// Why `x` is not allowed here, if it is not.
-    fn problem(self, x: f64) -> Option<&'static str> {
+    pub(crate) fn problem(self, x: f64) -> Option<&'static str> {
         if x.is_nan() {
             return Some("is NaN");
         }
@@ -89,6 +89,8 @@ impl TextureUse {
 pub(crate) struct TextureLoader {
     folder: PathBuf,
     cache: HashMap<(PathBuf, bool), Arc<Image>>,
+    /// Mesh files by (path, shape index), read once however many shapes place them.
+    meshes: HashMap<(PathBuf, u32), Arc<MeshData>>,
     preloaded: Preloaded,
 }
 
@@ -109,6 +111,7 @@ impl TextureLoader {
         TextureLoader {
             folder: folder.to_owned(),
             cache: HashMap::new(),
+            meshes: HashMap::new(),
             preloaded: Preloaded::default(),
         }
     }
@@ -117,6 +120,26 @@ impl TextureLoader {
     pub fn with_preloaded(mut self, preloaded: Preloaded) -> TextureLoader {
         self.preloaded = preloaded;
         self
+    }
+
+    /// Mesh `shape_index` of the file at the resolved path `file`, read on first use; errors
+    /// at `json_path` name the file.
+    pub fn mesh(
+        &mut self,
+        file: &Path,
+        shape_index: u32,
+        json_path: &str,
+    ) -> Result<Arc<MeshData>, SceneError> {
+        let key = (file.to_owned(), shape_index);
+        if let Some(m) = self.meshes.get(&key) {
+            return Ok(m.clone());
+        }
+        let m = Arc::new(
+            crate::scene::mesh::load_mesh_index(file, shape_index)
+                .map_err(|e| SceneError::new(json_path, e.to_string()))?,
+        );
+        self.meshes.insert(key, m.clone());
+        Ok(m)
     }
 
     /// The preloaded mesh that the resolved path `file` names, taken out (each is for one shape).
@@ -180,10 +203,16 @@ pub(crate) fn parse_texture(
     let texture = match obj.string("type")? {
         "bitmap" => Texture::Bitmap(bitmap(&obj, use_, loader)?),
         "checkerboard" => Texture::Checkerboard(checker(&obj, use_)?),
+        "mesh_attribute" => {
+            Texture::MeshAttribute(super::parse_mesh_attribute::mesh_attribute(&obj, use_)?)
+        }
         other => {
             return Err(SceneError::new(
                 obj.at("type"),
-                format!("unknown texture type `{other}` (expected bitmap or checkerboard)"),
+                format!(
+                    "unknown texture type `{other}` (expected bitmap, checkerboard or \
+                     mesh_attribute)"
+                ),
             ));
         }
     };

@@ -16,6 +16,7 @@ use crate::lights::{Light, LightSample, LightSampling};
 use crate::materials::Material;
 use crate::materials::normal_map::NormalMap;
 use crate::math::atan2;
+use crate::textures::{MeshPoint, TexPoint};
 use glam::{Vec2, Vec3};
 use std::borrow::Cow;
 use std::f32::consts::{PI, TAU};
@@ -56,6 +57,42 @@ impl Scene {
         })
     }
 
+    /// Where textures are looked up at `hit`: its texture coordinates and, on a mesh triangle
+    /// with attributes in a scene whose textures read named ones, that triangle.
+    #[inline]
+    pub fn tex_point(&self, hit: &SurfaceHit) -> TexPoint<'_> {
+        let prim = &self.accel.primitives()[hit.prim as usize];
+        match &prim.shape {
+            Shape::Triangle { .. } => self.tex_point_at(SurfacePoint::Triangle {
+                attr: prim.attr,
+                b: hit.b,
+            }),
+            _ => self.uv(hit).into(),
+        }
+    }
+
+    /// [`Scene::tex_point`] of a point of a primitive ([`Scene::uv_at`]'s rule for its
+    /// coordinates).
+    #[inline]
+    pub fn tex_point_at(&self, point: SurfacePoint<'_>) -> TexPoint<'_> {
+        let mesh = match point {
+            SurfacePoint::Triangle { attr, b }
+                if attr != NONE && !self.attributes.named_slots.is_empty() =>
+            {
+                Some(MeshPoint {
+                    attributes: &self.attributes,
+                    attr,
+                    b,
+                })
+            }
+            _ => None,
+        };
+        TexPoint {
+            uv: self.uv_at(point),
+            mesh,
+        }
+    }
+
     /// The texture coordinates of a point of a primitive: the one rule for hits
     /// ([`Scene::uv`]) and points sampled on lights ([`Scene::light_uv`]), so that the two
     /// cannot disagree.
@@ -83,7 +120,7 @@ impl Scene {
     /// infinity): the primitive under it by the builder's construction (a triangle light's
     /// attributes, a quad's triangle holding the point, a polygon's triangle, which has no
     /// attributes), through [`Scene::uv_at`].
-    pub fn light_uv(&self, light: &Light, s: &LightSample) -> Option<Vec2> {
+    pub fn light_uv(&self, light: &Light, s: &LightSample) -> Option<TexPoint<'_>> {
         let point = match light {
             Light::Triangle(l) => SurfacePoint::Triangle {
                 attr: l.attr,
@@ -98,12 +135,12 @@ impl Scene {
             Light::Disk(d) => SurfacePoint::Disk(&d.disk, s.p),
             Light::Sphere(l) => SurfacePoint::Sphere(&l.sphere, s.p),
             // A spot's or projector's sample carries its texture coordinates.
-            Light::Spot(_) | Light::Projector(_) => return Some(s.b),
+            Light::Spot(_) | Light::Projector(_) => return Some(s.b.into()),
             Light::Background(_) | Light::Envmap(_) | Light::Point(_) | Light::Directional(_) => {
                 return None;
             }
         };
-        Some(self.uv_at(point))
+        Some(self.tex_point_at(point))
     }
 
     /// Radiance emitted by light `light` (the primitive's of `hit`) at `hit` along `-w_in`: its
@@ -118,7 +155,7 @@ impl Scene {
         }
         self.emission_textures[texture as usize]
             .texture
-            .eval(self.uv(hit))
+            .eval(self.tex_point(hit))
     }
 
     /// [`Light::sample`] of light `index` with the radiance at the sampled point: for a textured
@@ -165,7 +202,7 @@ impl Scene {
         hit: &SurfaceHit,
         material: u32,
         back: bool,
-    ) -> (Cow<'_, Material>, Option<(&NormalMap, Vec2)>) {
+    ) -> (Cow<'_, Material>, Option<(&NormalMap, TexPoint<'_>)>) {
         let material = self.resolve(hit, material, back) as usize;
         let base = &self.materials[material];
         let textures = &self.material_textures[material];
@@ -173,12 +210,12 @@ impl Scene {
         if textures.is_none() && map.is_none() {
             return (Cow::Borrowed(base), None);
         }
-        let uv = self.uv(hit);
+        let at = self.tex_point(hit);
         let m = match textures {
             None => Cow::Borrowed(base),
-            Some(t) => Cow::Owned(t.at(base, uv)),
+            Some(t) => Cow::Owned(t.at(base, at)),
         };
-        (m, map.map(|m| (m, uv)))
+        (m, map.map(|m| (m, at)))
     }
 
     /// The material that `material` is at `hit` for a path arriving on the back (`back`) or
@@ -191,7 +228,7 @@ impl Scene {
         // The builder checked that every chain of mixes and pairs ends.
         loop {
             m = if let Some(Some(mix)) = self.mixes.get(m as usize) {
-                mix.choose(hit.p, hit.t, m, || self.uv(hit))
+                mix.choose(hit.p, hit.t, m, || self.tex_point(hit))
             } else if let Some(Some(pair)) = self.sides.get(m as usize) {
                 pair.choose(back)
             } else {

@@ -55,14 +55,16 @@ impl Scene {
         };
         // A triangle's coordinates come from the candidate's barycentrics, as `Scene::uv` takes
         // them from the hit record, without building that record.
-        let uv = match (opacity, &prim.shape) {
-            (Texture::Constant(_), _) => Vec2::ZERO,
-            (_, crate::geometry::Shape::Triangle { .. }) => self.uv_at(SurfacePoint::Triangle {
-                attr: prim.attr,
-                b: Vec2::new(h.b[1], h.b[2]),
-            }),
-            _ => self.uv(&prim.shape.surface_hit(ray, *h, id as u32)),
+        let at = match (opacity, &prim.shape) {
+            (Texture::Constant(_), _) => Vec2::ZERO.into(),
+            (_, crate::geometry::Shape::Triangle { .. }) => {
+                self.tex_point_at(SurfacePoint::Triangle {
+                    attr: prim.attr,
+                    b: Vec2::new(h.b[1], h.b[2]),
+                })
+            }
+            _ => self.tex_point(&prim.shape.surface_hit(ray, *h, id as u32)),
         };
-        mask::kept(opacity.eval_scalar(uv), ray.o, h.t, id as u32)
+        mask::kept(opacity.eval_scalar(at), ray.o, h.t, id as u32)
     }
 }

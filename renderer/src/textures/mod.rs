@@ -1,6 +1,7 @@
 //! Textures: a value that varies over a surface's texture coordinates `(u, v)`, for a material's
 //! albedo, reflectance and roughness and a shape's emission. A closed set, dispatched by `match`:
-//! a constant, a bitmap (PNG, JPEG, EXR) and a procedural checkerboard.
+//! a constant, a bitmap (PNG, JPEG, EXR), a procedural checkerboard, and a mesh's own attribute
+//! (which varies over the mesh's triangles, not over `uv`: a lookup is at a [`TexPoint`]).
 //!
 //! Conventions (those of Mitsuba 3.9.1's `bitmap` and `checkerboard` plugins, so that a Mitsuba
 //! reference of a textured scene can agree with lumis):
@@ -35,14 +36,45 @@
 pub mod bitmap;
 pub mod checkerboard;
 pub mod load;
+pub mod mesh_attribute;
 
 #[cfg(test)]
 mod bitmap_tests;
 
 pub use bitmap::{BitmapOptions, BitmapTexture, WrapMode};
 pub use checkerboard::Checkerboard;
+pub use mesh_attribute::MeshAttributeTexture;
 
+use crate::geometry::mesh_attributes::MeshAttributes;
 use glam::{DVec2, Vec2, Vec3};
+
+/// Where a texture is looked up: the texture coordinates, and on a mesh triangle that has an
+/// attribute record, that record and the barycentrics (what [`Texture::MeshAttribute`] reads).
+/// A bare `uv` converts into one off any mesh.
+#[derive(Clone, Copy, Debug)]
+pub struct TexPoint<'a> {
+    /// Texture coordinates.
+    pub uv: Vec2,
+    /// The mesh triangle, if the point is on one with attributes.
+    pub mesh: Option<MeshPoint<'a>>,
+}
+
+/// A point of a mesh triangle, in the terms its attributes are found by.
+#[derive(Clone, Copy, Debug)]
+pub struct MeshPoint<'a> {
+    /// The scene's mesh attributes.
+    pub attributes: &'a MeshAttributes,
+    /// The triangle's index into [`MeshAttributes::triangles`].
+    pub attr: u32,
+    /// Barycentrics `(b1, b2)`.
+    pub b: Vec2,
+}
+
+impl From<Vec2> for TexPoint<'static> {
+    fn from(uv: Vec2) -> TexPoint<'static> {
+        TexPoint { uv, mesh: None }
+    }
+}
 
 /// A texture: RGB (linear) as a function of the texture coordinates.
 #[derive(Clone, Debug, PartialEq)]
@@ -53,6 +85,8 @@ pub enum Texture {
     Bitmap(BitmapTexture),
     /// Two colours in a checkerboard of 2 × 2 squares per unit of `uv'`.
     Checkerboard(Checkerboard),
+    /// A mesh's vertex or face attribute.
+    MeshAttribute(MeshAttributeTexture),
 }
 
 impl Texture {
@@ -61,37 +95,40 @@ impl Texture {
     pub fn resolution(&self) -> (u32, u32) {
         match self {
             Texture::Bitmap(b) => b.size(),
-            Texture::Constant(_) | Texture::Checkerboard(_) => (1, 1),
+            Texture::Constant(_) | Texture::Checkerboard(_) | Texture::MeshAttribute(_) => (1, 1),
         }
     }
 
-    /// The linear RGB value at `uv`.
+    /// The linear RGB value at `at` (a [`TexPoint`], or texture coordinates off any mesh).
     #[inline]
-    pub fn eval(&self, uv: Vec2) -> Vec3 {
+    pub fn eval<'a>(&self, at: impl Into<TexPoint<'a>>) -> Vec3 {
+        let at = at.into();
         match self {
             Texture::Constant(c) => *c,
-            Texture::Bitmap(b) => b.eval(uv),
-            Texture::Checkerboard(c) => c.eval(uv),
+            Texture::Bitmap(b) => b.eval(at.uv),
+            Texture::Checkerboard(c) => c.eval(at.uv),
+            Texture::MeshAttribute(m) => m.eval(at),
         }
     }
 
     /// The gradient of the luminance at `uv` with respect to (u, v): a bitmap's
     /// [`BitmapTexture::eval_1_grad`]; 0 for a constant; `None` for a checkerboard, whose value
-    /// jumps (Mitsuba's has no gradient either).
+    /// jumps, and a mesh attribute (Mitsuba's have no gradient either; the front ends refuse
+    /// them as bump maps).
     #[inline]
     pub fn eval_1_grad(&self, uv: Vec2) -> Option<Vec2> {
         match self {
             Texture::Constant(_) => Some(Vec2::ZERO),
             Texture::Bitmap(b) => Some(b.eval_1_grad(uv)),
-            Texture::Checkerboard(_) => None,
+            Texture::Checkerboard(_) | Texture::MeshAttribute(_) => None,
         }
     }
 
-    /// The value at `uv` for a scalar parameter (roughness): a bitmap's [`Channel`], else the
-    /// [`luminance`].
+    /// The value at `at` for a scalar parameter (roughness): a bitmap's [`Channel`], else the
+    /// [`luminance`] (a one-component mesh attribute's component: it is stored grey).
     #[inline]
-    pub fn eval_scalar(&self, uv: Vec2) -> f32 {
-        self.channel().pick(self.eval(uv))
+    pub fn eval_scalar<'a>(&self, at: impl Into<TexPoint<'a>>) -> f32 {
+        self.channel().pick(self.eval(at))
     }
 
     /// The average of [`Texture::eval`] over the unit square of `uv` (exact, not sampled), for
@@ -102,6 +139,7 @@ impl Texture {
             Texture::Constant(c) => *c,
             Texture::Bitmap(b) => b.mean(),
             Texture::Checkerboard(c) => c.mean(),
+            Texture::MeshAttribute(m) => m.mean,
         }
     }
 
@@ -118,6 +156,7 @@ impl Texture {
             Texture::Constant(c) => *c,
             Texture::Bitmap(b) => b.max(),
             Texture::Checkerboard(c) => c.color0.max(c.color1),
+            Texture::MeshAttribute(m) => m.max,
         }
     }
 
@@ -127,12 +166,20 @@ impl Texture {
             Texture::Constant(c) => Channel::Luminance.pick(*c),
             Texture::Bitmap(b) => b.max_scalar(),
             Texture::Checkerboard(c) => luminance(c.color0).max(luminance(c.color1)),
+            // Stored grey where scalar slots may read it.
+            Texture::MeshAttribute(m) => luminance(m.max),
         }
     }
 
     /// Whether the value is the same everywhere.
     pub fn is_constant(&self) -> bool {
         matches!(self, Texture::Constant(_))
+    }
+
+    /// Whether the value depends on the texture coordinates (not a constant, not a mesh
+    /// attribute): what a shape's texture coordinates matter for.
+    pub fn reads_uv(&self) -> bool {
+        matches!(self, Texture::Bitmap(_) | Texture::Checkerboard(_))
     }
 
     /// The channel read by [`Texture::eval_scalar`].

@@ -1,6 +1,7 @@
-// Textures, the twin of `textures/mod.rs`, `textures/bitmap.rs` and `textures/checkerboard.rs`
+// Textures, the twin of `textures/mod.rs`, `textures/bitmap.rs`, `textures/checkerboard.rs` and
+// `textures/mesh_attribute.rs`
 // (records and texels uploaded by `gpu/scene/textures.rs`): a `switch` in the variant order of
-// `Texture` (Constant, Bitmap, Checkerboard); bitmaps filtered bilinearly by hand from
+// `Texture` (Constant, Bitmap, Checkerboard, MeshAttribute); bitmaps filtered bilinearly by hand from
 // `texture_texels` with the CPU's wrap modes on integer texel indices, the same expressions in
 // the same order; the checkerboard; a scalar slot's channel. Compiled only under HAS_TEXTURES.
 // `texture_eval` and `texture_eval_scalar` are what materials (and later emission) call.
@@ -30,28 +31,47 @@ fn texture_record(id: u32) -> TextureRecord {
     );
 }
 
-// `Texture::eval`: the linear RGB value of texture `id` at `uv`.
-fn texture_eval(id: u32, uv: vec2f) -> vec3f {
-    return texture_value(texture_record(id), uv);
+// `TexPoint`: where a texture is looked up, the texture coordinates and, on a mesh triangle
+// with attributes, its record `attr` (NONE: off any) and barycentrics `b`.
+struct TexPoint {
+    uv: vec2f,
+    attr: u32,
+    b: vec2f,
 }
 
-// `Texture::eval_scalar`: what a scalar slot (α) reads of texture `id` at `uv`.
-fn texture_eval_scalar(id: u32, uv: vec2f) -> f32 {
+// `TexPoint::from(uv)`: texture coordinates off any mesh.
+fn tex_uv(uv: vec2f) -> TexPoint {
+    return TexPoint(uv, NONE, vec2f(0.0));
+}
+
+// `Texture::eval`: the linear RGB value of texture `id` at `at`.
+fn texture_eval(id: u32, at: TexPoint) -> vec3f {
+    return texture_value(texture_record(id), at);
+}
+
+// `Texture::eval_scalar`: what a scalar slot (α) reads of texture `id` at `at`.
+fn texture_eval_scalar(id: u32, at: TexPoint) -> f32 {
     let t = texture_record(id);
-    return channel_pick(t.h.z, texture_value(t, uv));
+    return channel_pick(t.h.z, texture_value(t, at));
 }
 
-fn texture_value(t: TextureRecord, uv: vec2f) -> vec3f {
+fn texture_value(t: TextureRecord, at: TexPoint) -> vec3f {
     switch t.h.x {
         case TEXTURE_CONSTANT: {
             return t.c0.xyz;
         }
         case TEXTURE_BITMAP: {
-            return bitmap_eval(t, uv);
+            return bitmap_eval(t, at.uv);
         }
         case TEXTURE_CHECKERBOARD: {
-            return checkerboard_eval(t, uv);
+            return checkerboard_eval(t, at.uv);
         }
+// #if HAS_MESH_ATTRIBUTES
+        // `MeshAttributeTexture::eval`: black off a mesh triangle (`mesh_named` of NONE).
+        case TEXTURE_MESH_ATTRIBUTE: {
+            return mesh_named(t.h.w, at.attr, at.b) * t.c0.x;
+        }
+// #endif
         default: {
             return vec3f(unknown_tag());
         }

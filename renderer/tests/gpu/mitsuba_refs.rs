@@ -171,6 +171,23 @@ fn gpu_xml_blend_matches_mitsuba() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// `xml_mesh_attribute.xml` (Mitsuba's `mesh_attribute`: `mesh_named` in
+/// `geometry/mesh_attributes.wgsl`, vertex and face attributes as a diffuse's colour and a
+/// one-component one as a conductor's α).
+#[test]
+fn gpu_xml_mesh_attribute_matches_the_cpu_and_mitsuba() {
+    let failures = check("xml_mesh_attribute");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// `xml_instances.xml` (Mitsuba's instances, flattened by the importer: the GPU sees their
+/// shapes as any others).
+#[test]
+fn gpu_xml_instances_matches_the_cpu_and_mitsuba() {
+    let failures = check("xml_instances");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// `xml_two_sided.xml` (Mitsuba's `twosided` with two BSDFs: `materials/two_sided.wgsl`, the
 /// pair resolved by the side of arrival in `materials/mix.wgsl`'s loop, its one-sided parts seen
 /// from the back).

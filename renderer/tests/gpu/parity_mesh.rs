@@ -103,6 +103,7 @@ fn synthetic_attributes(r: &mut Rng) -> MeshAttributes {
             normal_base: a.normals.len() as u32,
             uv_base: a.uvs.len() as u32,
             flags: f,
+            named: lumis::geometry::primitive::NONE,
         });
         if f & HAS_NORMALS != 0 {
             let mut n: Vec<Vec3> = if m == 1 {

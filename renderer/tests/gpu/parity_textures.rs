@@ -227,7 +227,7 @@ fn texel_stats(b: &BitmapTexture) -> (Vec3, Vec3) {
 /// bits are α's id, `roughness_slot` in `gpu/scene/materials.rs`).
 const LOOKUP_BODY: &str = "let a = inp(0u);
     let m = materials[bitcast<u32>(a.x)];
-    let uv = a.yz;
+    let uv = tex_uv(a.yz);
     let alpha = bitcast<u32>(m.c.w) & 0xFFFFu;
     outp(0u, vec4f(texture_eval(bitcast<u32>(m.a.w), uv), texture_eval_scalar(alpha, uv)));";
 
@@ -322,6 +322,7 @@ fn texture_lookups_match_the_cpu() {
                 other.v3([o[0], o[1], o[2], 0.0], want, &what);
                 0.0
             }
+            Texture::MeshAttribute(_) => unreachable!("the scene has no meshes"),
         };
         let largest = want.abs().max_element();
         scalar.scalar_conditioned(o[3], want_scalar, tol + 4.0 * U * largest, &what);
@@ -451,7 +452,7 @@ fn textured_materials_resolve_as_on_the_cpu() {
          let base = materials[bitcast<u32>(a.x)];
          var m = base;
          if material_textured(base) {
-             m = material_at(base, a.yz);
+             m = material_at(base, tex_uv(a.yz));
          }
          outp(0u, bitcast<vec4f>(m.h));
          outp(1u, m.a);

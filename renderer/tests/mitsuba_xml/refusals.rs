@@ -680,12 +680,124 @@ fn out_of_scope_plugins_are_refused_with_their_reason() {
     // Not out of scope: lumis lacks it (another issue's work), and says so differently.
     let msg = refused(
         &dir,
-        r#"<shape type="shapegroup"/>"#,
-        "shapegroup",
+        r#"<shape type="ellipsoids"/>"#,
+        "ellipsoids",
         "scene/shape",
-        "lumis has no instancing",
+        "is not supported",
     );
     assert!(!msg.contains("out of scope"), "{msg}");
+}
+
+/// Mitsuba's `instance` of a `shapegroup` is flattened: an instance renders the scene its
+/// group's shapes would, each placed by the instance's `to_world` after its own, bit for bit;
+/// an unused group renders nothing; what lumis cannot flatten exactly (a shear, a non-uniform
+/// scale, a mirror) and what Mitsuba refuses (an emitter in a group, a nested group, an
+/// instance of something else) are located errors.
+#[test]
+fn instances_are_flattened_and_their_refusals_located() {
+    let dir = Dir::new("instances");
+    let floor = r#"<shape type="rectangle"><transform name="to_world"><scale value="4"/>
+        <rotate x="1" angle="-90"/></transform></shape>
+<shape type="rectangle"><transform name="to_world"><rotate x="1" angle="90"/>
+        <translate y="3"/></transform><emitter type="area"><rgb name="radiance" value="5"/></emitter></shape>"#;
+    let group = r#"<shape type="shapegroup" id="g">
+    <shape type="sphere"><float name="radius" value="0.3"/><point name="center" x="0.5" y="0" z="0"/></shape>
+    <shape type="cube"><transform name="to_world"><scale value="0.2"/><rotate x="1" angle="30"/></transform></shape>
+</shape>"#;
+    let place =
+        "<scale value=\"1.5\"/><rotate y=\"1\" angle=\"70\"/><translate x=\"0.2\" y=\"0.6\"/>";
+    let instanced = ok(
+        &dir,
+        &format!(
+            "{floor}\n{group}\n<shape type=\"instance\"><ref id=\"g\"/><transform name=\"to_world\">{place}</transform></shape>"
+        ),
+    );
+    let explicit = ok(
+        &dir,
+        &format!(
+            "{floor}\n<shape type=\"sphere\"><float name=\"radius\" value=\"0.3\"/><point name=\"center\" x=\"0.5\" y=\"0\" z=\"0\"/><transform name=\"to_world\">{place}</transform></shape>\n\
+             <shape type=\"cube\"><transform name=\"to_world\"><scale value=\"0.2\"/><rotate x=\"1\" angle=\"30\"/>{place}</transform></shape>"
+        ),
+    );
+    assert_eq!(instanced.desc.shapes.len(), 4);
+    // The same shapes, to rounding (the instance's matrix multiplies the group's after it is
+    // built; Mitsuba's transform list builds one product in another order).
+    fn close(a: &Value, b: &Value, at: &str) {
+        match (a, b) {
+            (Value::Number(x), Value::Number(y)) => {
+                let (x, y) = (x.as_f64().unwrap(), y.as_f64().unwrap());
+                assert!((x - y).abs() <= 1e-12 * (1.0 + x.abs()), "{at}: {x} vs {y}");
+            }
+            (Value::Array(x), Value::Array(y)) => {
+                assert_eq!(x.len(), y.len(), "{at}");
+                for (i, (x, y)) in x.iter().zip(y).enumerate() {
+                    close(x, y, &format!("{at}[{i}]"));
+                }
+            }
+            (Value::Object(x), Value::Object(y)) => {
+                assert_eq!(
+                    x.keys().collect::<Vec<_>>(),
+                    y.keys().collect::<Vec<_>>(),
+                    "{at}"
+                );
+                for (k, x) in x {
+                    close(x, &y[k], &format!("{at}.{k}"));
+                }
+            }
+            _ => assert_eq!(a, b, "{at}"),
+        }
+    }
+    close(
+        &instanced.json["shapes"],
+        &explicit.json["shapes"],
+        "shapes",
+    );
+    // A group no instance names adds nothing.
+    assert_eq!(ok(&dir, &format!("{floor}\n{group}")).desc.shapes.len(), 2);
+
+    let instance = |to_world: &str| {
+        format!(
+            "{group}\n<shape type=\"instance\"><ref id=\"g\"/><transform name=\"to_world\">{to_world}</transform></shape>"
+        )
+    };
+    for bad in [
+        r#"<scale x="1" y="2" z="1"/>"#,
+        r#"<scale x="-1" y="1" z="1"/>"#,
+        r#"<matrix value="1 0.5 0 0  0 1 0 0  0 0 1 0  0 0 0 1"/>"#,
+    ] {
+        refused(
+            &dir,
+            &instance(bad),
+            "type=\"instance\"",
+            "scene/shape",
+            "a rotation, a uniform scale",
+        );
+    }
+    refused(
+        &dir,
+        r#"<shape type="shapegroup" id="g"><shape type="sphere"><emitter type="area"/></shape></shape>
+<shape type="instance"><ref id="g"/></shape>"#,
+        "<emitter",
+        "emitter",
+        "does not instance emitters",
+    );
+    refused(
+        &dir,
+        r#"<shape type="shapegroup" id="h"><shape type="sphere"/></shape>
+<shape type="shapegroup" id="g"><ref id="h"/></shape>
+<shape type="instance"><ref id="g"/></shape>"#,
+        "id=\"h\"",
+        "scene/shape",
+        "inside a shapegroup",
+    );
+    refused(
+        &dir,
+        r#"<shape type="sphere" id="s"/>
+<shape type="instance"><ref id="s"/></shape>"#,
+        "id=\"s\"",
+        "scene/shape",
+        "names a shapegroup",
+    );
 }
 
 /// `hdrfilm`'s `sample_border = true` with a gaussian filter (explicit, or Mitsuba's default when

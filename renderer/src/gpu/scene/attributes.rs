@@ -9,12 +9,20 @@
 //!   `(v[0], v[1], v[2], mesh)`;
 //! - meshes: bits of `(normal_base, uv_base, flags, 0)`;
 //! - normals: `(x, y, z, 0)`;
-//! - uvs, two per vec4: vertex `i` in `.xy` of vec4 `i/2` where `i` is even, in `.zw` where odd.
+//! - uvs, two per vec4: vertex `i` in `.xy` of vec4 `i/2` where `i` is even, in `.zw` where odd;
+//! - named slots (after the uvs, found through the meshes): bits of `(base, first_triangle,
+//!   per_face, 0)`, `base` the vec4 index of the slot's first value in `vertex_data` (`NONE`:
+//!   the mesh lacks it);
+//! - named values: `(x, y, z, 0)`.
+//!
+//! A mesh record's fourth field is the bits of the `vertex_data` index of its first named slot
+//! record, or `NONE`: absolute indices, as no offset is left in `params.attr`.
 //!
 //! WGSL twin: `geometry/mesh_attributes.wgsl`.
 
 use super::bits;
 use crate::geometry::mesh_attributes::MeshAttributes;
+use crate::geometry::primitive::NONE;
 
 /// Where the four attribute arrays start in `vertex_data`, in vec4s (`params.attr` in
 /// `gpu/bindings.wgsl`): triangles, meshes, normals, uvs.
@@ -29,11 +37,18 @@ pub(super) fn encode(a: &MeshAttributes, vertex_data: &mut Vec<[f32; 4]>) -> Att
         [bits(v0), bits(v1), bits(v2), bits(t.mesh)]
     }));
     let meshes = at(vertex_data);
-    vertex_data.extend(
-        a.meshes
-            .iter()
-            .map(|m| [bits(m.normal_base), bits(m.uv_base), bits(m.flags), 0.0]),
-    );
+    // Where the named slots and values will start: after the meshes, normals and uvs.
+    let slots = meshes + (a.meshes.len() + a.normals.len() + a.uvs.len().div_ceil(2)) as u32;
+    let values = slots + a.named_slots.len() as u32;
+    let absolute = |base: u32, i: u32| if i == NONE { NONE } else { base + i };
+    vertex_data.extend(a.meshes.iter().map(|m| {
+        [
+            bits(m.normal_base),
+            bits(m.uv_base),
+            bits(m.flags),
+            bits(absolute(slots, m.named)),
+        ]
+    }));
     let normals = at(vertex_data);
     vertex_data.extend(a.normals.iter().map(|n| [n.x, n.y, n.z, 0.0]));
     let uvs = at(vertex_data);
@@ -42,6 +57,16 @@ pub(super) fn encode(a: &MeshAttributes, vertex_data: &mut Vec<[f32; 4]>) -> Att
         [t0] => [t0.x, t0.y, 0.0, 0.0],
         _ => unreachable!("chunks of two"),
     }));
+    debug_assert_eq!(at(vertex_data), slots);
+    vertex_data.extend(a.named_slots.iter().map(|s| {
+        [
+            bits(absolute(values, s.base)),
+            bits(s.first_triangle),
+            bits(u32::from(s.per_face)),
+            0.0,
+        ]
+    }));
+    vertex_data.extend(a.named_values.iter().map(|v| [v.x, v.y, v.z, 0.0]));
     [triangles, meshes, normals, uvs]
 }
 
@@ -64,18 +89,20 @@ mod tests {
                 normal_base: 0,
                 uv_base: 1,
                 flags: HAS_NORMALS | HAS_UVS,
+                named: NONE,
             }],
             triangles: vec![AttrTriangle {
                 v: [0, 1, 2],
                 mesh: 0,
             }],
+            ..MeshAttributes::default()
         };
         let mut data = vec![[9.0; 4]; 3];
         let o = encode(&a, &mut data);
         assert_eq!(o, [3, 4, 5, 7]);
         assert_eq!(data.len(), 9);
         assert_eq!(data[3].map(f32::to_bits), [0, 1, 2, 0]);
-        assert_eq!(data[4].map(f32::to_bits), [0, 1, 3, 0]);
+        assert_eq!(data[4].map(f32::to_bits), [0, 1, 3, NONE]);
         assert_eq!(data[6], [0.0, 1.0, 0.0, 0.0]);
         assert_eq!(data[7], [0.1, 0.2, 0.3, 0.4]);
         assert_eq!(data[8], [0.5, 0.6, 0.0, 0.0]);

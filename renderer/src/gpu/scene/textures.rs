@@ -33,7 +33,8 @@
 //! - `uv` = (su, sv, ou, ov), the [`UvTransform`] (identity for a constant);
 //! - `c0` = (the constant, the bitmap's `scale` or the checkerboard's `color0`; bits of the
 //!   bitmap's width);
-//! - `c1` = (the checkerboard's `color1`; bits of the bitmap's height).
+//! - `c1` = (the checkerboard's `color1`; bits of the bitmap's height);
+//! - a mesh attribute's: `h.w` = bits of its slot, `c0.x` = its scale.
 //!
 //! WGSL twin: `textures/mod.wgsl`.
 
@@ -63,6 +64,8 @@ gpu_tags! {
         Bitmap => "TEXTURE_BITMAP",
         /// [`Texture::Checkerboard`].
         Checkerboard => "TEXTURE_CHECKERBOARD",
+        /// [`Texture::MeshAttribute`].
+        MeshAttribute => "TEXTURE_MESH_ATTRIBUTE",
     }
 }
 
@@ -73,6 +76,7 @@ impl TextureTag {
             Texture::Constant(_) => TextureTag::Constant,
             Texture::Bitmap(_) => TextureTag::Bitmap,
             Texture::Checkerboard(_) => TextureTag::Checkerboard,
+            Texture::MeshAttribute(_) => TextureTag::MeshAttribute,
         }
     }
 }
@@ -396,6 +400,12 @@ fn record(
             uv(&c.uv),
             v4(c.color0, 0.0),
             v4(c.color1, 0.0),
+        ],
+        Texture::MeshAttribute(m) => [
+            [bits(kind), bits(repeat), bits(channel), bits(m.slot)],
+            uv(&identity),
+            [m.scale, 0.0, 0.0, 0.0],
+            [0.0; 4],
         ],
         Texture::Bitmap(b) => {
             let image = b.image();

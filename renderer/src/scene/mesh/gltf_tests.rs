@@ -23,6 +23,7 @@ fn quad_mesh() -> MeshData {
         indices: vec![[0, 1, 2], [0, 2, 3]],
         normals: Some(vec![Vec3::Z; 4]),
         uvs: Some(QUAD_UV.iter().map(|&t| Vec2::from(t)).collect()),
+        attributes: Vec::new(),
     }
 }
 

@@ -31,6 +31,44 @@ pub struct MeshData {
     /// the image's top row as textures index it: glTF and PLY values as stored, OBJ's `v`
     /// flipped to `1 − v` (what Mitsuba 3 does with each format).
     pub uvs: Option<Vec<Vec2>>,
+    /// The file's named vertex and face attributes (Mitsuba's PLY attributes: `vertex_color`,
+    /// `face_color`, `vertex_<prefix>`, …), in file order; empty for the other formats.
+    pub attributes: Vec<MeshAttribute>,
+}
+
+/// Whether a [`MeshAttribute`] has a value per vertex or per face.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AttributeKind {
+    /// One value per vertex, interpolated by a hit's barycentrics (name `vertex_…`).
+    Vertex,
+    /// One value per face, constant over it (name `face_…`).
+    Face,
+}
+
+/// A named per-vertex or per-face attribute of a mesh, as Mitsuba 3.9.1's `Mesh::add_attribute`
+/// holds it, read by the `mesh_attribute` texture.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshAttribute {
+    /// Mitsuba's name, which starts with `vertex_` or `face_` ([`MeshAttribute::kind`]).
+    pub name: String,
+    /// Its number of components: 1 or 3 (Mitsuba also keeps 4, `r g b a`, which its texture
+    /// cannot evaluate; the front end refuses a texture that names one).
+    pub dim: u8,
+    /// One value per vertex (`vertex_…`) or per triangle of [`MeshData::indices`] (`face_…`: a
+    /// polygon's value repeated for each triangle of its fan). One component is stored in all
+    /// three (`x = y = z`); the fourth of a 4-component attribute is dropped.
+    pub values: Vec<Vec3>,
+}
+
+impl MeshAttribute {
+    /// Per vertex or per face, by the name's prefix.
+    pub fn kind(&self) -> AttributeKind {
+        if self.name.starts_with("face_") {
+            AttributeKind::Face
+        } else {
+            AttributeKind::Vertex
+        }
+    }
 }
 
 /// A mesh file that cannot be read: the message names the file and, where the format has one,
@@ -160,6 +198,23 @@ pub fn check(file: &Path, mesh: &MeshData) -> Result<(), MeshError> {
                 file,
                 "",
                 format!("{len} {what} for {n} vertices"),
+            ));
+        }
+    }
+    for a in &mesh.attributes {
+        let (want, per) = match a.kind() {
+            AttributeKind::Vertex => (n, "vertices"),
+            AttributeKind::Face => (mesh.indices.len(), "triangles"),
+        };
+        if a.values.len() != want {
+            return Err(MeshError::at(
+                file,
+                "",
+                format!(
+                    "attribute '{}' has {} values for {want} {per}",
+                    a.name,
+                    a.values.len()
+                ),
             ));
         }
     }

@@ -40,6 +40,7 @@ fn a_quad_is_two_triangles_fanned_from_its_first_vertex() {
             indices: vec![[0, 1, 2], [0, 2, 3]],
             normals: None,
             uvs: None,
+            attributes: Vec::new(),
         }
     );
 }
@@ -79,6 +80,7 @@ fn normals_and_uvs_are_read_and_split_vertices() {
                 Vec2::X,
                 Vec2::ZERO
             ]),
+            attributes: Vec::new(),
         }
     );
     // `v//vn` gives normals without texture coordinates.
@@ -174,6 +176,7 @@ fn constructs_tobj_mishandles_are_read_correctly() {
             indices: vec![[0, 1, 2]],
             normals: None,
             uvs: Some(vec![Vec2::new(0.5, 1.0), Vec2::new(1.0, 0.75), Vec2::ZERO]),
+            attributes: Vec::new(),
         }
     );
 }
@@ -336,6 +339,7 @@ fn in_first_use_order(mesh: &MeshData) -> MeshData {
             .uvs
             .as_ref()
             .map(|n| order.iter().map(|&i| n[i]).collect()),
+        attributes: Vec::new(),
     }
 }
 

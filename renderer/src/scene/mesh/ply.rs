@@ -5,17 +5,29 @@
 //! - element `vertex`: properties `x`, `y`, `z` (required; any scalar type, usually `float` or
 //!   `double`, in any order); `nx`, `ny`, `nz` as the normals when all three are there; texture
 //!   coordinates from the first complete pair of `u`/`v`, `s`/`t`, `texture_u`/`texture_v`,
-//!   `texture_s`/`texture_t`. Other properties (colours, confidence, …) are skipped.
+//!   `texture_s`/`texture_t`. Other properties are attributes (below) or skipped.
 //! - element `face`: the list `vertex_indices` (or `vertex_index`), any integer types for the
 //!   length and the entries; polygons are fanned from their first vertex. Other properties are
-//!   skipped.
+//!   attributes (below) or skipped.
 //! - every other element (`edge`, `material`, …) is skipped; elements may come in any order.
+//!
+//! Named attributes ([`MeshAttribute`]) are read from the other scalar properties of `vertex`
+//! and `face` exactly as Mitsuba 3.9.1's PLY loader reads them, because its `mesh_attribute`
+//! texture looks them up by the names that loader gives: `r g b` (or `red green blue`, with
+//! `a`/`alpha`) become `vertex_color`/`face_color`; a run of consecutive properties
+//! `{prefix}_{c}` whose one-character postfixes follow `x y z w`, `r g b a`, `0 1 2 3` or
+//! `1 2 3 4` becomes `vertex_{prefix}`/`face_{prefix}` (`…_color` for `r g b a`) when it has 1
+//! or 3 components. Whatever Mitsuba ignores (with a warning) is skipped here silently: names
+//! without `_`, longer postfixes, 2 or 4 components, broken sequences, a repeated prefix, with
+//! the quirks of Mitsuba's loop (`ply_attributes.rs`). Integer properties but `uchar` are
+//! normalized by their type's maximum and sRGB-decoded, as Mitsuba's converter does; a face's
+//! value is repeated for each triangle of its fan. A non-finite value is an error.
 //!
 //! Errors name the file and the element (`mesh.ply element face 12: index 900 out of range
 //! (512 vertices)`; ASCII files add the line), or the header line. Rejected: a missing `vertex`
 //! or `face` element, no faces, missing `x`/`y`/`z`, a non-finite (or beyond-`f32`) position,
-//! normal or texture coordinate, an index out of range, a face with fewer than 3 vertices, a
-//! truncated file; never a panic.
+//! normal, texture coordinate or attribute value, an index out of range, a face with fewer than
+//! 3 vertices, a truncated file; never a panic.
 //!
 //! Why not ply-rs for this (it is kept as an independent check in the tests): its header
 //! grammar panics on an element count beyond `u64` (`n.parse().unwrap()`), its ASCII grammar
@@ -23,11 +35,15 @@
 //! binary path builds a string-keyed map per element (several times slower; see the tests'
 //! module doc). The format is small enough that a direct reader is the safer choice.
 
-use super::{MeshData, MeshError, check};
+use super::{AttributeKind, MeshAttribute, MeshData, MeshError, check};
 use glam::{Vec2, Vec3};
 use std::fs::File;
 use std::io::{self, BufRead, BufReader, BufWriter, Read, Write};
 use std::path::Path;
+
+#[path = "ply_attributes.rs"]
+mod attributes;
+use attributes::{Attributes, attribute_sources, attribute_vec};
 
 /// How a PLY file's payload (everything after `end_header`) is encoded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -530,8 +546,33 @@ fn read_payload<S: Source>(
         indices: Vec::with_capacity(reserve(face)),
         normals: roles.normal.map(|_| Vec::with_capacity(reserve(vertex))),
         uvs: roles.uv.map(|_| Vec::with_capacity(reserve(vertex))),
+        attributes: Vec::new(),
     };
+    // The attributes of both elements, in the order the elements come in the file.
+    let mut vertex_attributes = None;
+    let mut face_attributes = None;
+    for element in &header.elements {
+        let (kind, slot) = if std::ptr::eq(element, vertex) {
+            (AttributeKind::Vertex, &mut vertex_attributes)
+        } else if std::ptr::eq(element, face) {
+            (AttributeKind::Face, &mut face_attributes)
+        } else {
+            continue;
+        };
+        let sources = attribute_sources(element, kind);
+        let first = mesh.attributes.len();
+        mesh.attributes
+            .extend(sources.iter().map(|source| MeshAttribute {
+                name: source.name.clone(),
+                dim: source.properties.len() as u8,
+                values: Vec::with_capacity(reserve(element)),
+            }));
+        *slot = Some(Attributes { sources, first });
+    }
+    let vertex_attributes = vertex_attributes.expect("the vertex element is in the header");
+    let face_attributes = face_attributes.expect("the face element is in the header");
     let mut values = vec![0.0f64; vertex.properties.len()];
+    let mut face_values = vec![0.0f64; face.properties.len()];
     let mut polygon = Vec::new();
     for element in &header.elements {
         // An element without properties takes no bytes: nothing to read, however many.
@@ -540,13 +581,25 @@ fn read_payload<S: Source>(
         }
         for i in 0..element.count {
             let done = if std::ptr::eq(element, vertex) {
-                read_vertex(source, element, &roles, &mut values, &mut mesh)
+                read_vertex(
+                    source,
+                    element,
+                    &roles,
+                    &vertex_attributes,
+                    &mut values,
+                    &mut mesh,
+                )
             } else if std::ptr::eq(element, face) {
+                let face = Face {
+                    index_list,
+                    vertices: vertex.count,
+                    attributes: &face_attributes,
+                };
                 read_face(
                     source,
                     element,
-                    index_list,
-                    vertex.count,
+                    &face,
+                    &mut face_values,
                     &mut polygon,
                     &mut mesh,
                 )
@@ -607,6 +660,7 @@ fn read_vertex(
     source: &mut impl Source,
     element: &Element,
     roles: &VertexRoles,
+    attributes: &Attributes,
     values: &mut [f64],
     mesh: &mut MeshData,
 ) -> Result<(), String> {
@@ -627,6 +681,10 @@ fn read_vertex(
     if let (Some([u, v]), Some(uvs)) = (roles.uv, mesh.uvs.as_mut()) {
         uvs.push(Vec2::new(get(u)?, get(v)?));
     }
+    for (j, a) in attributes.sources.iter().enumerate() {
+        let value = attribute_vec(element, a, values)?;
+        mesh.attributes[attributes.first + j].values.push(value);
+    }
     Ok(())
 }
 
@@ -644,19 +702,29 @@ fn finite(name: &str, value: f64) -> Result<f32, String> {
     }
 }
 
-/// Reads one face, fanned into triangles in `mesh`; `polygon` is scratch space.
+/// What [`read_face`] needs besides the element: the index of its index list, the number of
+/// vertices, its attributes.
+struct Face<'a> {
+    index_list: usize,
+    vertices: u64,
+    attributes: &'a Attributes,
+}
+
+/// Reads one face, fanned into triangles in `mesh`, its attributes repeated for each; `values`
+/// (one slot per property) and `polygon` are scratch space.
 fn read_face(
     source: &mut impl Source,
     element: &Element,
-    index_list: usize,
-    vertices: u64,
+    face: &Face,
+    values: &mut [f64],
     polygon: &mut Vec<u32>,
     mesh: &mut MeshData,
 ) -> Result<(), String> {
+    let vertices = face.vertices;
     source.begin()?;
     for (k, p) in element.properties.iter().enumerate() {
         match p.kind {
-            Kind::List { len, item } if k == index_list => {
+            Kind::List { len, item } if k == face.index_list => {
                 let n = source.list_len(len)?;
                 polygon.clear();
                 for _ in 0..n {
@@ -671,12 +739,17 @@ fn read_face(
                 }
             }
             Kind::List { len, item } => skip_list(source, len, item)?,
-            Kind::Scalar(t) => {
-                source.value(t)?;
-            }
+            Kind::Scalar(t) => values[k] = source.value(t)?,
         }
     }
     source.end()?;
+    let triangles = polygon.len() - 2;
+    for (j, a) in face.attributes.sources.iter().enumerate() {
+        let value = attribute_vec(element, a, values)?;
+        mesh.attributes[face.attributes.first + j]
+            .values
+            .extend(std::iter::repeat_n(value, triangles));
+    }
     let first = polygon[0];
     mesh.indices
         .extend(polygon[1..].windows(2).map(|w| [first, w[0], w[1]]));
@@ -706,15 +779,35 @@ fn skip(source: &mut impl Source, element: &Element) -> Result<(), String> {
 }
 
 /// Writes `mesh` to `path` as PLY: `float` positions (and normals `nx ny nz`, texture
-/// coordinates `u v` where the mesh has them), faces as `list uchar uint vertex_indices`.
+/// coordinates `u v` where the mesh has them), faces as `list uchar uint vertex_indices`, and
+/// each attribute as `float` properties `{prefix}_0 {prefix}_1 {prefix}_2` (`{prefix}_0` for one
+/// component; `prefix` is the name after `vertex_`/`face_`), vertex ones after the vertex
+/// properties, face ones after the index list, which the reader takes back as the same name.
 /// ASCII values use Rust's shortest round-trip formatting, so every encoding reads back to the
-/// same `MeshData`.
+/// same `MeshData`. An attribute that cannot round-trip is refused (`InvalidInput`): 4
+/// components (`r g b a`: the alpha is not kept), a name that does not start with `vertex_` or
+/// `face_` or holds whitespace, a name given twice, a value count that does not match.
 pub fn write(path: &Path, mesh: &MeshData, encoding: Encoding) -> io::Result<()> {
+    let prefixes = attribute_prefixes(mesh)?;
     let mut w = BufWriter::with_capacity(1 << 20, File::create(path)?);
     let format = match encoding {
         Encoding::Ascii => "ascii",
         Encoding::BinaryLittleEndian => "binary_little_endian",
         Encoding::BinaryBigEndian => "binary_big_endian",
+    };
+    let of_kind = |kind: AttributeKind| {
+        mesh.attributes
+            .iter()
+            .zip(&prefixes)
+            .filter(move |(a, _)| a.kind() == kind)
+    };
+    let properties = |w: &mut BufWriter<File>, kind: AttributeKind| -> io::Result<()> {
+        for (a, prefix) in of_kind(kind) {
+            for c in 0..a.dim {
+                writeln!(w, "property float {prefix}_{c}")?;
+            }
+        }
+        Ok(())
     };
     writeln!(w, "ply\nformat {format} 1.0\ncomment written by lumis")?;
     writeln!(w, "element vertex {}", mesh.positions.len())?;
@@ -728,8 +821,17 @@ pub fn write(path: &Path, mesh: &MeshData, encoding: Encoding) -> io::Result<()>
     for n in &names {
         writeln!(w, "property float {n}")?;
     }
+    properties(&mut w, AttributeKind::Vertex)?;
     writeln!(w, "element face {}", mesh.indices.len())?;
-    writeln!(w, "property list uchar uint vertex_indices\nend_header")?;
+    writeln!(w, "property list uchar uint vertex_indices")?;
+    properties(&mut w, AttributeKind::Face)?;
+    writeln!(w, "end_header")?;
+    // The values of element `i`'s attributes of `kind`, appended to `row`.
+    let attribute_values = |row: &mut Vec<f32>, kind: AttributeKind, i: usize| {
+        for (a, _) in of_kind(kind) {
+            row.extend(&a.values[i].to_array()[..usize::from(a.dim)]);
+        }
+    };
     let mut row = Vec::with_capacity(8);
     for (i, p) in mesh.positions.iter().enumerate() {
         row.clear();
@@ -740,22 +842,14 @@ pub fn write(path: &Path, mesh: &MeshData, encoding: Encoding) -> io::Result<()>
         if let Some(uv) = &mesh.uvs {
             row.extend(uv[i].to_array());
         }
-        match encoding {
-            Encoding::Ascii => {
-                let text: Vec<String> = row.iter().map(f32::to_string).collect();
-                writeln!(w, "{}", text.join(" "))?;
-            }
-            Encoding::BinaryLittleEndian => {
-                row.iter().try_for_each(|v| w.write_all(&v.to_le_bytes()))?
-            }
-            Encoding::BinaryBigEndian => {
-                row.iter().try_for_each(|v| w.write_all(&v.to_be_bytes()))?
-            }
-        }
+        attribute_values(&mut row, AttributeKind::Vertex, i);
+        write_floats(&mut w, encoding, "", &row)?;
     }
-    for t in &mesh.indices {
+    for (i, t) in mesh.indices.iter().enumerate() {
+        row.clear();
+        attribute_values(&mut row, AttributeKind::Face, i);
         match encoding {
-            Encoding::Ascii => writeln!(w, "3 {} {} {}", t[0], t[1], t[2])?,
+            Encoding::Ascii => write!(w, "3 {} {} {}", t[0], t[1], t[2])?,
             Encoding::BinaryLittleEndian => {
                 w.write_all(&[3])?;
                 t.iter().try_for_each(|i| w.write_all(&i.to_le_bytes()))?;
@@ -765,8 +859,74 @@ pub fn write(path: &Path, mesh: &MeshData, encoding: Encoding) -> io::Result<()>
                 t.iter().try_for_each(|i| w.write_all(&i.to_be_bytes()))?;
             }
         }
+        write_floats(&mut w, encoding, " ", &row)?;
     }
     w.flush()
+}
+
+/// Writes `row` in `encoding`; ASCII: after `separator` if not empty, and ends the line.
+fn write_floats(
+    w: &mut impl Write,
+    encoding: Encoding,
+    separator: &str,
+    row: &[f32],
+) -> io::Result<()> {
+    match encoding {
+        Encoding::Ascii => {
+            let text: Vec<String> = row.iter().map(f32::to_string).collect();
+            let separator = if row.is_empty() { "" } else { separator };
+            writeln!(w, "{separator}{}", text.join(" "))
+        }
+        Encoding::BinaryLittleEndian => row.iter().try_for_each(|v| w.write_all(&v.to_le_bytes())),
+        Encoding::BinaryBigEndian => row.iter().try_for_each(|v| w.write_all(&v.to_be_bytes())),
+    }
+}
+
+/// The property prefix of each of `mesh`'s attributes for [`write`] (its name after `vertex_`
+/// or `face_`), or why it cannot be written so that it reads back the same.
+fn attribute_prefixes(mesh: &MeshData) -> io::Result<Vec<&str>> {
+    let refuse = |name: &str, why: String| {
+        Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("PLY attribute '{name}': {why}"),
+        ))
+    };
+    let mut prefixes = Vec::with_capacity(mesh.attributes.len());
+    for (k, a) in mesh.attributes.iter().enumerate() {
+        let (prefix, count) = match a.kind() {
+            AttributeKind::Vertex => (a.name.strip_prefix("vertex_"), mesh.positions.len()),
+            AttributeKind::Face => (a.name.strip_prefix("face_"), mesh.indices.len()),
+        };
+        let Some(prefix) = prefix else {
+            return refuse(
+                &a.name,
+                "the name must start with 'vertex_' or 'face_'".into(),
+            );
+        };
+        if a.dim == 4 {
+            return refuse(
+                &a.name,
+                "4 components (r g b a) cannot be written: the values hold only 3".into(),
+            );
+        }
+        if a.dim != 1 && a.dim != 3 {
+            return refuse(
+                &a.name,
+                format!("{} components (1 or 3 can be written)", a.dim),
+            );
+        }
+        if prefix.chars().any(|c| c.is_whitespace() || c.is_control()) {
+            return refuse(&a.name, "a PLY property name cannot hold whitespace".into());
+        }
+        if mesh.attributes[..k].iter().any(|b| b.name == a.name) {
+            return refuse(&a.name, "a second attribute of that name".into());
+        }
+        if a.values.len() != count {
+            return refuse(&a.name, format!("{} values for {count}", a.values.len()));
+        }
+        prefixes.push(prefix);
+    }
+    Ok(prefixes)
 }
 
 #[cfg(test)]

@@ -230,6 +230,7 @@ fn decode(compressed: &[u8], version: u16) -> Result<MeshData, String> {
         indices,
         normals,
         uvs,
+        attributes: Vec::new(),
     })
 }
 

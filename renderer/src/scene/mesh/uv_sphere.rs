@@ -108,6 +108,7 @@ impl UvSphere {
             indices,
             normals: self.normals.then_some(normals),
             uvs: self.uvs.then_some(uvs),
+            attributes: Vec::new(),
         }
     }
 

@@ -75,7 +75,7 @@ fn path_of(name: &str) -> String {
     join("materials", name)
 }
 
-/// Whether the material reads texture coordinates (a non-constant texture in a slot, its
+/// Whether the material reads texture coordinates (a texture of them in a slot, its
 /// opacity, its normal or bump map or a mix's weight, or one of its parts does); `all` are the scene's
 /// materials, which a mix or pair names (acyclic: the parser checked).
 pub(crate) fn is_textured(m: &NamedMaterial, all: &[NamedMaterial]) -> bool {
@@ -96,7 +96,7 @@ pub(crate) fn is_textured(m: &NamedMaterial, all: &[NamedMaterial]) -> bool {
         map,
     ]
     .iter()
-    .any(|s| s.is_some_and(|d| !d.texture.is_constant()))
+    .any(|s| s.is_some_and(|d| d.texture.reads_uv()))
 }
 
 /// The `<bsdf>` elements of one material, outermost first: the material's name is the first's
@@ -513,6 +513,14 @@ pub(crate) fn texture_xml(
             color32(x, "color0", c0);
             color32(x, "color1", c1);
             to_uv(x, &c.uv);
+            x.close("texture");
+        }
+        Texture::MeshAttribute(m) => {
+            x.open("texture", &[("type", "mesh_attribute"), ("name", name)]);
+            x.leaf("string", &[("name", "name"), ("value", &m.name)]);
+            if m.scale != 1.0 {
+                x.leaf("float", &[("name", "scale"), ("value", &num32(m.scale))]);
+            }
             x.close("texture");
         }
     }

@@ -47,7 +47,7 @@ pub(crate) fn shape(
     let textured = material.is_some_and(|m| is_textured(m, &desc.materials))
         || s.emission_texture
             .as_ref()
-            .is_some_and(|t| !t.texture.is_constant());
+            .is_some_and(|t| t.texture.reads_uv());
     let no_uv = |what: &str| -> Result<(), SceneError> {
         if textured {
             return Err(SceneError::new(
@@ -178,6 +178,7 @@ pub(crate) fn shape(
                     .collect(),
                 normals: None,
                 uvs: None,
+                attributes: Vec::new(),
             };
             ply_shape(ctx, x, desc, s, mesh, DMat4::IDENTITY)?;
         }
@@ -188,6 +189,7 @@ pub(crate) fn shape(
                 indices: indices.clone(),
                 normals: None,
                 uvs: None,
+                attributes: Vec::new(),
             };
             ply_shape(ctx, x, desc, s, mesh, DMat4::IDENTITY)?;
         }

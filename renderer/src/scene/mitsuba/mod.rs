@@ -158,9 +158,21 @@ pub fn load_params(path: &Path, params: &Params) -> Result<Imported, SceneError>
     let mut shape_pos = Vec::new();
     for s in scene.objects("shape") {
         let plugin = ctx.plugin(target(s))?;
-        if let Some(obj) = shape::shape(&mut ctx, &plugin, shapes.len())? {
-            shapes.push(obj);
-            shape_pos.push(plugin.pos().clone());
+        match plugin.ty {
+            // Its shapes appear where instances place them (Mitsuba renders none of its own).
+            "shapegroup" => {}
+            "instance" => {
+                for (obj, pos) in shape::instance(&mut ctx, &plugin, shapes.len())? {
+                    shapes.push(obj);
+                    shape_pos.push(pos);
+                }
+            }
+            _ => {
+                if let Some(obj) = shape::shape(&mut ctx, &plugin, shapes.len())? {
+                    shapes.push(obj);
+                    shape_pos.push(plugin.pos().clone());
+                }
+            }
         }
     }
     for el in declared_areas {

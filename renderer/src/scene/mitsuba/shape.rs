@@ -26,6 +26,85 @@ const DEFAULT_MATERIAL: &str = "mitsuba_default_diffuse";
 
 /// The scene format's shape for `s`, to go at `shapes[index]`; `None` when it is invisible.
 pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, SceneError> {
+    placed(ctx, s, index, &DMat4::IDENTITY)
+}
+
+/// Mitsuba's `instance` of a `shapegroup`, flattened into the scene: each shape of the group
+/// placed by the instance's `to_world` after its own, to go at `shapes[index..]`, with where
+/// each was declared. lumis has no instancing of its own (a flattened instance costs what its
+/// shapes cost, docs/mitsuba.md), so the instance's `to_world` must be a similarity (a rotation,
+/// a uniform scale and a translation): under it a flattened sphere, disk or cylinder stays one
+/// and a mesh's recomputed normals are Mitsuba's, which computes them in the group's space.
+/// Mitsuba's own refusals are kept: one shapegroup per instance, no nested groups or instances,
+/// no emitters in a group.
+pub fn instance(
+    ctx: &mut Ctx,
+    s: &Plugin,
+    index: usize,
+) -> Result<Vec<(Json, super::xml::Pos)>, SceneError> {
+    let outer = match s.transform("to_world")? {
+        None => DMat4::IDENTITY,
+        Some((m, p)) => {
+            let m3 = DMat3::from_mat4(m);
+            let det = m3.determinant();
+            let scale = det.cbrt();
+            let r = m3 / scale;
+            let orthonormal = (r.transpose() * r - DMat3::IDENTITY)
+                .to_cols_array()
+                .iter()
+                .all(|x| x.abs() < 1e-6);
+            if !(det > 0.0 && orthonormal) {
+                return Err(p.el.pos.error(
+                    "an instance's to_world must be a rotation, a uniform scale and a \
+                     translation: lumis flattens instances into the scene, and a flattened \
+                     sphere, disk or cylinder cannot follow a shear, a non-uniform scale or a \
+                     mirror as Mitsuba's instance does",
+                ));
+            }
+            m
+        }
+    };
+    let groups = s.objects("shape");
+    let [group] = groups.as_slice() else {
+        return Err(s.error("an instance names exactly one shapegroup (as in Mitsuba)"));
+    };
+    let group = ctx.plugin(target(group))?;
+    if group.ty != "shapegroup" {
+        return Err(group.error(format!(
+            "an instance names a shapegroup, not a `{}` (as in Mitsuba)",
+            group.ty
+        )));
+    }
+    s.finish("to_world, one shapegroup")?;
+    let mut out = Vec::new();
+    for child in group.objects("shape") {
+        let c = ctx.plugin(target(child))?;
+        if matches!(c.ty, "shapegroup" | "instance") {
+            return Err(c.error(
+                "a shapegroup inside a shapegroup, or an instance in one, is not allowed (nor \
+                 in Mitsuba)",
+            ));
+        }
+        if let Some(e) = c.objects("emitter").first() {
+            return Err(e.el.pos.error(
+                "an emitter in a shapegroup is not allowed (Mitsuba does not instance emitters)",
+            ));
+        }
+        if let Some(obj) = placed(ctx, &c, index + out.len(), &outer)? {
+            out.push((obj, c.pos().clone()));
+        }
+    }
+    group.finish("shapes (the group's)")?;
+    Ok(out)
+}
+
+/// [`shape`] with the shape's `to_world` applied after `outer` (an instance's).
+fn placed(
+    ctx: &mut Ctx,
+    s: &Plugin,
+    index: usize,
+    outer: &DMat4,
+) -> Result<Option<Json>, SceneError> {
     let path = format!("shapes[{index}]");
     ctx.origin(&path, s.pos());
     if let Some(medium) = s.objects("medium").first() {
@@ -93,9 +172,9 @@ pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, Sc
     let (to_world, tpos) = match s.transform("to_world")? {
         Some((m, p)) => {
             ctx.origin(&format!("{path}.to_world"), &p.el.pos);
-            (m, p.el.pos.clone())
+            (*outer * m, p.el.pos.clone())
         }
-        None => (DMat4::IDENTITY, s.pos().clone()),
+        None => (*outer, s.pos().clone()),
     };
     // Importance of silhouettes for differentiable rendering only.
     s.ignore(&["silhouette_sampling_weight"]);
@@ -265,13 +344,9 @@ pub fn shape(ctx: &mut Ctx, s: &Plugin, index: usize) -> Result<Option<Json>, Sc
         }
         "cylinder" => cylinder(ctx, s, &path, &to_world, &tpos, flip, emission.is_some())?,
         other => {
-            let why = match other {
-                "shapegroup" | "instance" => " (lumis has no instancing)",
-                _ => "",
-            };
             return Err(s.error(format!(
-                "shape type `{other}` is not supported{why}; lumis maps obj, ply, serialized, \
-                 rectangle, cube, disk and sphere"
+                "shape type `{other}` is not supported; lumis maps obj, ply, serialized, \
+                 rectangle, cube, disk, sphere and cylinder, and instances of shapegroups"
             )));
         }
     };
@@ -338,7 +413,8 @@ fn cylinder(
     let round = 1e-6;
     if m3.determinant() < 0.0 {
         return Err(tpos.error(
-            "a mirroring to_world (negative determinant) on a cylinder is not supported:              Mitsuba's normals would point inward",
+            "a mirroring to_world (negative determinant) on a cylinder is not supported: \
+             Mitsuba's normals would point inward",
         ));
     }
     if (ey.length() - r).abs() > round * r

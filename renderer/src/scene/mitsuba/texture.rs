@@ -1,4 +1,5 @@
-//! Textures and texturable parameters: `<texture type="bitmap">` and `"checkerboard"` become
+//! Textures and texturable parameters: `<texture type="bitmap">`, `"checkerboard"` and
+//! `"mesh_attribute"` become
 //! the scene format's texture objects (whose conventions are Mitsuba 3.9.1's: `docs/
 //! scene-format.md`, Textures), and a parameter given as a constant becomes its RGB or scalar
 //! ([`super::values`]).
@@ -147,9 +148,23 @@ fn texture(ctx: &mut Ctx, prop: &Prop, reads: Reads, json_path: &str) -> Result<
             t.finish("color0, color1, to_uv")?;
             obj
         }
+        "mesh_attribute" => {
+            let (name, nprop) = t
+                .string("name")?
+                .ok_or_else(|| t.error("a mesh_attribute needs `name`"))?;
+            ctx.origin(&format!("{json_path}.name"), nprop.pos());
+            let mut obj = json!({"type": "mesh_attribute", "name": name});
+            if let Some(p) = t.get("scale") {
+                ctx.origin(&format!("{json_path}.scale"), p.pos());
+                obj["scale"] = json!(t.float("scale", 1.0)?);
+            }
+            t.finish("name, scale")?;
+            obj
+        }
         other => {
             return Err(t.error(format!(
-                "texture type `{other}` is not supported (lumis maps bitmap and checkerboard)"
+                "texture type `{other}` is not supported (lumis maps bitmap, checkerboard and \
+                 mesh_attribute)"
             )));
         }
     };
