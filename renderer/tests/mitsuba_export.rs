@@ -542,6 +542,37 @@ fn mesh_attribute_textures_round_trip() {
     assert_round_trip(&m.desc, "mesh_attribute");
 }
 
+/// A mix of model mitsuba with a delta lobe (a smooth conductor beside a rough plastic) goes out
+/// as a blendbsdf and comes back as the same mix of model mitsuba (the importer gives it the
+/// model for its delta lobe), rendering the same image bit for bit.
+#[test]
+fn a_mix_of_model_mitsuba_round_trips() {
+    let json = r#"{"camera": {"from": [0, 1, -3], "to": [0, 0.5, 0], "up": [0, 1, 0],
+            "vfov_deg": 40, "width": 24, "height": 16},
+        "background": [0.3, 0.3, 0.3],
+        "materials": {
+            "coat": {"type": "plastic", "albedo": [0.2, 0.3, 0.6], "alpha": 0.25,
+                     "model": "mitsuba", "two_sided": false},
+            "mirror": {"type": "conductor", "alpha": 0, "reflectance": [0.9, 0.8, 0.5],
+                       "two_sided": false},
+            "m": {"type": "mix", "materials": ["coat", "mirror"], "weight": 0.4,
+                  "model": "mitsuba"}},
+        "shapes": [{"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": "m"},
+                   {"type": "quad", "corner": [-0.5, 2, -0.5], "edge_u": [1, 0, 0],
+                    "edge_v": [0, 0, 1], "emission": [5, 5, 5]}]}"#;
+    let desc = parse_scene_in(json, &scenes_dir()).unwrap_or_else(|e| panic!("{e}"));
+    assert_round_trip(&desc, "blend_delta");
+    let dir = Dir::new("blend_delta_back");
+    let (_, back) = round_trip(&desc, &dir, "blend_delta_back");
+    let mix = back
+        .desc
+        .materials
+        .iter()
+        .find_map(|m| m.mix.as_ref())
+        .unwrap();
+    assert!(mix.mitsuba, "the model came back");
+}
+
 /// A gaussian pixel filter goes out as Mitsuba's `gaussian` rfilter and comes back as the same
 /// filter (the same image, bit for bit); a radius other than Mitsuba's 4σ is refused by path.
 #[test]
@@ -700,7 +731,8 @@ fn what_mitsuba_cannot_take_is_an_error_naming_the_json_path() {
         )
     };
     let cases = [
-        // Mitsuba's blendbsdf mis-weighs a delta lobe.
+        // Mitsuba's blendbsdf weighs a delta lobe against the other part, which only a mix of
+        // model mitsuba does.
         (
             base(
                 r#""a": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5]},

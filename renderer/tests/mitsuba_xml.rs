@@ -782,22 +782,6 @@ fn blendbsdf_becomes_a_mix() {
             "mask",
             "",
         ),
-        // Delta lobes, which Mitsuba's blend mis-weighs: smooth, and inside a wrapper.
-        (
-            r#"<bsdf type="conductor"/>"#,
-            "conductor",
-            " (a BSDF with a delta lobe)",
-        ),
-        (
-            r#"<bsdf type="twosided"><bsdf type="plastic"/></bsdf>"#,
-            "twosided",
-            " (a BSDF with a delta lobe)",
-        ),
-        (
-            r#"<bsdf type="thindielectric"/>"#,
-            "thindielectric",
-            " (a BSDF with a delta lobe)",
-        ),
     ] {
         refused(
             &dir,
@@ -809,6 +793,46 @@ fn blendbsdf_becomes_a_mix() {
             &format!("a `{ty}`{why} in a blendbsdf is not supported"),
         );
     }
+    // Delta lobes (a smooth conductor, a smooth plastic's coat): a mix of model mitsuba, which weighs them as
+    // Mitsuba's blend does; without one, a plain mix.
+    let blend = |inner: &str| {
+        format!(
+            r#"<shape type="sphere"><bsdf type="blendbsdf"><float name="weight" value="0.5"/><bsdf type="diffuse"/>{inner}</bsdf></shape>"#
+        )
+    };
+    for (inner, model) in [
+        (r#"<bsdf type="conductor"/>"#, Some("mitsuba")),
+        (r#"<bsdf type="plastic"/>"#, Some("mitsuba")),
+        (r#"<bsdf type="roughconductor"/>"#, None),
+    ] {
+        let m = ok(&dir, &blend(inner));
+        let mixes: Vec<&Value> = m.json["materials"]
+            .as_object()
+            .unwrap()
+            .values()
+            .filter(|v| v["type"] == "mix")
+            .collect();
+        assert_eq!(mixes.len(), 1, "{inner}");
+        assert_eq!(mixes[0]["model"].as_str(), model, "{inner}");
+        assert_eq!(
+            m.desc
+                .materials
+                .iter()
+                .filter_map(|x| x.mix.as_ref())
+                .next()
+                .unwrap()
+                .mitsuba,
+            model.is_some()
+        );
+    }
+    // What a mix of model mitsuba cannot hold, at the part.
+    refused(
+        &dir,
+        &blend(r#"<bsdf type="thindielectric"/>"#),
+        "<bsdf type=\"thindielectric",
+        "scene/shape/bsdf/bsdf",
+        "is a transmitting material, which a mix of model mitsuba cannot hold",
+    );
     refused(
         &dir,
         r#"<shape type="sphere"><bsdf type="blendbsdf"><bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf></shape>"#,

@@ -494,6 +494,29 @@ fn xml_instances_wrong_placement_is_detected() {
     assert_detected("xml_instances", &m, 3180, "with angle=0");
 }
 
+/// `xml_blend_delta.xml` (Mitsuba's `blendbsdf` around delta lobes, imported as mixes of model
+/// mitsuba: rough plastic and a smooth copper conductor by a texture, a smooth plastic and rough
+/// gold at 0.4) against its reference, seeds 3270–3274.
+#[test]
+fn xml_blend_delta_matches_its_mitsuba_reference() {
+    every_strategy("xml_blend_delta", [256, 256, 256, 256, 256], 3270);
+}
+
+/// Power: `xml_blend_delta.xml` rendered with its mixes as plain mixes (model lumis: a delta
+/// sample keeps its own weight, the unbiased blend Mitsuba does not render) fails, MIS 256 spp,
+/// seed 3280.
+#[test]
+fn xml_blend_delta_as_a_plain_mix_is_detected() {
+    let mut m = import("xml_blend_delta", &[]);
+    let mut blends = 0;
+    for mix in m.desc.materials.iter_mut().filter_map(|x| x.mix.as_mut()) {
+        blends += usize::from(mix.mitsuba);
+        mix.mitsuba = false;
+    }
+    assert_eq!(blends, 2);
+    assert_detected("xml_blend_delta", &m, 3280, "as plain mixes");
+}
+
 /// `xml_textured_shapes.xml` (Mitsuba's texture coordinates on spheres and disks turned by
 /// their `to_world`: a checkered sphere with a tilted pole, a checkered disk turned about its
 /// normal, a sphere light with a checkered radiance, anisotropic gold about a tilted pole)

@@ -28,8 +28,8 @@ use crate::geometry::SurfaceHit;
 use crate::geometry::primitive::NONE;
 use crate::geometry::ray::{Ray, spawn_ray, spawn_ray_to};
 use crate::geometry::tangent;
-use crate::materials::bump_map;
 use crate::materials::normal_map::{self, NormalMap, VertexBsdf};
+use crate::materials::{bump_map, mix};
 use crate::math::{Frame, max_component};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
@@ -260,8 +260,8 @@ fn trace<const TRANSMISSION: bool>(
         let mut n = hit.n;
         // A two-sided pair shows its back material to a path that arrives on its back.
         let arrives_back = n.dot(wo_world) < 0.0;
-        let (material, detail_map) = scene.shading_at(&hit, prim.material, arrives_back);
-        let material = &*material;
+        let shaded = scene.shading_at(&hit, prim.material, arrives_back);
+        let (material, detail_map, blend) = (&*shaded.material, shaded.detail_map, shaded.blend);
         let shading_normal = if scene.attributes.has_normals() {
             scene.attributes.shading_normal(prim.attr, hit.b, n)
         } else {
@@ -396,7 +396,7 @@ fn trace<const TRANSMISSION: bool>(
         }
 
         // Continue the path by BSDF sampling.
-        let Some(bs) =
+        let Some(mut bs) =
             bsdf.sample::<TRANSMISSION>(wo, sampler.bsdf_lobe_1d(bounce), sampler.bsdf_2d(bounce))
         else {
             if let (true, Some(opt)) = (cv, optimal.as_deref_mut()) {
@@ -405,6 +405,15 @@ fn trace<const TRANSMISSION: bool>(
             }
             break;
         };
+        // Mitsuba's blend weighs a delta sample against the other part there (`materials/mix.rs`).
+        if let (true, Some(b)) = (bs.delta, blend) {
+            let partner = scene.material_at(&hit, b.partner, arrives_back);
+            let (f, p) = (
+                partner.eval_specialised::<TRANSMISSION>(wo, bs.wi),
+                partner.pdf_specialised::<TRANSMISSION>(wo, bs.wi),
+            );
+            bs.weight = mix::blend_delta_weight(bs.weight, bs.pdf, b.weight, f, p);
+        }
         let wi = frame.to_world(bs.wi);
         let wi_ok = !shading || same_side(wi, n, bs.wi.z);
         if cv {

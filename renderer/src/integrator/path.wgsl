@@ -517,7 +517,21 @@ fn radiance(camera_ray: Ray) -> vec3f {
 
         // Continue the path by BSDF sampling.
         let u_lobe = sampler_bsdf_lobe_1d(bounce);
-        let bs = vertex_sample(m, wo, u_lobe, sampler_bsdf_2d(bounce));
+        var bs = vertex_sample(m, wo, u_lobe, sampler_bsdf_2d(bounce));
+// #if HAS_MIXES
+        // Mitsuba's blend weighs a delta sample against the other part there (`materials/mix.rs`).
+        if bs.ok && bs.delta && resolved.partner != NONE {
+            var pm = materials[resolved.partner];
+// #if HAS_TEXTURES
+            if material_textured(pm) {
+                pm = material_at(pm, surface_tex(prim, hit));
+            }
+// #endif
+            let f = material_eval(pm, wo, bs.wi);
+            let p = material_pdf(pm, wo, bs.wi);
+            bs.weight = blend_delta_weight(bs.weight, bs.pdf, resolved.weight, f, p);
+        }
+// #endif
         if !bs.ok {
             if cv {
                 l += beta * opt_pure_bsdf(vec3f(0.0));

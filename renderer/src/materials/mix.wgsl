@@ -7,7 +7,8 @@
 //
 // A mix's record lives in `materials` at the mix's own index (`gpu/scene/materials.rs`):
 //   h = (MATERIAL_MIX, first material, second material, id of the weight's texture or NONE);
-//   a.x = the constant weight (when h.w is NONE); a.w, c.w = bits of NONE (no texture slots).
+//   a.x = the constant weight (when h.w is NONE); a.y = 1 for Mitsuba's blend (`Mix::mitsuba`);
+//   a.w, c.w = bits of NONE (no texture slots).
 // No BSDF function takes MATERIAL_MIX (their `switch`es flag it), so a mix left unresolved is loud.
 //
 // u64 arithmetic is emulated on vec2<u32>(lo, hi) (`gpu/u64.wgsl`): WGSL has no 64-bit integers.
@@ -36,9 +37,24 @@ fn mix_choice(w: f32, u: f32) -> u32 {
 // A material resolved at a hit: its index, and whether a two-sided pair chose it on the way (then
 // it is seen from either side, whatever its own record's two-sided bit says, as the CPU reads the
 // bit of the hit primitive's own material).
+// A mix of model mitsuba that chose it gives its `Blend`: the other part (else NONE) and the
+// chosen part's probability.
 struct ResolvedMaterial {
     index: u32,
     paired: bool,
+    partner: u32,
+    weight: f32,
+}
+
+// `blend_delta_weight`: Mitsuba's blend weight of a delta sample (weight, discrete pdf) of the
+// part chosen with probability w_self, the partner's eval f and pdf p there.
+fn blend_delta_weight(weight: vec3f, pdf: f32, w_self: f32, f: vec3f, p: f32) -> vec3f {
+    let w_other = 1.0 - w_self;
+    let denominator = w_self * pdf + w_other * p;
+    if !(denominator > 0.0) {
+        return weight;
+    }
+    return (w_self * weight * pdf + w_other * f) / denominator;
 }
 
 // `Scene::resolve`: the material that material `mi` is at `hit` on `prim` for a path arriving on
@@ -48,6 +64,8 @@ struct ResolvedMaterial {
 fn material_resolve(mi_in: u32, prim: Prim, hit: SurfaceHit, back: bool) -> ResolvedMaterial {
     var mi = mi_in;
     var paired = false;
+    var partner = NONE;
+    var weight = 1.0;
     // The builder checked that every chain of mixes and pairs ends within the number of
     // materials; the bound only keeps a corrupt record from hanging the device.
     let n = arrayLength(&materials);
@@ -59,7 +77,7 @@ fn material_resolve(mi_in: u32, prim: Prim, hit: SurfaceHit, back: bool) -> Reso
             continue;
         }
         if m.h.x != MATERIAL_MIX {
-            return ResolvedMaterial(mi, paired);
+            return ResolvedMaterial(mi, paired, partner, weight);
         }
         var w = m.a.x;
 // #if HAS_TEXTURES
@@ -68,8 +86,10 @@ fn material_resolve(mi_in: u32, prim: Prim, hit: SurfaceHit, back: bool) -> Reso
         }
 // #endif
         let pick = mix_choice(w, mix_hash_unit(hit.p, hit.t, mi));
+        partner = select(NONE, select(m.h.z, m.h.y, pick == 1u), m.a.y != 0.0);
+        weight = select(1.0 - w, w, pick == 1u);
         mi = select(m.h.y, m.h.z, pick == 1u);
     }
     _ = unknown_tag();
-    return ResolvedMaterial(mi, paired);
+    return ResolvedMaterial(mi, paired, partner, weight);
 }

@@ -201,6 +201,7 @@ fn composites(desc: &SceneDesc) -> Result<Composites, SceneError> {
                     Some(t) => t.texture.clone(),
                     None => Texture::Constant(Vec3::splat(mix.weight as f32)),
                 },
+                mitsuba: mix.mitsuba,
             })
         })
         .collect();

@@ -302,6 +302,10 @@ pub struct MixDesc {
     pub weight: f64,
     /// The weight as a scalar texture (every scalar texel in [0, 1]), if given as one.
     pub weight_texture: Option<TextureDesc>,
+    /// `"model": "mitsuba"`: Mitsuba 3.9.1's `blendbsdf` estimator, which weighs a delta lobe's
+    /// sample against the other part's density ([`crate::materials::mix::blend_delta_weight`]);
+    /// the same image as the mix but where a part has a delta lobe.
+    pub mitsuba: bool,
 }
 
 /// The textured parameters of a material, one `Option` per slot. Where a slot has a texture,
@@ -846,7 +850,12 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
             Some(t) if !t.texture.is_constant() => t.to_json(),
             _ => json!(mix.weight),
         };
-        json!({"type": "mix", "materials": mix.materials.map(name), "weight": weight})
+        let mut obj =
+            json!({"type": "mix", "materials": mix.materials.map(name), "weight": weight});
+        if mix.mitsuba {
+            obj["model"] = json!("mitsuba");
+        }
+        obj
     } else if let Some([front, back]) = m.sides {
         json!({"type": "two_sided", "front": name(front), "back": name(back)})
     } else {

@@ -16,6 +16,7 @@ pub(super) enum Pending {
         names: [String; 2],
         weight: f64,
         weight_texture: Option<TextureDesc>,
+        mitsuba: bool,
     },
     /// A two-sided pair's front and back.
     Sides([String; 2]),
@@ -50,10 +51,22 @@ pub(super) fn parse_mix(obj: &Obj, loader: &mut TextureLoader) -> Result<Pending
             w
         }
     };
+    let mitsuba = match obj.get("model") {
+        None => false,
+        Some(_) => match obj.string("model")? {
+            "lumis" => false,
+            "mitsuba" => true,
+            other => {
+                let msg = format!("unknown mix model `{other}` (expected lumis or mitsuba)");
+                return Err(SceneError::new(obj.at("model"), msg));
+            }
+        },
+    };
     Ok(Pending::Mix {
         names,
         weight,
         weight_texture,
+        mitsuba,
     })
 }
 
@@ -68,6 +81,51 @@ pub(super) fn parse_two_sided(obj: &Obj) -> Result<Pending, SceneError> {
         obj.string("front")?.to_owned(),
         obj.string("back")?.to_owned(),
     ]))
+}
+
+/// The rule of a `"model": "mitsuba"` mix's parts (at `paths`): each a material of its own (no
+/// mix or pair, whose own choice would come before the blend's weighting), without a normal or
+/// bump map, anisotropy or transmission, so that both parts are seen in one frame from one side
+/// and the partner's BSDF is evaluated where the chosen part's delta lobe points
+/// ([`crate::materials::mix::blend_delta_weight`]).
+fn mitsuba_parts(
+    materials: &[NamedMaterial],
+    parts: [usize; 2],
+    paths: &[String; 2],
+) -> Result<(), SceneError> {
+    for (k, &p) in parts.iter().enumerate() {
+        let m = &materials[p];
+        let why = if m.parts().is_some() {
+            Some("a mix or two_sided pair")
+        } else if m.normal_map.is_some() {
+            Some("a material with a normal or bump map")
+        } else if m.material.transmits() {
+            Some("a transmitting material")
+        } else if m.textures.alpha_v.is_some() || is_anisotropic(&m.material) {
+            Some("an anisotropic material")
+        } else {
+            None
+        };
+        if let Some(why) = why {
+            let msg = format!(
+                "`{}` is {why}, which a mix of model mitsuba cannot hold (its parts are \
+                 evaluated together in one shading frame)",
+                m.name
+            );
+            return Err(SceneError::new(&paths[k], msg));
+        }
+    }
+    Ok(())
+}
+
+/// Whether `m`'s roughness is anisotropic (α_u ≠ α_v).
+fn is_anisotropic(m: &super::desc::MaterialDesc) -> bool {
+    use super::desc::MaterialDesc;
+    match m {
+        MaterialDesc::Conductor { alpha, alpha_v, .. }
+        | MaterialDesc::Dielectric { alpha, alpha_v, .. } => alpha_v.is_some_and(|v| v != *alpha),
+        _ => false,
+    }
 }
 
 /// What a material made of others is called in messages.
@@ -111,6 +169,8 @@ pub(super) fn resolve_parts(
     pending: Vec<Option<Pending>>,
 ) -> Result<(), SceneError> {
     let names: Vec<String> = materials.iter().map(|m| m.name.clone()).collect();
+    // The mixes of model mitsuba, checked once every part is known.
+    let mut blends = Vec::new();
     for (i, p) in pending.into_iter().enumerate() {
         let Some(p) = p else { continue };
         let paths = part_paths(obj, &names[i], &p);
@@ -140,16 +200,24 @@ pub(super) fn resolve_parts(
             Pending::Mix {
                 weight,
                 weight_texture,
+                mitsuba,
                 ..
             } => {
+                if mitsuba {
+                    blends.push((index, paths));
+                }
                 materials[i].mix = Some(MixDesc {
                     materials: index,
                     weight,
                     weight_texture,
+                    mitsuba,
                 });
             }
             Pending::Sides(_) => materials[i].sides = Some(index),
         }
+    }
+    for (parts, paths) in blends {
+        mitsuba_parts(materials, parts, &paths)?;
     }
     // Depth-first over the parts (an explicit stack; 1 = on the stack, 2 = done), so every
     // material is finished after its parts: `sides` then holds, per material, the `two_sided`

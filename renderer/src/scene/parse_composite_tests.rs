@@ -381,3 +381,91 @@ fn a_two_sided_pair_resolves_by_the_side_of_arrival() {
     );
     assert!(seen[0][0] > 0 && seen[0][2] > 0, "{seen:?}");
 }
+
+/// `"model": "mitsuba"` (Mitsuba's blendbsdf): parsed and written back, resolved with the other
+/// part and the chosen part's probability, and refused where its parts cannot be evaluated
+/// together (a part made of others, with a normal map, transmitting or anisotropic).
+#[test]
+fn a_mix_of_model_mitsuba_resolves_with_its_partner_and_keeps_its_rules() {
+    let s = with_materials(json!({
+        "blend": {"type": "mix", "materials": ["metal", "white"], "weight": 0.3,
+                  "model": "mitsuba"},
+    }));
+    let d = parse_scene_value(&s).unwrap();
+    let b = index(&d, "blend");
+    assert!(d.materials[b].mix.as_ref().unwrap().mitsuba);
+    assert_eq!(d.to_json()["materials"]["blend"]["model"], json!("mitsuba"));
+    assert_eq!(parse_scene_value(&d.to_json()).unwrap(), d);
+
+    let scene = Scene::from_desc(&d).unwrap();
+    let (metal, white) = (index(&d, "metal") as u32, index(&d, "white") as u32);
+    let mut rng = Rng::new(41, 0, 0);
+    let mut seen = [0u32; 2];
+    for _ in 0..200 {
+        let o = Vec3::new(rng.next_f32() - 0.5, 5.0, rng.next_f32() - 0.5);
+        let Some(hit) = scene.accel.intersect(&Ray::new(o, -Vec3::Y)) else {
+            continue;
+        };
+        let (m, blend) = scene.resolve_blend(&hit, b as u32, false);
+        let blend = blend.expect("a blend");
+        let (partner, w) = if m == metal {
+            (white, 0.7)
+        } else {
+            (metal, 0.3)
+        };
+        assert_eq!((blend.partner, blend.weight), (partner, w));
+        seen[usize::from(m == white)] += 1;
+        assert_eq!(m, scene.resolve(&hit, b as u32, false));
+    }
+    assert!(seen[0] > 0 && seen[1] > 0, "{seen:?}");
+    // A plain mix has none.
+    let plain = with_materials(json!({
+        "blend": {"type": "mix", "materials": ["metal", "white"], "weight": 0.3},
+    }));
+    let plain = Scene::from_desc(&parse_scene_value(&plain).unwrap()).unwrap();
+    let hit = plain
+        .accel
+        .intersect(&Ray::new(Vec3::new(0.1, 5.0, 0.2), -Vec3::Y))
+        .unwrap();
+    assert_eq!(plain.resolve_blend(&hit, b as u32, false).1, None);
+
+    let blend = |parts: Value, extra: Value| {
+        let mut m = extra;
+        m["blend"] = json!({"type": "mix", "materials": parts, "weight": 0.5, "model": "mitsuba"});
+        with_materials(m)
+    };
+    expect_err(
+        &with_materials(json!({
+            "blend": {"type": "mix", "materials": ["metal", "white"], "weight": 0.5,
+                      "model": "pbrt"},
+        })),
+        "materials.blend.model",
+        "unknown mix model `pbrt`",
+    );
+    let half = json!({"half": {"type": "mix", "materials": ["metal", "white"], "weight": 0.5}});
+    expect_err(
+        &blend(json!(["half", "white"]), half),
+        "materials.blend.materials[0]",
+        "`half` is a mix or two_sided pair",
+    );
+    let mapped = json!({"mapped": {"type": "diffuse", "albedo": [0.5, 0.5, 0.5],
+                                   "normal_map": {"texture": [0.5, 0.5, 1.0]}}});
+    expect_err(
+        &blend(json!(["metal", "mapped"]), mapped),
+        "materials.blend.materials[1]",
+        "normal or bump map",
+    );
+    let glass = json!({"glass": {"type": "dielectric", "ior": 1.5, "alpha": 0}});
+    expect_err(
+        &blend(json!(["glass", "white"]), glass),
+        "materials.blend.materials[0]",
+        "transmitting",
+    );
+    let brushed = json!({"brushed": {"type": "conductor", "alpha": [0.05, 0.3],
+                                     "reflectance": [0.9, 0.9, 0.9]}});
+    expect_err(
+        &blend(json!(["brushed", "white"]), brushed),
+        "materials.blend.materials[0]",
+        "anisotropic",
+    );
+}

@@ -182,7 +182,7 @@ fn parse_material(
                 let msg = "a mix has no sides of its own: its materials' `two_sided` apply";
                 return Err(SceneError::new(obj.at("two_sided"), msg));
             }
-            obj.only_keys(&["type", "materials", "weight", "opacity"], true)?;
+            obj.only_keys(&["type", "materials", "weight", "model", "opacity"], true)?;
             parts = Some(parse_mix(obj, loader)?);
             // Replaced by the favoured material's once the names resolve.
             MaterialDesc::Diffuse {

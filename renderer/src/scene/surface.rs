@@ -14,12 +14,23 @@ use crate::geometry::sphere::Sphere;
 use crate::geometry::{Shape, SurfaceHit};
 use crate::lights::{Light, LightSample, LightSampling};
 use crate::materials::Material;
+use crate::materials::mix::Blend;
 use crate::materials::normal_map::NormalMap;
 use crate::math::atan2;
 use crate::textures::{MeshPoint, TexPoint};
 use glam::{Vec2, Vec3};
 use std::borrow::Cow;
 use std::f32::consts::{PI, TAU};
+
+/// What a hit shades with ([`Scene::shading_at`]).
+pub struct Shading<'a> {
+    /// The material, resolved and with its textures evaluated.
+    pub material: Cow<'a, Material>,
+    /// Its normal or bump map with where to look it up.
+    pub detail_map: Option<(&'a NormalMap, TexPoint<'a>)>,
+    /// The partner and weight of a mix of model mitsuba that chose it.
+    pub blend: Option<Blend>,
+}
 
 /// A point of a primitive, in the terms its texture coordinates are computed from.
 #[derive(Clone, Copy, Debug)]
@@ -190,32 +201,37 @@ impl Scene {
     /// (borrowed when it has none).
     #[inline]
     pub fn material_at(&self, hit: &SurfaceHit, material: u32, back: bool) -> Cow<'_, Material> {
-        self.shading_at(hit, material, back).0
+        self.shading_at(hit, material, back).material
     }
 
-    /// [`Scene::material_at`] and the normal or bump map of that material with the hit's texture
+    /// [`Scene::material_at`], the normal or bump map of that material with the hit's texture
     /// coordinates (`None` without one: at once in a scene without maps), the material resolved
-    /// and the coordinates computed once for both.
+    /// and the coordinates computed once for both, and the [`Blend`] of a mix of model mitsuba
+    /// that chose it.
     #[inline]
-    pub fn shading_at(
-        &self,
-        hit: &SurfaceHit,
-        material: u32,
-        back: bool,
-    ) -> (Cow<'_, Material>, Option<(&NormalMap, TexPoint<'_>)>) {
-        let material = self.resolve(hit, material, back) as usize;
+    pub fn shading_at(&self, hit: &SurfaceHit, material: u32, back: bool) -> Shading<'_> {
+        let (material, blend) = self.resolve_blend(hit, material, back);
+        let material = material as usize;
         let base = &self.materials[material];
         let textures = &self.material_textures[material];
         let map = self.normal_maps.get(material).and_then(Option::as_ref);
         if textures.is_none() && map.is_none() {
-            return (Cow::Borrowed(base), None);
+            return Shading {
+                material: Cow::Borrowed(base),
+                detail_map: None,
+                blend,
+            };
         }
         let at = self.tex_point(hit);
         let m = match textures {
             None => Cow::Borrowed(base),
             Some(t) => Cow::Owned(t.at(base, at)),
         };
-        (m, map.map(|m| (m, at)))
+        Shading {
+            material: m,
+            detail_map: map.map(|m| (m, at)),
+            blend,
+        }
     }
 
     /// The material that `material` is at `hit` for a path arriving on the back (`back`) or
@@ -224,15 +240,30 @@ impl Scene {
     /// one material) and two-sided pairs ([`crate::materials::two_sided`]).
     #[inline]
     pub fn resolve(&self, hit: &SurfaceHit, material: u32, back: bool) -> u32 {
+        self.resolve_blend(hit, material, back).0
+    }
+
+    /// [`Scene::resolve`], and the [`Blend`] of the last mix on the way where it is of model
+    /// mitsuba (whose parts are materials of their own, so it is the last step).
+    #[inline]
+    pub fn resolve_blend(
+        &self,
+        hit: &SurfaceHit,
+        material: u32,
+        back: bool,
+    ) -> (u32, Option<Blend>) {
         let mut m = material;
+        let mut blend = None;
         // The builder checked that every chain of mixes and pairs ends.
         loop {
             m = if let Some(Some(mix)) = self.mixes.get(m as usize) {
-                mix.choose(hit.p, hit.t, m, || self.tex_point(hit))
+                let (next, b) = mix.choose_blend(hit.p, hit.t, m, || self.tex_point(hit));
+                blend = b;
+                next
             } else if let Some(Some(pair)) = self.sides.get(m as usize) {
                 pair.choose(back)
             } else {
-                return m;
+                return (m, blend);
             };
         }
     }

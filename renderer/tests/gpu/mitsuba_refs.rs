@@ -188,6 +188,15 @@ fn gpu_xml_instances_matches_the_cpu_and_mitsuba() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// `xml_blend_delta.xml` (Mitsuba's `blendbsdf` around delta lobes: `blend_delta_weight` and the
+/// resolve loop's partner in `materials/mix.wgsl`); against Mitsuba only, as `xml_blend` (its
+/// mixes hash hit distances, which the two sides round differently).
+#[test]
+fn gpu_xml_blend_delta_matches_mitsuba() {
+    let failures = check_with("xml_blend_delta", false);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// `xml_two_sided.xml` (Mitsuba's `twosided` with two BSDFs: `materials/two_sided.wgsl`, the
 /// pair resolved by the side of arrival in `materials/mix.wgsl`'s loop, its one-sided parts seen
 /// from the back).

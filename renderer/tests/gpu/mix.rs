@@ -516,6 +516,23 @@ fn gpu_mix_scene_matches_the_cpu() {
     );
 }
 
+/// `xml_blend_delta.xml`'s mixes of model mitsuba, GPU against CPU in every strategy by the
+/// z-test (seeds 4650–4655): the delta samples' reweighting on both sides.
+#[test]
+fn the_gpu_renders_the_cpus_mitsuba_blend_in_every_strategy() {
+    let scene = common::surface_detail::mitsuba_scene("xml_blend_delta");
+    assert_eq!(
+        scene.mixes.iter().flatten().filter(|m| m.mitsuba).count(),
+        2
+    );
+    let Some(failures) =
+        gpu_common::images::gpu_vs_cpu_every_strategy("gpu xml_blend_delta", &scene, 32, 4650, 8)
+    else {
+        return;
+    };
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 #[test]
 fn the_gpu_renders_the_cpus_blend_in_every_strategy() {
     let scene = common::surface_detail::mitsuba_scene("xml_blend");

@@ -197,7 +197,8 @@ pub(super) fn encode(
                         second,
                         mix_weights[index],
                     ],
-                    a: [weight, 0.0, 0.0, bits(NONE)],
+                    // a.y: Mitsuba's blend (`Mix::mitsuba`).
+                    a: [weight, f32::from(u8::from(mix.mitsuba)), 0.0, bits(NONE)],
                     b: [0.0; 4],
                     c: [0.0, 0.0, 0.0, bits(NONE)],
                 };

@@ -241,8 +241,11 @@ fn composite(
     kind: Composite,
 ) -> Result<Option<String>, SceneError> {
     let mut names = Vec::with_capacity(2);
+    let mut delta = false;
+    let mut positions = Vec::with_capacity(2);
     for part in parts {
         let part = target(part);
+        positions.push(part.pos.clone());
         let ty = part.value("type").unwrap_or("");
         // Mitsuba's twosided refuses every BSDF with a transmission or null component; lumis'
         // mix and pair take no null lobe and no opacity on their parts (a ray meets or passes a
@@ -268,17 +271,18 @@ fn composite(
             return Err(part.pos.error(msg));
         }
         let name = material(ctx, part)?.expect("only a null BSDF has no material");
-        if kind == Composite::Blend && has_delta_lobe(ctx, &name) {
-            return Err(part.pos.error(format!(
-                "a `{ty}` (a BSDF with a delta lobe) in a blendbsdf is not supported: Mitsuba \
-                 3.9.1's blendbsdf weighs a delta lobe's sample against its partner's density, \
-                 so its image is not the blend's, which lumis renders (docs/mitsuba.md); a \
-                 rough variant blends alike in both"
-            )));
-        }
+        delta |= kind == Composite::Blend && has_delta_lobe(ctx, &name);
         names.push(name);
     }
     let (name, path) = name_material(ctx, el, el, plugin.pos());
+    // The scene format's rules about a part are reported at that part.
+    let keys = match kind {
+        Composite::TwoSided => ["front".to_owned(), "back".to_owned()],
+        Composite::Blend => ["materials[0]".to_owned(), "materials[1]".to_owned()],
+    };
+    for (key, pos) in keys.iter().zip(&positions) {
+        ctx.origin(&format!("{path}.{key}"), pos);
+    }
     let m = match kind {
         Composite::TwoSided => json!({"type": "two_sided", "front": names[0], "back": names[1]}),
         Composite::Blend => {
@@ -290,14 +294,21 @@ fn composite(
             }
             let weight = scalar_param(ctx, plugin, "weight", 0.5, &format!("{path}.weight"))?;
             plugin.finish("weight, two nested <bsdf>")?;
-            json!({"type": "mix", "materials": names, "weight": weight})
+            let mut mix = json!({"type": "mix", "materials": names, "weight": weight});
+            // Mitsuba's blend weighs a delta lobe's sample against the other part, which lumis'
+            // mix does only as model mitsuba (docs/mitsuba.md); elsewhere the two agree.
+            if delta {
+                mix["model"] = json!("mitsuba");
+            }
+            mix
         }
     };
     add_material(ctx, el, name, &path, m, mask.as_ref())
 }
 
 /// Whether imported material `name` has a delta lobe (a smooth conductor, plastic coat or
-/// dielectric, a thin dielectric), itself or in a part: what Mitsuba's `blendbsdf` mis-weighs.
+/// dielectric, a thin dielectric), itself or in a part: what Mitsuba's `blendbsdf` weighs
+/// against the other part.
 fn has_delta_lobe(ctx: &Ctx, name: &str) -> bool {
     let Some(m) = ctx.materials.get(name) else {
         return false;

@@ -152,15 +152,20 @@ fn material(
     if let Some(parts) = m.parts() {
         match &m.mix {
             // Mitsuba's blend has lumis' mix's expected image (docs/scene-format.md), but for
-            // a delta lobe, which it mis-weighs (docs/mitsuba.md).
+            // a delta lobe, which it weighs against the other part as only a mix of model
+            // mitsuba does (docs/mitsuba.md).
             Some(mix) => {
-                if let Some(&p) = parts.iter().find(|&&p| has_delta_lobe(&all[p], all)) {
+                if let Some(&p) = parts
+                    .iter()
+                    .find(|&&p| !mix.mitsuba && has_delta_lobe(&all[p], all))
+                {
                     return Err(SceneError::new(
                         path,
                         format!(
                             "a mix of `{}`, which has a delta lobe, cannot be exported: Mitsuba \
                              3.9.1's blendbsdf weighs a delta lobe's sample against its \
-                             partner's density, so its image would not be lumis' mix's",
+                             partner's density, so its image would not be this mix's (a mix \
+                             of `\"model\": \"mitsuba\"` exports)",
                             all[p].name
                         ),
                     ));
