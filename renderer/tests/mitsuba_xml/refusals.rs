@@ -792,6 +792,13 @@ fn instances_are_flattened_and_their_refusals_located() {
     );
     refused(
         &dir,
+        r#"<shape type="instance"><ref id="nope"/></shape>"#,
+        "nope",
+        "scene/shape/ref",
+        "no object has the id `nope`",
+    );
+    refused(
+        &dir,
         r#"<shape type="sphere" id="s"/>
 <shape type="instance"><ref id="s"/></shape>"#,
         "id=\"s\"",
