@@ -306,8 +306,8 @@ fn light_uv(l: Light, s: LightSample) -> vec2f {
     return light_tex(l, s).uv;
 }
 
-// `Scene::light_uv`'s point for textures: a triangle light's (or quad's triangle's) record and
-// barycentrics with its texture coordinates.
+// `Scene::light_tex_point`: where textures are looked up at the sample, a triangle light's (or a
+// quad's triangle's) record and barycentrics with its texture coordinates.
 fn light_tex(l: Light, s: LightSample) -> TexPoint {
     switch l.h.x {
 // #if HAS_TRIANGLE_LIGHT

@@ -56,8 +56,14 @@ impl Scene {
     /// The texture coordinates of `hit`.
     #[inline]
     pub fn uv(&self, hit: &SurfaceHit) -> Vec2 {
+        self.uv_at(self.surface_point(hit))
+    }
+
+    /// `hit` as a point of its primitive, what [`Scene::uv`] and [`Scene::tex_point`] read.
+    #[inline]
+    fn surface_point(&self, hit: &SurfaceHit) -> SurfacePoint<'_> {
         let prim = &self.accel.primitives()[hit.prim as usize];
-        self.uv_at(match &prim.shape {
+        match &prim.shape {
             Shape::Triangle { .. } => SurfacePoint::Triangle {
                 attr: prim.attr,
                 b: hit.b,
@@ -65,21 +71,14 @@ impl Scene {
             Shape::Sphere(s) => SurfacePoint::Sphere(s, hit.p),
             Shape::Disk(d) => SurfacePoint::Disk(d, hit.p),
             Shape::Cylinder(c) => SurfacePoint::Cylinder(c, hit.p),
-        })
+        }
     }
 
     /// Where textures are looked up at `hit`: its texture coordinates and, on a mesh triangle
     /// with attributes in a scene whose textures read named ones, that triangle.
     #[inline]
     pub fn tex_point(&self, hit: &SurfaceHit) -> TexPoint<'_> {
-        let prim = &self.accel.primitives()[hit.prim as usize];
-        match &prim.shape {
-            Shape::Triangle { .. } => self.tex_point_at(SurfacePoint::Triangle {
-                attr: prim.attr,
-                b: hit.b,
-            }),
-            _ => self.uv(hit).into(),
-        }
+        self.tex_point_at(self.surface_point(hit))
     }
 
     /// [`Scene::tex_point`] of a point of a primitive ([`Scene::uv_at`]'s rule for its
@@ -128,10 +127,16 @@ impl Scene {
     }
 
     /// The texture coordinates of the point `s` sampled on `light` (`None` for the lights at
-    /// infinity): the primitive under it by the builder's construction (a triangle light's
+    /// infinity), those of [`Scene::light_tex_point`].
+    pub fn light_uv(&self, light: &Light, s: &LightSample) -> Option<Vec2> {
+        self.light_tex_point(light, s).map(|t| t.uv)
+    }
+
+    /// Where textures are looked up at the point `s` sampled on `light` (`None` for the lights
+    /// at infinity): the primitive under it by the builder's construction (a triangle light's
     /// attributes, a quad's triangle holding the point, a polygon's triangle, which has no
-    /// attributes), through [`Scene::uv_at`].
-    pub fn light_uv(&self, light: &Light, s: &LightSample) -> Option<TexPoint<'_>> {
+    /// attributes), through [`Scene::tex_point_at`].
+    pub fn light_tex_point(&self, light: &Light, s: &LightSample) -> Option<TexPoint<'_>> {
         let point = match light {
             Light::Triangle(l) => SurfacePoint::Triangle {
                 attr: l.attr,
@@ -170,7 +175,7 @@ impl Scene {
     }
 
     /// [`Light::sample`] of light `index` with the radiance at the sampled point: for a textured
-    /// light its texture there ([`Scene::light_uv`]); `None` also where that is black.
+    /// light its texture there ([`Scene::light_tex_point`]); `None` also where that is black.
     #[inline]
     pub fn sample_light(
         &self,
@@ -184,8 +189,8 @@ impl Scene {
         let mut s = light.sample(p, ns, u, method)?;
         let texture = light.texture();
         if texture != NONE {
-            let uv = self.light_uv(light, &s)?;
-            let t = self.emission_textures[texture as usize].texture.eval(uv);
+            let at = self.light_tex_point(light, &s)?;
+            let t = self.emission_textures[texture as usize].texture.eval(at);
             // A delta light's radiance is its intensity and falloff, modulated by the texture;
             // an area light's is the texture.
             s.le = if light.is_delta() { s.le * t } else { t };

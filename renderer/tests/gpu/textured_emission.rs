@@ -238,13 +238,8 @@ fn light_samples_and_hits_match_the_cpu() {
             }
             _ => 0.0,
         };
-        uv_at_cpu.scalar_conditioned(
-            circular(o[2][0], want.uv.x),
-            0.0,
-            extra,
-            &format!("{what}: u"),
-        );
-        uv_at_cpu.scalar(circular(o[2][1], want.uv.y), 0.0, &format!("{what}: v"));
+        uv_at_cpu.scalar_conditioned(circular(o[2][0], want.x), 0.0, extra, &format!("{what}: u"));
+        uv_at_cpu.scalar(circular(o[2][1], want.y), 0.0, &format!("{what}: v"));
         let gpu_uv = Vec2::new(o[0][0], o[0][1]);
         le_at_uv.v3(
             o[1],
