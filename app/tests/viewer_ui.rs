@@ -371,6 +371,63 @@ fn dielectric_ior_presets_and_sliders_edit_the_glass() {
     assert_eq!(h.state().restarts, restarts);
 }
 
+/// A principled's main parameters (issue 41 item 2): roughness, metallic, spec_trans, sheen,
+/// clearcoat and its gloss, specular (η) and base colour edit the selected material, each
+/// restarting; spec_trans turns transmission on (and the two-sidedness off) as the format does.
+#[test]
+fn principled_sliders_edit_the_selected_material() {
+    let dir = scratch("principled");
+    let mut desc = lumis::scene::load_scene(&asset("seed_cornell.json")).unwrap();
+    let i = material_in(&desc, "ggx05");
+    desc.materials[i].material = MaterialDesc::Principled(Default::default());
+    let file = dir.join("principled.json");
+    std::fs::write(&file, desc.to_json().to_string()).unwrap();
+    let mut h = harness_at(file, 24, dir);
+    h.state_mut().selected_material = Some(i);
+    h.run_steps(2);
+    // The description (which the format accepts) and the material the render thread built.
+    let principled = |h: &Harness<'static, ViewerApp>| {
+        let desc = h.state().desc.as_ref().unwrap();
+        let m = &desc.materials[i];
+        let back = lumis::scene::parse_scene_value(&desc.to_json()).unwrap();
+        assert_eq!(&back.materials[i], m, "the format rejects the edit");
+        assert_eq!(h.state().output().desc_version, h.state().desc_version);
+        let built = &h.state().output().scene.as_ref().unwrap().materials[i];
+        let (MaterialDesc::Principled(p), lumis::materials::Material::Principled(b)) =
+            (&m.material, built)
+        else {
+            panic!("not a principled")
+        };
+        assert_eq!(*b, p.material(), "the built scene has the edit");
+        (p.clone(), m.two_sided)
+    };
+    let (p, two_sided) = principled(&h);
+    assert!(two_sided && !p.transmission);
+    let sliders = [
+        ("roughness", 0, 0.25),
+        ("metallic", 2, 0.5),
+        ("sheen", 5, 0.75),
+        ("clearcoat", 8, 0.5),
+        ("clearcoat_gloss", 9, 0.25),
+    ];
+    for (label, k, value) in sliders {
+        assert_restarts(&mut h, label, |h| set_slider(h, label, value));
+        assert_eq!(principled(&h).0.scalars[k], value, "{label}");
+    }
+    assert_restarts(&mut h, "specular", |h| {
+        set_slider(h, "specular (sets η)", 1.0)
+    });
+    let eta = principled(&h).0.eta;
+    assert_eq!(
+        eta,
+        lumis::materials::principled::eta_from_specular(1.0) as f64
+    );
+    assert_restarts(&mut h, "spec_trans", |h| set_slider(h, "spec_trans", 0.5));
+    let (p, two_sided) = principled(&h);
+    assert!(p.transmission && !two_sided, "transmitting, so no sides");
+    assert_eq!(p.scalars[3], 0.5);
+}
+
 /// A mix's or pair's own description is only a stand-in (what renders is its parts), so its
 /// panel edits nothing of it: it offers its parts, and a click selects one for editing.
 #[test]

@@ -43,6 +43,15 @@ fn luminance(c: vec3f) -> f32 {
     return dot(c, vec3f(0.2126, 0.7152, 0.0722));
 }
 
+// `textures::luminance`: Mitsuba's coefficients, a grey value returned exactly (scalar texture
+// slots and the principled's tints).
+fn mitsuba_luminance(c: vec3f) -> f32 {
+    if c.x == c.y && c.y == c.z {
+        return c.x;
+    }
+    return c.x * LUMINANCE_R + c.y * LUMINANCE_G + c.z * LUMINANCE_B;
+}
+
 fn max_component(c: vec3f) -> f32 {
     return max(max(c.x, c.y), c.z);
 }
@@ -52,7 +61,7 @@ fn reflect_about(w: vec3f, n: vec3f) -> vec3f {
     return 2.0 * dot(w, n) * n - w;
 }
 
-// #if HAS_DIELECTRIC
+// #if HAS_REFRACTION
 // Refraction of `w` through the interface with normal `n` and relative IOR `eta` (`math::refract`;
 // from the other side of `n` it is seen with 1/η): the transmitted direction (xyz) and the
 // relative IOR η_t/η_i used (w), or w = 0 under total internal reflection.

@@ -248,8 +248,8 @@ pub fn scale_emission(
     }
 }
 
-/// Scales the albedo of material `name` by `factor`: a diffuse or plastic base albedo, or a
-/// conductor's Fresnel reflectance; an error if there is no such material or it has no albedo (a
+/// Scales the albedo of material `name` by `factor`: a diffuse or plastic base albedo, a
+/// principled's base colour, or a conductor's Fresnel reflectance; an error if there is no such material or it has no albedo (a
 /// conductor given by a complex IOR).
 pub fn scale_albedo(
     desc: &mut crate::scene::SceneDesc,
@@ -276,6 +276,7 @@ pub fn scale_albedo(
         MaterialDesc::Dielectric { .. } | MaterialDesc::ThinDielectric { .. } => {
             return Err(format!("dielectric {name} has no albedo"));
         }
+        MaterialDesc::Principled(p) => p.base_color *= factor,
     }
     Ok(())
 }

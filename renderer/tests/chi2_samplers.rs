@@ -38,7 +38,7 @@ use rayon::prelude::*;
 /// Family-wise significance level.
 const ALPHA: f64 = 0.01;
 /// Number of χ² tests in the family (every case of the suite).
-const N_TESTS: usize = 429 + 49 + 25;
+const N_TESTS: usize = 429 + 49 + 25 + 20;
 
 /// Runs every case with `samples` samples and asserts that all pass; prints one line per case
 /// and the smallest p-value.
@@ -104,6 +104,14 @@ fn chi2_mitsuba_plastics() {
         1_000_000,
         9200,
     );
+}
+
+/// Mitsuba's principled BSDF (issue 41; `suite::principled_cases`): every lobe picked with
+/// Mitsuba's probabilities, the main ones by visible normals, the clearcoat by GTR1 normals, the
+/// base by the cosine; transmitting ones from both sides. Seed fixed before the first run.
+#[test]
+fn chi2_principled() {
+    run_cases("principled", suite::principled_cases(), 1_000_000, 9400);
 }
 
 #[test]

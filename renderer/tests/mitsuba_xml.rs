@@ -11,6 +11,8 @@ mod common;
 mod grammar;
 #[path = "mitsuba_xml/normals.rs"]
 mod normals;
+#[path = "mitsuba_xml/principled.rs"]
+mod principled;
 #[path = "mitsuba_xml/refusals.rs"]
 mod refusals;
 

@@ -517,6 +517,23 @@ fn xml_blend_delta_as_a_plain_mix_is_detected() {
     assert_detected("xml_blend_delta", &m, 3280, "as plain mixes");
 }
 
+/// `xml_principled.xml` (Mitsuba's principled BSDF: a default one, an anisotropic tinted metal,
+/// a checkerboard base with sheen, clearcoat, spec_tint and flatness, a mostly transmitting
+/// sphere with a textured roughness, a textured metallic and clearcoat gloss with non-default
+/// sampling rates) against its reference, seeds 3370–3374.
+#[test]
+fn xml_principled_matches_its_mitsuba_reference() {
+    every_strategy("xml_principled", [256, 256, 256, 256, 256], 3370);
+}
+
+/// Power: `xml_principled.xml` with `-D trans=0.7` (the right sphere's spec_trans 0.7 for 0.9:
+/// a transmission lobe weighted 22% low) fails, MIS 256 spp, seed 3380.
+#[test]
+fn xml_principled_wrong_transmission_is_detected() {
+    let m = import("xml_principled", &[("trans", "0.7")]);
+    assert_detected("xml_principled", &m, 3380, "with trans=0.7");
+}
+
 /// `xml_textured_shapes.xml` (Mitsuba's texture coordinates on spheres and disks turned by
 /// their `to_world`: a checkered sphere with a tilted pole, a checkered disk turned about its
 /// normal, a sphere light with a checkered radiance, anisotropic gold about a tilted pole)

@@ -5,6 +5,7 @@
 
 use super::light_shape::{Keep, LightShape, PlanarLight};
 use glam::DVec3;
+use lumis::materials::principled::{PrincipledParam, mitsuba_eta};
 use lumis::scene::desc::Distribution;
 use lumis::scene::{FresnelDesc, GeometryDesc, MaterialDesc, PlasticModel, SceneDesc};
 use std::ops::RangeInclusive;
@@ -23,7 +24,10 @@ pub fn alpha(m: &MaterialDesc) -> Option<f64> {
         MaterialDesc::Conductor { alpha, .. }
         | MaterialDesc::Plastic { alpha, .. }
         | MaterialDesc::Dielectric { alpha, .. } => Some(*alpha),
-        MaterialDesc::Diffuse { .. } | MaterialDesc::ThinDielectric { .. } => None,
+        // Its roughness is one of its own sliders ([`PRINCIPLED_SLIDERS`]).
+        MaterialDesc::Diffuse { .. }
+        | MaterialDesc::ThinDielectric { .. }
+        | MaterialDesc::Principled(_) => None,
     }
 }
 
@@ -47,7 +51,9 @@ pub fn set_alpha(m: &mut MaterialDesc, value: f64) {
             *alpha = value;
         }
         MaterialDesc::Plastic { alpha, .. } => *alpha = value,
-        MaterialDesc::Diffuse { .. } | MaterialDesc::ThinDielectric { .. } => {}
+        MaterialDesc::Diffuse { .. }
+        | MaterialDesc::ThinDielectric { .. }
+        | MaterialDesc::Principled(_) => {}
     }
 }
 
@@ -125,11 +131,13 @@ pub fn set_plastic_model(m: &mut MaterialDesc, value: PlasticModel) {
     }
 }
 
-/// The material's colour: the albedo, or a conductor's reflectance tint. `None` for
+/// The material's colour: the albedo, a principled's base colour, or a conductor's reflectance
+/// tint. `None` for
 /// conductors given by a complex index of refraction (their colour is physics, not a knob).
 pub fn colour(m: &MaterialDesc) -> Option<DVec3> {
     match m {
         MaterialDesc::Diffuse { albedo } | MaterialDesc::Plastic { albedo, .. } => Some(*albedo),
+        MaterialDesc::Principled(p) => Some(p.base_color),
         MaterialDesc::Conductor {
             fresnel: FresnelDesc::Reflectance(r),
             ..
@@ -145,6 +153,7 @@ pub fn set_colour(m: &mut MaterialDesc, value: DVec3) {
     let value = value.clamp(DVec3::ZERO, DVec3::ONE);
     match m {
         MaterialDesc::Diffuse { albedo } | MaterialDesc::Plastic { albedo, .. } => *albedo = value,
+        MaterialDesc::Principled(p) => p.base_color = value,
         MaterialDesc::Conductor {
             fresnel: FresnelDesc::Reflectance(r),
             ..
@@ -216,6 +225,67 @@ pub fn ior_presets(m: &MaterialDesc) -> &'static [(&'static str, f64)] {
             &DIELECTRIC_PRESETS
         }
         _ => &[],
+    }
+}
+
+/// A principled's parameters offered as sliders (beside its base colour and [`specular`]).
+pub const PRINCIPLED_SLIDERS: [PrincipledParam; 6] = [
+    PrincipledParam::Roughness,
+    PrincipledParam::Metallic,
+    PrincipledParam::SpecTrans,
+    PrincipledParam::Sheen,
+    PrincipledParam::Clearcoat,
+    PrincipledParam::ClearcoatGloss,
+];
+
+/// A principled's scalar `param`; `None` for other materials.
+pub fn principled_scalar(m: &MaterialDesc, param: PrincipledParam) -> Option<f64> {
+    match m {
+        MaterialDesc::Principled(p) => Some(p.scalars[param as usize]),
+        _ => None,
+    }
+}
+
+/// Sets a principled's scalar `param`, clamped to [0, 1]. `spec_trans` also decides whether it
+/// transmits, as the format's parser does (then η = 1 becomes Mitsuba's 1.001); the caller
+/// drops `two_sided` of a material that now transmits.
+pub fn set_principled_scalar(m: &mut MaterialDesc, param: PrincipledParam, value: f64) {
+    let MaterialDesc::Principled(p) = m else {
+        return;
+    };
+    if !value.is_finite() {
+        return;
+    }
+    let value = value.clamp(0.0, 1.0);
+    p.scalars[param as usize] = value;
+    if param == PrincipledParam::SpecTrans {
+        p.transmission = value != 0.0;
+        if p.transmission && p.eta == 1.0 {
+            p.eta = f64::from(mitsuba_eta(Some(1.0), None, true));
+        }
+    }
+}
+
+/// A principled's `specular` (Burley's: its η's normal-incidence reflectance / 0.08), in
+/// [0, 1] for η in [1, 1.79]; `None` for other materials.
+pub fn specular(m: &MaterialDesc) -> Option<f64> {
+    match m {
+        MaterialDesc::Principled(p) => {
+            let r = (p.eta - 1.0) / (p.eta + 1.0);
+            Some((r * r / 0.08).min(1.0))
+        }
+        _ => None,
+    }
+}
+
+/// Sets a principled's η from `specular` in [0, 1] (Mitsuba's rule, 1e-3 for 0 with
+/// transmission).
+pub fn set_specular(m: &mut MaterialDesc, value: f64) {
+    if let MaterialDesc::Principled(p) = m
+        && value.is_finite()
+    {
+        let s = value.clamp(0.0, 1.0) as f32;
+        p.eta = f64::from(mitsuba_eta(None, Some(s), p.transmission));
     }
 }
 

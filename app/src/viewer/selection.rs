@@ -193,6 +193,33 @@ impl ViewerApp {
                 changed = true;
             }
         }
+        // A principled's main parameters (Mitsuba's keys), a textured one showing its mean.
+        for param in edit::PRINCIPLED_SLIDERS {
+            let Some(mut v) = edit::principled_scalar(m, param) else {
+                break;
+            };
+            let slot = &mut textures.principled[param as usize];
+            let label = match slot {
+                Some(_) => format!("{} (texture mean)", param.name()),
+                None => param.name().to_owned(),
+            };
+            if ui
+                .add(egui::Slider::new(&mut v, 0.0..=1.0).text(label))
+                .changed()
+            {
+                edit::set_principled_scalar(m, param, v);
+                *slot = None;
+                changed = true;
+            }
+        }
+        if let Some(mut s) = edit::specular(m)
+            && ui
+                .add(egui::Slider::new(&mut s, 0.0..=1.0).text("specular (sets η)"))
+                .changed()
+        {
+            edit::set_specular(m, s);
+            changed = true;
+        }
         if let Some(mut n) = edit::ior(m) {
             let range = edit::ior_slider_range(m, n);
             if ui
@@ -278,6 +305,8 @@ impl ViewerApp {
             }
         }
         if changed {
+            // A principled whose transmission the sliders turned on has no sides.
+            named.two_sided &= !named.material.transmits();
             self.scene_changed();
         }
     }

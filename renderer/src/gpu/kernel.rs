@@ -199,14 +199,15 @@ mod tests {
                 value: match c.name {
                     "SMOOTH_ALPHA" => Value::F32(0.25),
                     "E_TABLE_SIZE" => Value::U32(4),
-                    "MATERIAL_PLASTIC" => Value::U32(7),
+                    // A tag no material has (the switches need distinct cases).
+                    "MATERIAL_PLASTIC" => Value::U32(100),
                     _ => c.value,
                 },
                 ..c
             })
             .collect();
         let out = run(&changed);
-        assert_eq!(out[0], [0.25, 4.0, 7.0, 2.0]);
+        assert_eq!(out[0], [0.25, 4.0, 100.0, 2.0]);
         assert_eq!(out[1][0], 1.0);
         let t = 1.0f32 / 3.0;
         assert_eq!(out[1][1], t * t * t);

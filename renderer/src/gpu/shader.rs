@@ -71,6 +71,8 @@ const MODULES: &[Module] = &[
     module!("materials/plastic_mitsuba.wgsl"),
     module!("materials/dielectric.wgsl"),
     module!("materials/thin_dielectric.wgsl"),
+    module!("materials/gtr1.wgsl"),
+    module!("materials/principled.wgsl"),
     module!("lights/mod.wgsl"),
     module!("lights/light_sampler.wgsl"),
     module!("lights/light_bvh.wgsl"),
@@ -166,6 +168,10 @@ pub struct Features {
     pub has_dielectric: bool,
     /// Thin dielectric sheets (`materials/thin_dielectric.wgsl`).
     pub has_thin_dielectric: bool,
+    /// Mitsuba's principled BSDF (`materials/principled.wgsl`, `materials/gtr1.wgsl`).
+    pub has_principled: bool,
+    /// A principled with specular transmission (its back side is the inside).
+    pub has_principled_transmission: bool,
     /// Disk shapes.
     pub has_disk_shape: bool,
     /// Sphere shapes.
@@ -226,6 +232,8 @@ impl Features {
             has_mitsuba_plastic: true,
             has_dielectric: true,
             has_thin_dielectric: true,
+            has_principled: true,
+            has_principled_transmission: true,
             has_disk_shape: true,
             has_sphere_shape: true,
             has_cylinder_shape: true,
@@ -307,6 +315,12 @@ impl Features {
                     f.has_beckmann |= d.microfacet.distribution == Distribution::Beckmann;
                 }
                 Material::ThinDielectric(_) => f.has_thin_dielectric = true,
+                // Always rough (α ≥ 0.001), always GGX.
+                Material::Principled(p) => {
+                    f.has_principled = true;
+                    f.has_principled_transmission |= p.transmission;
+                    f.has_ggx = true;
+                }
             }
         }
         // A textured α may be rough where the material's constant (its mean) is smooth; a
@@ -314,6 +328,8 @@ impl Features {
         for t in scene.material_textures.iter().flatten() {
             f.has_ggx |= t.alpha.is_some();
             f.has_anisotropic |= t.alpha_v.is_some();
+            // A textured anisotropy may be non-zero where its mean is.
+            f.has_anisotropic |= t.principled[1].is_some();
         }
         for p in scene.accel.primitives() {
             match p.shape {
@@ -336,7 +352,7 @@ impl Features {
 
     /// A material that light passes through ([`Material::transmits`]).
     pub fn has_transmission(&self) -> bool {
-        self.has_dielectric || self.has_thin_dielectric
+        self.has_dielectric || self.has_thin_dielectric || self.has_principled_transmission
     }
 
     /// Whether the scene has a delta light (point, spot, directional, projector).
@@ -348,7 +364,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 39] {
+    fn defines(&self) -> [(&'static str, bool); 41] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -389,12 +405,22 @@ impl Features {
             ("HAS_MITSUBA_PLASTIC", self.has_mitsuba_plastic),
             ("HAS_DIELECTRIC", self.has_dielectric),
             ("HAS_THIN_DIELECTRIC", self.has_thin_dielectric),
+            ("HAS_PRINCIPLED", self.has_principled),
             // A material that light passes through: the path tracer's transmission code.
             ("HAS_TRANSMISSION", self.has_transmission()),
-            // The exact dielectric Fresnel: glass, thin sheets and Mitsuba's plastic coat.
+            // A material that refracts (glass, a transmitting principled; not a thin sheet).
+            (
+                "HAS_REFRACTION",
+                self.has_dielectric || self.has_principled_transmission,
+            ),
+            // The exact dielectric Fresnel: glass, thin sheets, Mitsuba's plastic coat and the
+            // principled's main lobe.
             (
                 "HAS_DIELECTRIC_FRESNEL",
-                self.has_dielectric || self.has_thin_dielectric || self.has_mitsuba_plastic,
+                self.has_dielectric
+                    || self.has_thin_dielectric
+                    || self.has_mitsuba_plastic
+                    || self.has_principled,
             ),
             ("HAS_DISK_SHAPE", self.has_disk_shape),
             ("HAS_SPHERE_SHAPE", self.has_sphere_shape),
@@ -453,17 +479,22 @@ impl Features {
                     || self.has_mitsuba_plastic
                     || self.has_dielectric
                     || self.has_thin_dielectric
+                    || self.has_principled
             }
             "materials/ggx.wgsl" => self.has_ggx,
             "materials/beckmann.wgsl" => self.has_ggx && self.has_beckmann,
             "materials/microfacet.wgsl" => {
-                self.has_conductor || self.has_dielectric || self.has_mitsuba_plastic
+                self.has_conductor
+                    || self.has_dielectric
+                    || self.has_mitsuba_plastic
+                    || self.has_principled
             }
             "materials/conductor.wgsl" => self.has_conductor,
             "materials/plastic.wgsl" => self.has_plastic,
             "materials/plastic_mitsuba.wgsl" => self.has_mitsuba_plastic,
             "materials/dielectric.wgsl" => self.has_dielectric,
             "materials/thin_dielectric.wgsl" => self.has_thin_dielectric,
+            "materials/gtr1.wgsl" | "materials/principled.wgsl" => self.has_principled,
             // A disk light's ellipse samples find their point as a disk hit does.
             "geometry/disk.wgsl" => self.has_disk_shape || (lights && self.has_disk_light),
             // A cylinder's intersection solves the sphere's quadratic (`careful_roots`).

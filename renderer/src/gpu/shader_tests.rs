@@ -287,10 +287,13 @@ mod tests {
                 ..Features::default()
             },
             // Mitsuba's plastic reads the dielectric Fresnel (checked below).
+            // So does the principled (checked below).
             Features {
                 has_dielectric: false,
                 has_thin_dielectric: false,
                 has_mitsuba_plastic: false,
+                has_principled: false,
+                has_principled_transmission: false,
                 ..Features::all()
             },
         ];
@@ -328,6 +331,20 @@ mod tests {
             assert!(
                 !coat.contains(name),
                 "{name:?} in a Mitsuba plastic's program"
+            );
+        }
+        // A principled without transmission: its dielectric Fresnel, nothing of transmission.
+        let principled = program_body(&Features {
+            has_principled: true,
+            has_ggx: true,
+            has_lights: true,
+            ..Features::default()
+        });
+        assert!(principled.contains("fn principled_eval("));
+        for name in &TRANSMISSION_CODE[1..] {
+            assert!(
+                !principled.contains(name),
+                "{name:?} in a reflection-only principled's program"
             );
         }
         // Smooth glass alone needs Fresnel and refraction but no GGX.

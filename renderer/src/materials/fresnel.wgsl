@@ -75,7 +75,7 @@ fn fresnel_dielectric(cos_theta_i: f32, eta_in: f32) -> f32 {
 }
 // #endif
 
-// #if HAS_DIELECTRIC
+// #if HAS_REFRACTION
 
 // `fresnel_dielectric` of a refraction from both of its cosines (outside, inside; both ≥ 0):
 // symmetric in the pair, where recomputing one from the other would cancel near the critical angle.

@@ -15,8 +15,14 @@ fn microfacet_is_smooth(mf: Microfacet) -> bool {
     return max(mf.alpha.x, mf.alpha.y) < SMOOTH_ALPHA;
 }
 
-// `Material::is_anisotropic`: a rough conductor or dielectric with α_u ≠ α_v.
+// `Material::is_anisotropic`: a rough conductor, dielectric or principled with α_u ≠ α_v.
 fn material_anisotropic(m: Material) -> bool {
+// #if HAS_PRINCIPLED
+    if m.h.x == MATERIAL_PRINCIPLED {
+        let mf = principled_microfacet(m);
+        return mf.alpha.x != mf.alpha.y;
+    }
+// #endif
     if m.h.x != MATERIAL_CONDUCTOR && m.h.x != MATERIAL_DIELECTRIC {
         return false;
     }

@@ -1,5 +1,5 @@
-//! Materials (BSDFs): Lambertian diffuse, GGX conductor, a rough plastic, a dielectric and a thin
-//! dielectric sheet.
+//! Materials (BSDFs): Lambertian diffuse, GGX conductor, a rough plastic, a dielectric, a thin
+//! dielectric sheet and Mitsuba's principled BSDF.
 //!
 //! Everything works in the local shading frame: normal = +z, `wo` points towards the viewer and
 //! `wi` towards the light, both unit and pointing away from the surface. The integrator flips the
@@ -23,6 +23,7 @@ pub mod dielectric;
 pub mod diffuse;
 pub mod fresnel;
 pub mod ggx;
+pub mod gtr1;
 pub mod mask;
 pub mod microfacet;
 pub mod mix;
@@ -30,6 +31,7 @@ pub mod normal_map;
 pub mod plastic;
 pub mod plastic_mitsuba;
 pub mod plastic_textured;
+pub mod principled;
 #[cfg(test)]
 mod testing;
 pub mod textured;
@@ -42,6 +44,7 @@ pub use diffuse::Diffuse;
 pub use microfacet::{Distribution, Microfacet};
 pub use mix::Mix;
 pub use plastic::Plastic;
+pub use principled::Principled;
 pub use thin_dielectric::ThinDielectric;
 
 use glam::{Vec2, Vec3};
@@ -107,6 +110,9 @@ pub enum Material {
     Dielectric(Dielectric),
     /// A thin sheet of glass: mirror reflection or straight transmission, both delta.
     ThinDielectric(ThinDielectric),
+    /// Mitsuba's principled BSDF (Burley's Disney BSDF); transmits where it has specular
+    /// transmission.
+    Principled(Principled),
 }
 
 impl Material {
@@ -124,11 +130,16 @@ impl Material {
             Material::Diffuse(m) => m.eval(wo, wi),
             Material::Conductor(m) => m.eval(wo, wi),
             Material::Plastic(m) => m.eval(wo, wi),
+            Material::Principled(m) if !m.transmission || TRANSMISSION => m.eval(wo, wi),
             Material::Dielectric(m) if TRANSMISSION => Vec3::splat(m.eval_pdf(wo, wi).0),
-            Material::Dielectric(_) | Material::ThinDielectric(_) if !TRANSMISSION => {
+            Material::Dielectric(_) | Material::ThinDielectric(_) | Material::Principled(_)
+                if !TRANSMISSION =>
+            {
                 no_transmission()
             }
-            Material::Dielectric(_) | Material::ThinDielectric(_) => Vec3::ZERO,
+            Material::Dielectric(_) | Material::ThinDielectric(_) | Material::Principled(_) => {
+                Vec3::ZERO
+            }
         }
     }
 
@@ -144,11 +155,14 @@ impl Material {
             Material::Diffuse(m) => m.pdf(wo, wi),
             Material::Conductor(m) => m.pdf(wo, wi),
             Material::Plastic(m) => m.pdf(wo, wi),
+            Material::Principled(m) if !m.transmission || TRANSMISSION => m.pdf(wo, wi),
             Material::Dielectric(m) if TRANSMISSION => m.eval_pdf(wo, wi).1,
-            Material::Dielectric(_) | Material::ThinDielectric(_) if !TRANSMISSION => {
+            Material::Dielectric(_) | Material::ThinDielectric(_) | Material::Principled(_)
+                if !TRANSMISSION =>
+            {
                 no_transmission()
             }
-            Material::Dielectric(_) | Material::ThinDielectric(_) => 0.0,
+            Material::Dielectric(_) | Material::ThinDielectric(_) | Material::Principled(_) => 0.0,
         };
         pdf * crate::mutants::bsdf_pdf(self.kind_tag())
     }
@@ -176,9 +190,12 @@ impl Material {
             Material::Diffuse(m) => m.sample(wo, u),
             Material::Conductor(m) => m.sample(wo, u),
             Material::Plastic(m) => m.sample(wo, u_lobe, u),
+            Material::Principled(m) if !m.transmission || TRANSMISSION => m.sample(wo, u_lobe, u),
             Material::Dielectric(m) if TRANSMISSION => m.sample(wo, u_lobe, u),
             Material::ThinDielectric(m) if TRANSMISSION => m.sample(wo, u_lobe, u),
-            Material::Dielectric(_) | Material::ThinDielectric(_) => no_transmission(),
+            Material::Dielectric(_) | Material::ThinDielectric(_) | Material::Principled(_) => {
+                no_transmission()
+            }
         }?;
         if cfg!(feature = "mutants") && !s.delta {
             let k = crate::mutants::bsdf_pdf(self.kind_tag());
@@ -196,6 +213,8 @@ impl Material {
             Material::Plastic(m) => m.has_smooth_part(),
             Material::Dielectric(m) => !m.is_delta(),
             Material::ThinDielectric(_) => false,
+            // Its diffuse or its rough (α ≥ 0.001) specular lobes.
+            Material::Principled(_) => true,
         }
     }
 
@@ -206,6 +225,7 @@ impl Material {
         match self {
             Material::Conductor(c) => !c.is_delta() && c.microfacet.is_anisotropic(),
             Material::Dielectric(d) => !d.is_delta() && d.microfacet.is_anisotropic(),
+            Material::Principled(p) => p.is_anisotropic(),
             Material::Diffuse(_) | Material::Plastic(_) | Material::ThinDielectric(_) => false,
         }
     }
@@ -214,7 +234,11 @@ impl Material {
     /// flipped, and two-sidedness does not apply.
     #[inline]
     pub fn transmits(&self) -> bool {
-        matches!(self, Material::Dielectric(_) | Material::ThinDielectric(_))
+        match self {
+            Material::Dielectric(_) | Material::ThinDielectric(_) => true,
+            Material::Principled(p) => p.transmission,
+            Material::Diffuse(_) | Material::Conductor(_) | Material::Plastic(_) => false,
+        }
     }
 
     /// Purely specular: `eval` is always 0 and every sample is a delta sample.
@@ -228,6 +252,7 @@ impl Material {
             Material::Diffuse(m) => m.albedo,
             Material::Conductor(m) => m.normal_reflectance(),
             Material::Plastic(m) => m.albedo_hint(),
+            Material::Principled(m) => m.base_color,
             Material::Dielectric(_) | Material::ThinDielectric(_) => Vec3::ONE,
         }
     }

@@ -1,6 +1,6 @@
 // The closed set of materials, the twin of `materials/mod.rs`: one record per material, a `switch`
 // on the same variant order as `Material` (Diffuse, Conductor, Plastic, Dielectric,
-// ThinDielectric); and, under
+// ThinDielectric, Principled); and, under
 // HAS_TEXTURES, `material_at`, the twin of `materials/textured.rs`, which evaluates a material's
 // textures at a hit.
 //
@@ -20,6 +20,9 @@
 //   Dielectric: a.x ior, c.xyz the microfacet slot as a conductor's; never two-sided (its two
 //               sides are its two media).
 //   ThinDielectric: a.x ior; never two-sided (it is the same from both sides).
+//   Principled: a.xyz base colour, b, c.xyz and d its scalars, h.z its rates, transmission flag
+//               and scalar texture ids in `tables` (`materials/principled.wgsl`); c.w is not
+//               NONE where a scalar is textured. Only it fills d.
 //   Every kind: a.w, c.w = bits of the ids of its colour texture (a diffuse's or plastic's albedo,
 //       a conductor's reflectance: replaces a.xyz) and its roughness textures (α, or α_u in the
 //       low 16 bits and α_v in the high 16, 0xFFFF for none: replace a conductor's or
@@ -31,6 +34,7 @@ struct Material {
     a: vec4f,
     b: vec4f,
     c: vec4f,
+    d: vec4f,
 }
 
 // `BsdfSample`; `ok` = false stands for `None`. `eta` (η' of a refraction, 1 for a reflection)
@@ -65,7 +69,15 @@ fn no_bsdf_sample() -> BsdfSample {
 // #if HAS_TRANSMISSION
 // `Material::transmits`: wo and wi may lie on either side, the frame is never flipped.
 fn material_transmits(m: Material) -> bool {
-    return m.h.x == MATERIAL_DIELECTRIC || m.h.x == MATERIAL_THIN_DIELECTRIC;
+    if m.h.x == MATERIAL_DIELECTRIC || m.h.x == MATERIAL_THIN_DIELECTRIC {
+        return true;
+    }
+// #if HAS_PRINCIPLED
+    if m.h.x == MATERIAL_PRINCIPLED {
+        return principled_transmission(m);
+    }
+// #endif
+    return false;
 }
 // #endif
 
@@ -98,6 +110,11 @@ fn material_eval(m: Material, wo: vec3f, wi: vec3f) -> vec3f {
         // Both lobes delta.
         case MATERIAL_THIN_DIELECTRIC: {
             return vec3f(0.0);
+        }
+// #endif
+// #if HAS_PRINCIPLED
+        case MATERIAL_PRINCIPLED: {
+            return principled_eval(m, wo, wi);
         }
 // #endif
         default: {
@@ -143,6 +160,11 @@ fn material_pdf_unmutated(m: Material, wo: vec3f, wi: vec3f) -> f32 {
             return 0.0;
         }
 // #endif
+// #if HAS_PRINCIPLED
+        case MATERIAL_PRINCIPLED: {
+            return principled_pdf(m, wo, wi);
+        }
+// #endif
         default: {
             return unknown_tag();
         }
@@ -179,6 +201,11 @@ fn material_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample 
 // #if HAS_THIN_DIELECTRIC
         case MATERIAL_THIN_DIELECTRIC: {
             s = thin_dielectric_sample(m, wo, u_lobe);
+        }
+// #endif
+// #if HAS_PRINCIPLED
+        case MATERIAL_PRINCIPLED: {
+            s = principled_sample(m, wo, u_lobe, u);
         }
 // #endif
         default: {
@@ -254,6 +281,17 @@ fn material_at(m_in: Material, at: TexPoint) -> Material {
         }
         // Nothing of it is texturable (`MaterialTextures::check`).
         case MATERIAL_THIN_DIELECTRIC: {}
+// #if HAS_PRINCIPLED
+        // Its base colour in the colour slot, its scalars by the ids in `tables`.
+        case MATERIAL_PRINCIPLED: {
+            if colour != NONE {
+                m.a = vec4f(texture_eval(colour, at), m.a.w);
+            }
+            if slot != NONE {
+                m = principled_at(m, at);
+            }
+        }
+// #endif
         default: {
             m.a = vec4f(unknown_tag());
         }
@@ -305,6 +343,11 @@ fn material_smooth_part(m: Material) -> bool {
 // #if HAS_THIN_DIELECTRIC
         case MATERIAL_THIN_DIELECTRIC: {
             return false;
+        }
+// #endif
+// #if HAS_PRINCIPLED
+        case MATERIAL_PRINCIPLED: {
+            return true;
         }
 // #endif
         default: {

@@ -10,6 +10,7 @@
 //! WGSL twin: `materials/mod.wgsl` (`material_at`).
 
 use super::plastic_textured::CoatGrid;
+use super::principled::PrincipledParam;
 use super::{ConductorFresnel, Material, Microfacet, Plastic};
 use crate::textures::{TexPoint, Texture};
 
@@ -27,6 +28,9 @@ pub struct MaterialTextures {
     pub alpha_v: Option<Texture>,
     /// A plastic with a textured α: its coat tables on the α grid, for its F0.
     pub(crate) coat_grid: Option<CoatGrid>,
+    /// A principled's scalar parameters, in [`PrincipledParam::ALL`]'s order (its base colour is
+    /// `albedo`).
+    pub principled: [Option<Texture>; 10],
 }
 
 impl MaterialTextures {
@@ -45,6 +49,7 @@ impl MaterialTextures {
             alpha,
             alpha_v,
             coat_grid: None,
+            principled: Default::default(),
         };
         t.check(base)?;
         if let (Material::Plastic(p), Some(_)) = (base, &t.alpha) {
@@ -59,7 +64,9 @@ impl MaterialTextures {
         let pair = self.alpha_v.is_none()
             || (self.alpha.is_some()
                 && matches!(base, Material::Conductor(_) | Material::Dielectric(_)));
+        let principled = matches!(base, Material::Principled(_));
         let ok = pair
+            && (principled || self.principled.iter().all(Option::is_none))
             && match base {
                 Material::Diffuse(_) => self.reflectance.is_none() && self.alpha.is_none(),
                 Material::Conductor(_) => self.albedo.is_none(),
@@ -71,6 +78,8 @@ impl MaterialTextures {
                 Material::ThinDielectric(_) => {
                     self.albedo.is_none() && self.reflectance.is_none() && self.alpha.is_none()
                 }
+                // Its base colour in `albedo`, the rest in `principled`.
+                Material::Principled(_) => self.reflectance.is_none() && self.alpha.is_none(),
             };
         if ok {
             Ok(())
@@ -117,6 +126,16 @@ impl MaterialTextures {
                 }
             }
             Material::ThinDielectric(_) => {}
+            Material::Principled(p) => {
+                if let Some(t) = &self.albedo {
+                    p.base_color = t.eval(uv);
+                }
+                for (param, t) in PrincipledParam::ALL.into_iter().zip(&self.principled) {
+                    if let Some(t) = t {
+                        param.set(p, t.eval_scalar(uv));
+                    }
+                }
+            }
         }
         m
     }

@@ -152,6 +152,7 @@ fn material(desc: &MaterialDesc) -> Material {
         MaterialDesc::ThinDielectric { ior } => {
             Material::ThinDielectric(ThinDielectric { ior: *ior as f32 })
         }
+        MaterialDesc::Principled(p) => Material::Principled(p.material()),
     }
 }
 
@@ -476,7 +477,7 @@ impl Scene {
         let mut material_textures = Vec::with_capacity(materials.len() + 1);
         for (m, built) in desc.materials.iter().zip(&materials) {
             let t = &m.textures;
-            let textures = MaterialTextures::new(
+            let mut textures = MaterialTextures::new(
                 t.albedo.as_ref().map(|d| d.texture.clone()),
                 t.reflectance.as_ref().map(|d| d.texture.clone()),
                 t.alpha.as_ref().map(|d| d.texture.clone()),
@@ -484,6 +485,7 @@ impl Scene {
                 built,
             )
             .map_err(|e| SceneError::new(format!("materials.{}", m.name), e))?;
+            textures.principled = t.principled.clone().map(|d| d.map(|d| d.texture));
             material_textures.push((!t.is_empty()).then_some(textures));
         }
         material_textures.push(None);

@@ -325,6 +325,9 @@ pub struct MaterialTextures {
     /// α_v of a conductor or dielectric whose `alpha` is a pair with a texture in it (then
     /// `alpha` holds α_u, a number of the pair as a constant texture).
     pub alpha_v: Option<TextureDesc>,
+    /// A principled's scalars, in [`crate::materials::principled::PrincipledParam::ALL`]'s order
+    /// (its base colour is `albedo`).
+    pub principled: [Option<TextureDesc>; 10],
 }
 
 impl MaterialTextures {
@@ -334,6 +337,7 @@ impl MaterialTextures {
             && self.reflectance.is_none()
             && self.alpha.is_none()
             && self.alpha_v.is_none()
+            && self.principled.iter().all(Option::is_none)
     }
 }
 
@@ -457,16 +461,75 @@ pub enum MaterialDesc {
         /// Index of refraction of the sheet, in (0, 10].
         ior: f64,
     },
+    /// Mitsuba's principled BSDF (`materials/principled.rs`).
+    Principled(PrincipledDesc),
+}
+
+/// A principled BSDF's parameters, Mitsuba's rules applied (`scene/parse_principled.rs`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PrincipledDesc {
+    /// Base colour, in [0, 1].
+    pub base_color: DVec3,
+    /// The scalars in [`crate::materials::principled::PrincipledParam::ALL`]'s order, each in
+    /// [0, 1].
+    pub scalars: [f64; 10],
+    /// Interior over exterior index (> 0; given, or from `specular`).
+    pub eta: f64,
+    /// Sampling rates: main specular, clearcoat, diffuse (each ≥ 0).
+    pub rates: [f64; 3],
+    /// Specular transmission (`spec_trans` given as a texture or a number other than 0): the
+    /// back side is the inside; never two-sided.
+    pub transmission: bool,
+}
+
+impl Default for PrincipledDesc {
+    /// Mitsuba's defaults.
+    fn default() -> Self {
+        let p = crate::materials::Principled::default();
+        let params = crate::materials::principled::PrincipledParam::ALL;
+        PrincipledDesc {
+            base_color: p.base_color.as_dvec3(),
+            scalars: params.map(|k| k.get(&p) as f64),
+            eta: crate::materials::principled::eta_from_specular(0.5) as f64,
+            rates: [1.0; 3],
+            transmission: false,
+        }
+    }
+}
+
+impl PrincipledDesc {
+    /// The material it describes.
+    pub fn material(&self) -> crate::materials::Principled {
+        let mut p = crate::materials::Principled {
+            base_color: self.base_color.as_vec3(),
+            eta: self.eta as f32,
+            rates: crate::materials::principled::SamplingRates {
+                specular: self.rates[0] as f32,
+                clearcoat: self.rates[1] as f32,
+                diffuse: self.rates[2] as f32,
+            },
+            transmission: self.transmission,
+            ..Default::default()
+        };
+        for (k, v) in crate::materials::principled::PrincipledParam::ALL
+            .into_iter()
+            .zip(self.scalars)
+        {
+            k.set(&mut p, v as f32);
+        }
+        p
+    }
 }
 
 impl MaterialDesc {
     /// True for a material light passes through: its two sides are its two media (or, for a
     /// thin sheet, alike), so `two_sided` does not apply.
     pub fn transmits(&self) -> bool {
-        matches!(
-            self,
-            MaterialDesc::Dielectric { .. } | MaterialDesc::ThinDielectric { .. }
-        )
+        match self {
+            MaterialDesc::Dielectric { .. } | MaterialDesc::ThinDielectric { .. } => true,
+            MaterialDesc::Principled(p) => p.transmission,
+            _ => false,
+        }
     }
 }
 
@@ -930,10 +993,38 @@ fn bsdf_json(m: &NamedMaterial) -> Value {
             obj
         }
         MaterialDesc::ThinDielectric { ior } => json!({"type": "thin_dielectric", "ior": ior}),
+        MaterialDesc::Principled(p) => {
+            let mut obj = json!({
+                "type": "principled", "base_color": vec3(p.base_color), "eta": p.eta,
+            });
+            let params = crate::materials::principled::PrincipledParam::ALL;
+            for ((k, v), tex) in params.iter().zip(p.scalars).zip(&m.textures.principled) {
+                // A constant "texture" is written as the slot's constant, as below.
+                obj[k.name()] = match tex {
+                    Some(t) if !t.texture.is_constant() => t.to_json(),
+                    _ => json!(v),
+                };
+            }
+            let keys = crate::scene::parse_principled::RATE_KEYS;
+            for (key, rate) in keys.iter().zip(p.rates) {
+                obj[*key] = json!(rate);
+            }
+            if let Some(tex) = m.textures.albedo.as_ref()
+                && !tex.texture.is_constant()
+            {
+                obj["base_color"] = tex.to_json();
+            }
+            obj
+        }
     };
     let t = &m.textures;
+    // A principled's base colour is its `base_color` (written above).
+    let albedo = match &m.material {
+        MaterialDesc::Principled(_) => &None,
+        _ => &t.albedo,
+    };
     for (key, slot) in [
-        ("albedo", &t.albedo),
+        ("albedo", albedo),
         ("reflectance", &t.reflectance),
         ("alpha", &t.alpha),
     ] {

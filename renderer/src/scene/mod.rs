@@ -22,6 +22,7 @@ mod parse_materials;
 mod parse_mesh;
 mod parse_mesh_attribute;
 mod parse_mesh_file;
+pub(crate) mod parse_principled;
 mod parse_shapes;
 mod parse_surface_detail;
 mod parse_texture;

@@ -177,6 +177,7 @@ fn parse_material(
             }
             MaterialDesc::ThinDielectric { ior }
         }
+        "principled" => super::parse_principled::parse_principled(obj, loader, t)?,
         "mix" => {
             if obj.get("two_sided").is_some() {
                 let msg = "a mix has no sides of its own: its materials' `two_sided` apply";
@@ -201,7 +202,7 @@ fn parse_material(
                 obj.at("type"),
                 format!(
                     "unknown material type `{other}` (expected diffuse, conductor, plastic, \
-                     dielectric, thin_dielectric, mix or two_sided)"
+                     dielectric, thin_dielectric, principled, mix or two_sided)"
                 ),
             ));
         }

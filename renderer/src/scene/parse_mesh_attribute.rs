@@ -79,6 +79,12 @@ fn slots(m: &mut NamedMaterial) -> Vec<Slot<'_>> {
             v.push((key, use_, tex));
         }
     }
+    let params = crate::materials::principled::PrincipledParam::ALL;
+    for (param, slot) in params.into_iter().zip(&mut t.principled) {
+        if let Some(tex) = slot {
+            v.push((param.name(), TextureUse::Parameter, tex));
+        }
+    }
     if let Some(n) = &mut m.normal_map {
         let (key, use_) = match n.height_scale {
             Some(_) => ("bump_map", TextureUse::Height),
@@ -314,6 +320,13 @@ fn stand_in(m: &mut NamedMaterial, key: &str, mean: DVec3) {
         (_, "weight") => {
             if let Some(mix) = &mut m.mix {
                 mix.weight = scalar;
+            }
+        }
+        (MaterialDesc::Principled(p), "albedo") => p.base_color = mean,
+        (MaterialDesc::Principled(p), key) => {
+            let params = crate::materials::principled::PrincipledParam::ALL;
+            if let Some(k) = params.iter().position(|q| q.name() == key) {
+                p.scalars[k] = scalar;
             }
         }
         // Maps and opacity have no constant.

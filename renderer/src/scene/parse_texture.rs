@@ -40,13 +40,15 @@ pub(crate) enum TextureUse {
     Height,
     /// An alpha mask's opacity: a scalar in [0, 1].
     Opacity,
+    /// A principled's scalar parameter (roughness, metallic, …): a scalar in [0, 1].
+    Parameter,
 }
 
 impl TextureUse {
     pub(crate) fn is_scalar(self) -> bool {
         matches!(
             self,
-            TextureUse::Alpha | TextureUse::Weight | TextureUse::Opacity
+            TextureUse::Alpha | TextureUse::Weight | TextureUse::Opacity | TextureUse::Parameter
         )
     }
 
@@ -67,6 +69,8 @@ impl TextureUse {
                 .then_some("is outside [0, 1]: a mix weight must lie in [0, 1]"),
             TextureUse::Opacity => (!(0.0..=1.0).contains(&x))
                 .then_some("is outside [0, 1]: an opacity must lie in [0, 1]"),
+            TextureUse::Parameter => (!(0.0..=1.0).contains(&x))
+                .then_some("is outside [0, 1]: a principled parameter must lie in [0, 1]"),
             TextureUse::NormalMap => (!(0.0..=1.0).contains(&x))
                 .then_some("is outside [0, 1]: a normal map encodes (n + 1)/2 in [0, 1]"),
             TextureUse::Height => (!x.is_finite()).then_some("is not finite"),

@@ -65,6 +65,8 @@ impl BsdfSampler {
             Material::Conductor(c) => Some(widest(&c.microfacet)),
             Material::Plastic(p) => Some(p.alpha()),
             Material::Dielectric(d) => Some(widest(&d.microfacet)),
+            // Its main lobes' α (the clearcoat's is at most 0.1 too, beside it).
+            Material::Principled(p) => Some(widest(&p.microfacet())),
         }
     }
 }
@@ -87,7 +89,12 @@ impl DirectionalSampler for BsdfSampler {
     /// incidence. Others: directions over the whole sphere. Transmission: generalised half
     /// vectors, zoomed on the normal in both halves (see the module doc).
     fn domain(&self) -> Domain {
-        if let Material::Dielectric(d) = &self.material {
+        let ior = match &self.material {
+            Material::Dielectric(d) => Some(d.ior),
+            Material::Principled(p) if p.transmission => Some(p.eta),
+            _ => None,
+        };
+        if let Some(ior) = ior {
             let alpha = self.alpha().unwrap_or(0.0);
             let a = alpha as f64;
             let cap = if alpha <= NARROW_ALPHA {
@@ -95,7 +102,7 @@ impl DirectionalSampler for BsdfSampler {
             } else {
                 WIDE_CAP
             };
-            return Domain::generalised_half_vector(self.wo, d.ior, Some(cap));
+            return Domain::generalised_half_vector(self.wo, ior, Some(cap));
         }
         match self.alpha() {
             Some(a) if a <= NARROW_ALPHA => {

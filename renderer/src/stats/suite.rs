@@ -521,14 +521,7 @@ pub fn mixture_cases() -> Vec<Case> {
 /// and inside at θo ∈ {30°, 85°}, and an anisotropic one at θo = 30°, φo = 45°.
 pub fn microfacet_cases() -> Vec<Case> {
     use crate::materials::Distribution::{Beckmann, Ggx};
-    let at = |m: &Material, theta: f32, phi: f32, inside: bool| {
-        let (t, p) = (theta.to_radians(), phi.to_radians());
-        let z = if inside { -t.cos() } else { t.cos() };
-        BsdfSampler {
-            material: m.clone(),
-            wo: Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), z),
-        }
-    };
+    let at = sampler_at;
     let conductor = |mf: Microfacet| {
         Material::Conductor(Conductor {
             microfacet: mf,
@@ -609,6 +602,96 @@ pub fn mitsuba_plastic_cases() -> Vec<Case> {
     out
 }
 
+/// `m` seen from θo `theta` and φo `phi` (degrees), from below the surface where `inside`.
+fn sampler_at(m: &Material, theta: f32, phi: f32, inside: bool) -> BsdfSampler {
+    let (t, p) = (theta.to_radians(), phi.to_radians());
+    let z = if inside { -t.cos() } else { t.cos() };
+    BsdfSampler {
+        material: m.clone(),
+        wo: Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), z),
+    }
+}
+
+/// Mitsuba's principled BSDF (`materials/principled.rs`), its lobes chosen with Mitsuba's
+/// probabilities: the defaults at every angle of [`THETAS_DEG`]; an anisotropic tinted metal at
+/// θo ∈ {30°, 85°} × φo ∈ {0°, 45°}; clearcoat, sheen, flatness and non-default sampling rates at
+/// every angle; a mostly transmitting one (η 1.5) and a fully transmitting one with clearcoat
+/// (η 0.8) from outside and inside. Named `principled/{what}/…/th{θ}`.
+pub fn principled_cases() -> Vec<Case> {
+    use crate::materials::Principled;
+    use crate::materials::principled::SamplingRates;
+    let at = sampler_at;
+    // At every angle of THETAS_DEG, from outside.
+    let every_angle = |what: &str, m: &Material| -> Vec<Case> {
+        THETAS_DEG
+            .iter()
+            .map(|&th| case(format!("principled/{what}/th{th}"), at(m, th, 0.0, false)))
+            .collect()
+    };
+    let default = Material::Principled(Principled::default());
+    let mut out = every_angle("default", &default);
+    let metal = Material::Principled(Principled {
+        base_color: Vec3::new(0.9, 0.6, 0.3),
+        roughness: 0.35,
+        anisotropic: 0.7,
+        metallic: 0.8,
+        spec_tint: 0.5,
+        ..Principled::default()
+    });
+    for th in [30.0, 85.0] {
+        for ph in [0.0, 45.0] {
+            let name = format!("principled/anisotropic/th{th}/ph{ph}");
+            out.push(case(name, at(&metal, th, ph, false)));
+        }
+    }
+    let coated = Material::Principled(Principled {
+        base_color: Vec3::new(0.8, 0.2, 0.15),
+        roughness: 0.2,
+        spec_tint: 0.4,
+        sheen: 0.8,
+        sheen_tint: 0.6,
+        clearcoat: 0.8,
+        clearcoat_gloss: 0.5,
+        flatness: 0.4,
+        rates: SamplingRates {
+            specular: 0.5,
+            clearcoat: 3.0,
+            diffuse: 2.0,
+        },
+        ..Principled::default()
+    });
+    out.extend(every_angle("clearcoat", &coated));
+    let glass = Material::Principled(Principled {
+        base_color: Vec3::new(0.8, 0.9, 1.0),
+        roughness: 0.3,
+        spec_trans: 0.9,
+        eta: 1.5,
+        transmission: true,
+        ..Principled::default()
+    });
+    let thin = Material::Principled(Principled {
+        base_color: Vec3::new(0.2, 0.6, 0.9),
+        roughness: 0.5,
+        spec_trans: 1.0,
+        eta: 0.8,
+        clearcoat: 0.5,
+        transmission: true,
+        ..Principled::default()
+    });
+    for (what, m, thetas) in [
+        ("glass", &glass, &[30.0, 85.0][..]),
+        ("eta0.8", &thin, &[30.0]),
+    ] {
+        for (side, inside) in [("out", false), ("in", true)] {
+            for &th in thetas {
+                let name = format!("principled/{what}/{side}/th{th}");
+                out.push(case(name, at(m, th, 0.0, inside)));
+            }
+        }
+    }
+    out
+}
+
 /// Every case of the suite.
 pub fn all_cases() -> Vec<Case> {
     let mut v = warp_cases();
@@ -616,6 +699,7 @@ pub fn all_cases() -> Vec<Case> {
     v.extend(dielectric_cases());
     v.extend(microfacet_cases());
     v.extend(mitsuba_plastic_cases());
+    v.extend(principled_cases());
     v.extend(light_cases());
     v.extend(envmap_cases());
     v.extend(mixture_cases());

@@ -87,7 +87,7 @@ fn texture_uv(t: TextureRecord, uv: vec2f) -> vec2f {
 fn channel_pick(channel: u32, c: vec3f) -> f32 {
     switch channel {
         case CHANNEL_LUMINANCE: {
-            return texture_luminance(c);
+            return mitsuba_luminance(c);
         }
         case CHANNEL_R: {
             return c.x;
@@ -102,14 +102,6 @@ fn channel_pick(channel: u32, c: vec3f) -> f32 {
             return unknown_tag();
         }
     }
-}
-
-// `textures::luminance`: Mitsuba's coefficients, a grey value returned exactly.
-fn texture_luminance(c: vec3f) -> f32 {
-    if c.x == c.y && c.y == c.z {
-        return c.x;
-    }
-    return c.x * LUMINANCE_R + c.y * LUMINANCE_G + c.z * LUMINANCE_B;
 }
 
 // `Checkerboard::eval`.
@@ -143,10 +135,10 @@ fn texture_eval_1_grad(id: u32, uv: vec2f) -> vec2f {
     let h = bitcast<u32>(t.c1.w);
     let x = bitmap_axis(p.x, w, t.h.y);
     let y = bitmap_axis(p.y, h, t.h.y);
-    let f00 = texture_luminance(bitmap_texel(t.h.w, w, x.i.x, y.i.x) * t.c0.xyz);
-    let f10 = texture_luminance(bitmap_texel(t.h.w, w, x.i.y, y.i.x) * t.c0.xyz);
-    let f01 = texture_luminance(bitmap_texel(t.h.w, w, x.i.x, y.i.y) * t.c0.xyz);
-    let f11 = texture_luminance(bitmap_texel(t.h.w, w, x.i.y, y.i.y) * t.c0.xyz);
+    let f00 = mitsuba_luminance(bitmap_texel(t.h.w, w, x.i.x, y.i.x) * t.c0.xyz);
+    let f10 = mitsuba_luminance(bitmap_texel(t.h.w, w, x.i.y, y.i.x) * t.c0.xyz);
+    let f01 = mitsuba_luminance(bitmap_texel(t.h.w, w, x.i.x, y.i.y) * t.c0.xyz);
+    let f11 = mitsuba_luminance(bitmap_texel(t.h.w, w, x.i.y, y.i.y) * t.c0.xyz);
     let dx = y.w.x * (f10 - f00) + y.w.y * (f11 - f01);
     let dy = x.w.x * (f01 - f00) + x.w.y * (f11 - f10);
     return vec2f(dx * t.uv.x * f32(w), dy * t.uv.y * f32(h));

@@ -188,6 +188,15 @@ fn gpu_xml_instances_matches_the_cpu_and_mitsuba() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// `xml_principled.xml` (Mitsuba's principled BSDF, `materials/principled.wgsl` and
+/// `materials/gtr1.wgsl`: every lobe, the back side of a transmitting one, textured scalars and
+/// base colour).
+#[test]
+fn gpu_xml_principled_matches_the_cpu_and_mitsuba() {
+    let failures = check("xml_principled");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// `xml_blend_delta.xml` (Mitsuba's `blendbsdf` around delta lobes: `blend_delta_weight` and the
 /// resolve loop's partner in `materials/mix.wgsl`); against Mitsuba only, as `xml_blend` (its
 /// mixes hash hit distances, which the two sides round differently).

@@ -356,7 +356,8 @@ fn resolution_scene() -> Scene {
         "gold": {"type": "conductor", "eta": [0.2, 0.4, 1.4], "k": [3.5, 2.4, 1.8], "alpha": 0.2},
         "tinted": {"type": "conductor", "reflectance": [0.9, 0.8, 0.7], "alpha": 0.3},
         "glass": {"type": "dielectric", "ior": 1.5, "alpha": 0.1},
-        "plain": {"type": "diffuse", "albedo": [0.25, 0.5, 0.75]}
+        "plain": {"type": "diffuse", "albedo": [0.25, 0.5, 0.75]},
+        "principled": {"type": "principled", "spec_trans": 0.5, "sheen": 0.3}
       },
       "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "matte"}]
     }"#;
@@ -417,6 +418,20 @@ fn resolution_scene() -> Scene {
         "glass",
         [None, None, checker(Vec3::splat(0.25), Vec3::ZERO)],
     );
+    // A principled's base colour in the colour slot and four of its scalars (slots 0, 2, 3, 9:
+    // each vec4 of its record).
+    let i = scene
+        .material_names
+        .iter()
+        .position(|n| n == "principled")
+        .unwrap();
+    let base = checker(Vec3::new(0.8, 0.2, 0.1), Vec3::new(0.1, 0.5, 0.9));
+    let mut t = MaterialTextures::new(base, None, None, None, &scene.materials[i]).unwrap();
+    t.principled[0] = bitmap(Channel::G);
+    t.principled[2] = checker(Vec3::ZERO, Vec3::ONE);
+    t.principled[3] = bitmap(Channel::R);
+    t.principled[9] = checker(Vec3::splat(0.2), Vec3::splat(0.9));
+    scene.material_textures[i] = Some(t);
     scene
 }
 
@@ -457,13 +472,15 @@ fn textured_materials_resolve_as_on_the_cpu() {
          outp(0u, bitcast<vec4f>(m.h));
          outp(1u, m.a);
          outp(2u, m.c);
-         outp(3u, vec4f(select(0.0, 1.0, material_textured(base)), 0.0, 0.0, 0.0));",
+         outp(3u, vec4f(select(0.0, 1.0, material_textured(base)), 0.0, 0.0, 0.0));
+         outp(4u, m.b);
+         outp(5u, m.d);",
         &inputs,
         1,
-        4,
+        6,
     );
-    let (mut flips, mut tints) = (0, 0);
-    for (&(mi, uv), o) in items.iter().zip(out.chunks(4)) {
+    let (mut flips, mut tints, mut principled) = (0, 0, 0);
+    for (&(mi, uv), o) in items.iter().zip(out.chunks(6)) {
         let what = format!("material {} at {uv}", scene.material_names[mi as usize]);
         let base = &scene.materials[mi as usize];
         let textures = &scene.material_textures[mi as usize];
@@ -506,8 +523,22 @@ fn textured_materials_resolve_as_on_the_cpu() {
                 );
             }
             Material::ThinDielectric(t) => assert_eq!(o[1][0], t.ior, "{what}"),
+            Material::Principled(p) => {
+                principled += 1;
+                assert_eq!(xyz(o[1]), p.base_color, "{what}: base colour");
+                let b = [p.roughness, p.anisotropic, p.metallic, p.spec_trans];
+                assert_eq!(o[4], b, "{what}: b");
+                assert_eq!(
+                    xyz(o[2]),
+                    Vec3::new(p.spec_tint, p.sheen, p.sheen_tint),
+                    "{what}"
+                );
+                let d = [p.flatness, p.clearcoat, p.clearcoat_gloss, p.eta];
+                assert_eq!(o[5], d, "{what}: d");
+            }
         }
     }
+    assert!(principled > 300, "{principled} principled points");
     eprintln!("{flips} points changed the smooth-part flag, {tints} turned a conductor to a tint");
     assert!(flips > 500 && tints > 200, "{flips} flips, {tints} tints");
 }

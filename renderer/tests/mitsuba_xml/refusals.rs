@@ -289,10 +289,10 @@ fn refusals_name_file_line_and_element() {
             "a blendbsdf needs two nested <bsdf>, it has 0",
         ),
         (
-            r#"<shape type="sphere"><bsdf type="principled"/></shape>"#,
-            "principled",
+            r#"<shape type="sphere"><bsdf type="principledthin"/></shape>"#,
+            "principledthin",
             "scene/shape/bsdf",
-            "BSDF type `principled` is not supported; lumis maps",
+            "BSDF type `principledthin` is not supported; lumis maps",
         ),
         (
             r#"<shape type="sphere"><bsdf type="mask"><bsdf type="mask"><bsdf type="diffuse"/></bsdf></bsdf></shape>"#,

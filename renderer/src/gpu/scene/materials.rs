@@ -32,7 +32,7 @@ use crate::scene::Scene;
 use bytemuck::{Pod, Zeroable};
 
 /// A material record (`Material` in `materials/mod.wgsl`): `h` = (kind, two-sided, aux, has a smooth
-/// part), then three vec4 of parameters per kind (see the comment at the top of `materials/mod.wgsl`);
+/// part), then four vec4 of parameters per kind (see the comment at the top of `materials/mod.wgsl`);
 /// `a.w` and `c.w` hold the bits of its colour and roughness textures' ids, `NONE` where constant
 /// ([`super::textures`]).
 #[repr(C)]
@@ -42,6 +42,9 @@ pub struct GpuMaterial {
     pub(crate) a: [f32; 4],
     pub(crate) b: [f32; 4],
     pub(crate) c: [f32; 4],
+    /// A fourth parameter vec4: only the principled fills it (its textured parameters do not fit
+    /// in three).
+    pub(crate) d: [f32; 4],
 }
 
 gpu_tags! {
@@ -64,6 +67,8 @@ gpu_tags! {
         PlasticMitsuba => "MATERIAL_PLASTIC_MITSUBA",
         /// [`Material::ThinDielectric`].
         ThinDielectric => "MATERIAL_THIN_DIELECTRIC",
+        /// [`Material::Principled`] (`materials/principled.wgsl`).
+        Principled => "MATERIAL_PRINCIPLED",
         /// No [`Material`]: a two-sided pair's record
         /// ([`crate::materials::two_sided::TwoSided`]), which `materials/mix.wgsl`'s resolve loop
         /// resolves as it does a mix.
@@ -81,6 +86,7 @@ impl MaterialTag {
             Material::Plastic(_) => MaterialTag::Plastic,
             Material::Dielectric(_) => MaterialTag::Dielectric,
             Material::ThinDielectric(_) => MaterialTag::ThinDielectric,
+            Material::Principled(_) => MaterialTag::Principled,
         }
     }
 }
@@ -176,6 +182,7 @@ pub(super) fn encode(
     slots: &[[u32; 3]],
     mix_weights: &[u32],
     normal_maps: &[u32],
+    principled: &[[u32; 10]],
 ) -> Vec<GpuMaterial> {
     scene
         .materials
@@ -201,6 +208,7 @@ pub(super) fn encode(
                     a: [weight, f32::from(u8::from(mix.mitsuba)), 0.0, bits(NONE)],
                     b: [0.0; 4],
                     c: [0.0, 0.0, 0.0, bits(NONE)],
+                    d: [0.0; 4],
                 };
             }
             if let Some(Some(pair)) = scene.sides.get(index) {
@@ -209,6 +217,7 @@ pub(super) fn encode(
                     a: [0.0, 0.0, 0.0, bits(NONE)],
                     b: [0.0; 4],
                     c: [0.0, 0.0, 0.0, bits(NONE)],
+                    d: [0.0; 4],
                 };
             }
             let grid = scene.material_textures[index]
@@ -223,6 +232,7 @@ pub(super) fn encode(
                     a: v4(d.albedo, 0.0),
                     b: z,
                     c: z,
+                    d: z,
                 },
                 Material::Conductor(c) => {
                     let (fresnel, a, b, bw) = match c.fresnel {
@@ -242,6 +252,7 @@ pub(super) fn encode(
                         a: v4(a, 0.0),
                         b: v4(b, bw),
                         c: microfacet_slot(&c.microfacet),
+                        d: z,
                     }
                 }
                 Material::Plastic(p) if p.mitsuba_coat().is_some() => {
@@ -258,6 +269,7 @@ pub(super) fn encode(
                         a: v4(p.albedo(), 0.0),
                         b: v4(p.specular(), coat.eta()),
                         c: microfacet_slot(&coat.microfacet()),
+                        d: z,
                     }
                 }
                 Material::Plastic(p) => {
@@ -284,6 +296,7 @@ pub(super) fn encode(
                         a: v4(p.albedo(), 0.0),
                         b: v4(p.specular(), 0.0),
                         c: [p.alpha(), f0, diffuse_norm, 0.0],
+                        d: z,
                     }
                 }
                 // Never two-sided: its two sides are its two media.
@@ -292,17 +305,49 @@ pub(super) fn encode(
                     a: [d.ior, 0.0, 0.0, 0.0],
                     b: z,
                     c: microfacet_slot(&d.microfacet),
+                    d: z,
                 },
+                // Two-sided as any reflection-only material, never with transmission (its two
+                // sides are then its two media).
+                Material::Principled(p) => {
+                    let offset = tables.len() as u32;
+                    let ids = principled.get(index).copied().unwrap_or([NONE; 10]);
+                    tables.extend([
+                        p.rates.specular,
+                        p.rates.clearcoat,
+                        p.rates.diffuse,
+                        f32::from(u8::from(p.transmission)),
+                    ]);
+                    tables.extend(ids.map(bits));
+                    let two_sided = two_sided && !p.transmission;
+                    GpuMaterial {
+                        h: [kind, two_sided as u32, offset, smooth],
+                        a: v4(p.base_color, 0.0),
+                        b: [p.roughness, p.anisotropic, p.metallic, p.spec_trans],
+                        c: [p.spec_tint, p.sheen, p.sheen_tint, 0.0],
+                        d: [p.flatness, p.clearcoat, p.clearcoat_gloss, p.eta],
+                    }
+                }
                 // The same from both sides.
                 Material::ThinDielectric(t) => GpuMaterial {
                     h: [kind, 0, 0, smooth],
                     a: [t.ior, 0.0, 0.0, 0.0],
                     b: z,
                     c: z,
+                    d: z,
                 },
             };
             r.a[3] = bits(colour);
             r.c[3] = bits(roughness_slot(alpha, alpha_v));
+            // A principled with a textured scalar: a roughness slot that is not `NONE` makes
+            // `material_textured` see it (its ids are in `tables`; `alpha` is never set for it).
+            if let Material::Principled(_) = m
+                && principled
+                    .get(index)
+                    .is_some_and(|ids| ids.iter().any(|&i| i != NONE))
+            {
+                r.c[3] = bits(0);
+            }
             r.h[1] |= sides_word(normal_maps[index], scene.normal_maps.get(index));
             r
         })

@@ -109,6 +109,7 @@ impl Records {
             &scene_textures.slots,
             &scene_textures.mix_weights,
             &scene_textures.normal_maps,
+            &scene_textures.principled,
         );
         let lights = lights::encode(
             scene,

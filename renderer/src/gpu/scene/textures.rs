@@ -230,6 +230,9 @@ pub(crate) struct SceneTextures {
     /// Per material: the ids of its colour, roughness (α or α_u) and α_v textures (`NONE`:
     /// constant).
     pub(crate) slots: Vec<[u32; 3]>,
+    /// Per material: the ids of a principled's scalar textures in
+    /// [`crate::materials::principled::PrincipledParam::ALL`]'s order (`NONE`: constant).
+    pub(crate) principled: Vec<[u32; 10]>,
     /// Per material: the id of its weight's texture if it is a mix with a textured weight, else
     /// `NONE` (`materials/mix.wgsl`).
     pub(crate) mix_weights: Vec<u32>,
@@ -258,6 +261,8 @@ fn slots(t: &MaterialTextures) -> [(Option<&Texture>, &'static str); 3] {
         alpha_v,
         // Uploaded with the plastic's record (`materials::push_grid`).
         coat_grid: _,
+        // Their own ids (`SceneTextures::principled`).
+        principled: _,
     } = t;
     // `MaterialTextures::check` admits at most one colour slot per material kind.
     let colour = match (albedo, reflectance) {
@@ -283,6 +288,7 @@ pub(crate) fn encode(scene: &Scene) -> SceneTextures {
     let mut out = SceneTextures {
         records: Vec::new(),
         slots: Vec::with_capacity(scene.materials.len()),
+        principled: vec![[none; 10]; scene.materials.len()],
         mix_weights: vec![none; scene.materials.len()],
         normal_maps: vec![none; scene.materials.len()],
         opacity: vec![none; scene.opacity.len()],
@@ -312,6 +318,19 @@ pub(crate) fn encode(scene: &Scene) -> SceneTextures {
             id
         });
         out.slots.push(ids);
+        let params = crate::materials::principled::PrincipledParam::ALL;
+        for (k, texture) in textures.principled.iter().enumerate() {
+            let Some(texture) = texture else { continue };
+            let what = format!(
+                "material \"{}\" {}",
+                scene.material_names[i],
+                params[k].name()
+            );
+            out.principled[i][k] = (out.records.len() as u32) / RECORD_VEC4S;
+            out.records
+                .extend(record(texture, &what, &mut out.texels, &mut stored));
+            out.names.push(what);
+        }
     }
     for e in &scene.emission_textures {
         let what = format!("{}.emission", e.shape);

@@ -26,8 +26,8 @@ use serde_json::{Value as Json, json};
 
 /// The BSDF types lumis maps, for messages.
 const SUPPORTED: &str = "diffuse, conductor, roughconductor, plastic, roughplastic, dielectric, \
-                         roughdielectric, thindielectric, twosided, normalmap, bumpmap, mask, \
-                         blendbsdf, null";
+                         roughdielectric, thindielectric, principled, twosided, normalmap, \
+                         bumpmap, mask, blendbsdf, null";
 
 /// The scene format's material for BSDF element `el` (translated once, then named again),
 /// or `None` for a `null` BSDF.
@@ -167,10 +167,17 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
     }
     let (name, path) = name_material(ctx, el, inner, inner_plugin.pos());
     let mut m = bsdf(ctx, &inner_plugin, &path)?;
-    if !matches!(
+    let transmits = matches!(
         inner_plugin.ty,
         "dielectric" | "roughdielectric" | "thindielectric"
-    ) {
+    ) || principled_transmits(&m);
+    if two_sided && transmits {
+        return Err(inner_plugin.error(
+            "a principled with spec_trans cannot be nested in twosided (Mitsuba refuses \
+             transmitting BSDFs there too)",
+        ));
+    }
+    if !transmits {
         m["two_sided"] = json!(two_sided);
     }
     match &normal_map {
@@ -440,6 +447,7 @@ fn bsdf(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, Sc
                 "nonlinear": nonlinear,
             })
         }
+        "principled" => principled(ctx, b, path)?,
         "dielectric" | "roughdielectric" | "thindielectric" => {
             let eta = index_ratio(ctx, b, "bk7", &at("ior"))?;
             for key in ["specular_reflectance", "specular_transmittance"] {
@@ -517,6 +525,55 @@ fn distribution_key(m: &mut Json, distribution: Distribution) {
 }
 
 /// A rough model's α and distribution: `distribution` beckmann (Mitsuba's default) or ggx,
+/// Mitsuba's `principled`: its keys are the scene format's (`scene/parse_principled.rs`), which
+/// applies Mitsuba's defaults and rules; a parameter it does not give is left out.
+fn principled(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, SceneError> {
+    let at = |k: &str| format!("{path}.{k}");
+    let mut m = json!({"type": "principled"});
+    if b.has("base_color") {
+        m["base_color"] = color_param(
+            ctx,
+            b,
+            "base_color",
+            0.5,
+            Slot::Reflectance,
+            &at("base_color"),
+        )?;
+    }
+    for k in crate::materials::principled::PrincipledParam::ALL {
+        let key = k.name();
+        if b.has(key) {
+            m[key] = scalar_param(ctx, b, key, 0.0, &at(key))?;
+        }
+    }
+    // Mitsuba refuses both; the scene format says so at the same place.
+    let numbers = ["eta", "specular"]
+        .into_iter()
+        .chain(crate::scene::parse_principled::RATE_KEYS);
+    for key in numbers {
+        if let Some(p) = b.get(key) {
+            ctx.origin(&at(key), p.pos());
+            m[key] = json!(b.float(key, 0.0)?);
+        }
+    }
+    b.finish(
+        "base_color, roughness, anisotropic, metallic, spec_trans, spec_tint, sheen, sheen_tint, \
+         flatness, clearcoat, clearcoat_gloss, eta or specular, and the three sampling rates",
+    )?;
+    Ok(m)
+}
+
+/// Whether an imported principled has specular transmission (Mitsuba's flag: `spec_trans` a
+/// texture, or a number other than 0).
+fn principled_transmits(m: &Json) -> bool {
+    m["type"] == "principled"
+        && match &m["spec_trans"] {
+            Json::Null => false,
+            Json::Number(x) => x.as_f64() != Some(0.0),
+            _ => true,
+        }
+}
+
 /// `alpha` (default 0.1) or `alpha_u` and `alpha_v` (the pair [α_u, α_v] where they differ or
 /// either is a texture); `textured` says whether lumis takes a texture or an anisotropic pair
 /// there (conductor and dielectric, not plastic).

@@ -336,6 +336,23 @@ fn material(
             )?;
         }
         MaterialDesc::ThinDielectric { ior } => index(x, *ior),
+        // Mitsuba's own keys; `eta` as lumis holds it (from `specular` or not).
+        MaterialDesc::Principled(p) => {
+            color_slot(x, "base_color", p.base_color, tex(&t.albedo), folder, &path)?;
+            let params = crate::materials::principled::PrincipledParam::ALL;
+            for ((k, v), slot) in params.iter().zip(p.scalars).zip(&t.principled) {
+                let key = k.name();
+                match tex(slot) {
+                    Some(tt) => texture_xml(x, key, &tt, true, folder, &format!("{path}.{key}"))?,
+                    None => x.leaf("float", &[("name", key), ("value", &num(v))]),
+                }
+            }
+            x.leaf("float", &[("name", "eta"), ("value", &num(p.eta))]);
+            let keys = crate::scene::parse_principled::RATE_KEYS;
+            for (key, rate) in keys.iter().zip(p.rates) {
+                x.leaf("float", &[("name", key), ("value", &num(rate))]);
+            }
+        }
     }
     nest.close(x);
     Ok(())
@@ -349,7 +366,7 @@ fn has_delta_lobe(m: &NamedMaterial, all: &[NamedMaterial]) -> bool {
     }
     let smooth = |alpha: f64| alpha == 0.0 && m.textures.alpha.is_none();
     match &m.material {
-        MaterialDesc::Diffuse { .. } => false,
+        MaterialDesc::Diffuse { .. } | MaterialDesc::Principled(_) => false,
         MaterialDesc::ThinDielectric { .. } => true,
         MaterialDesc::Conductor { alpha, .. }
         | MaterialDesc::Plastic { alpha, .. }
@@ -374,6 +391,7 @@ fn bsdf_type(m: &NamedMaterial) -> &'static str {
         MaterialDesc::Dielectric { alpha, .. } if rough(*alpha) => "roughdielectric",
         MaterialDesc::Dielectric { .. } => "dielectric",
         MaterialDesc::ThinDielectric { .. } => "thindielectric",
+        MaterialDesc::Principled(_) => "principled",
     }
 }
 
