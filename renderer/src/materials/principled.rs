@@ -19,7 +19,9 @@
 //! lobe is off (brdf = 0); its scalar variant skips it there. lumis follows the JIT variants.
 //! WGSL twin: `materials/principled.wgsl`.
 
-use super::fresnel::{fresnel_dielectric, fresnel_dielectric_pair};
+use super::fresnel::{
+    fresnel_dielectric, fresnel_dielectric_pair, fresnel_schlick_rgb, schlick_f0_from_ior,
+};
 use super::{BsdfSample, Distribution, Microfacet, gtr1};
 use crate::math::{reflect, refract, safe_sqrt};
 use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
@@ -212,18 +214,7 @@ fn calc_schlick(r0: Vec3, cos_i: f32, eta: f32) -> Vec3 {
     let eta_it = if cos_i >= 0.0 { eta } else { 1.0 / eta };
     let eta_ti = 1.0 / eta_it;
     let cos_t = safe_sqrt(1.0 - (1.0 - cos_i * cos_i) * eta_ti * eta_ti);
-    let w = if eta_it > 1.0 {
-        schlick_weight(cos_i.abs())
-    } else {
-        schlick_weight(cos_t)
-    };
-    r0 + (Vec3::ONE - r0) * w
-}
-
-/// ((η − 1)/(η + 1))².
-fn schlick_r0(eta: f32) -> f32 {
-    let r = (eta - 1.0) / (eta + 1.0);
-    r * r
+    fresnel_schlick_rgb(r0, if eta_it > 1.0 { cos_i.abs() } else { cos_t })
 }
 
 /// `base` over its luminance (a hue of luminance 1), or white for black.
@@ -381,7 +372,7 @@ impl Principled {
         }
         if self.spec_tint != 0.0 {
             let eta_it = if cos >= 0.0 { self.eta } else { 1.0 / self.eta };
-            let f0 = tint(self.base_color) * schlick_r0(eta_it);
+            let f0 = tint(self.base_color) * schlick_f0_from_ior(eta_it);
             schlick += (1.0 - self.metallic) * self.spec_tint * calc_schlick(f0, cos, self.eta);
         }
         Vec3::splat((1.0 - self.metallic) * (1.0 - self.spec_tint) * f_dielectric) + schlick

@@ -135,8 +135,7 @@ fn principled_fresnel(m: Material, f_dielectric: f32, cos: f32, front: bool) -> 
     }
     if spec_tint != 0.0 {
         let eta_it = select(1.0 / eta, eta, cos >= 0.0);
-        let r = (eta_it - 1.0) / (eta_it + 1.0);
-        let f0 = principled_tint(m.a.xyz) * (r * r);
+        let f0 = principled_tint(m.a.xyz) * schlick_f0_from_ior(eta_it);
         schlick += (1.0 - metallic) * spec_tint * principled_calc_schlick(f0, cos, eta);
     }
     return vec3f((1.0 - metallic) * (1.0 - spec_tint) * f_dielectric) + schlick;

@@ -490,7 +490,7 @@ impl Default for PrincipledDesc {
         PrincipledDesc {
             base_color: p.base_color.as_dvec3(),
             scalars: params.map(|k| k.get(&p) as f64),
-            eta: crate::materials::principled::eta_from_specular(0.5) as f64,
+            eta: p.eta as f64,
             rates: [1.0; 3],
             transmission: false,
         }

@@ -96,18 +96,16 @@ pub(crate) fn parse_principled(
         let msg = format!("specular {s} is outside [0, 1]");
         return Err(SceneError::new(obj.at("specular"), msg));
     }
-    p.eta = mitsuba_eta(
-        eta.map(|e| e as f32),
-        specular.map(|s| s as f32),
-        p.transmission,
-    ) as f64;
-    // An eta the exporter wrote keeps its bits: `mitsuba_eta` rounds through f32 only what it
-    // changes or computes.
-    if let Some(e) = eta
-        && !(p.transmission && e == 1.0)
-    {
-        p.eta = e;
-    }
+    // A given eta keeps its bits (the exporter's round trip); `mitsuba_eta` (in f32) gives what
+    // Mitsuba changes or computes.
+    p.eta = match eta {
+        Some(e) if !(p.transmission && e == 1.0) => e,
+        _ => mitsuba_eta(
+            eta.map(|e| e as f32),
+            specular.map(|s| s as f32),
+            p.transmission,
+        ) as f64,
+    };
     if p.transmission && obj.get("two_sided").is_some() {
         let msg = "a principled with spec_trans is never two-sided: its two sides are its two \
                    media";
