@@ -249,8 +249,8 @@ pub fn scale_emission(
 }
 
 /// Scales the albedo of material `name` by `factor`: a diffuse or plastic base albedo, a
-/// principled's base colour, or a conductor's Fresnel reflectance; an error if there is no such material or it has no albedo (a
-/// conductor given by a complex IOR).
+/// principled's (thin or not) base colour, or a conductor's Fresnel reflectance; an error if
+/// there is no such material or it has no albedo (a conductor given by a complex IOR).
 pub fn scale_albedo(
     desc: &mut crate::scene::SceneDesc,
     name: &str,
@@ -277,6 +277,7 @@ pub fn scale_albedo(
             return Err(format!("dielectric {name} has no albedo"));
         }
         MaterialDesc::Principled(p) => p.base_color *= factor,
+        MaterialDesc::PrincipledThin(p) => p.base_color *= factor,
     }
     Ok(())
 }

@@ -38,7 +38,7 @@ use rayon::prelude::*;
 /// Family-wise significance level.
 const ALPHA: f64 = 0.01;
 /// Number of χ² tests in the family (every case of the suite).
-const N_TESTS: usize = 429 + 49 + 25 + 20;
+const N_TESTS: usize = 429 + 49 + 25 + 20 + 17;
 
 /// Runs every case with `samples` samples and asserts that all pass; prints one line per case
 /// and the smallest p-value.
@@ -112,6 +112,19 @@ fn chi2_mitsuba_plastics() {
 #[test]
 fn chi2_principled() {
     run_cases("principled", suite::principled_cases(), 1_000_000, 9400);
+}
+
+/// Mitsuba's thin principled BSDF (issue 41; `suite::principled_thin_cases`): every lobe picked
+/// with Mitsuba's probabilities, the specular ones by visible normals (the transmission's
+/// mirrored), the diffuse ones by the cosine on either side. Seed fixed before the first run.
+#[test]
+fn chi2_principled_thin() {
+    run_cases(
+        "thin principled",
+        suite::principled_thin_cases(),
+        1_000_000,
+        9600,
+    );
 }
 
 #[test]

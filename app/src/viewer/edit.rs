@@ -6,6 +6,7 @@
 use super::light_shape::{Keep, LightShape, PlanarLight};
 use glam::DVec3;
 use lumis::materials::principled::{PrincipledParam, mitsuba_eta};
+use lumis::materials::principled_thin::ThinParam;
 use lumis::scene::desc::Distribution;
 use lumis::scene::{FresnelDesc, GeometryDesc, MaterialDesc, PlasticModel, SceneDesc};
 use std::ops::RangeInclusive;
@@ -24,10 +25,11 @@ pub fn alpha(m: &MaterialDesc) -> Option<f64> {
         MaterialDesc::Conductor { alpha, .. }
         | MaterialDesc::Plastic { alpha, .. }
         | MaterialDesc::Dielectric { alpha, .. } => Some(*alpha),
-        // Its roughness is one of its own sliders ([`PRINCIPLED_SLIDERS`]).
+        // Its roughness is one of its own sliders ([`PRINCIPLED_SLIDERS`], [`THIN_SLIDERS`]).
         MaterialDesc::Diffuse { .. }
         | MaterialDesc::ThinDielectric { .. }
-        | MaterialDesc::Principled(_) => None,
+        | MaterialDesc::Principled(_)
+        | MaterialDesc::PrincipledThin(_) => None,
     }
 }
 
@@ -53,7 +55,8 @@ pub fn set_alpha(m: &mut MaterialDesc, value: f64) {
         MaterialDesc::Plastic { alpha, .. } => *alpha = value,
         MaterialDesc::Diffuse { .. }
         | MaterialDesc::ThinDielectric { .. }
-        | MaterialDesc::Principled(_) => {}
+        | MaterialDesc::Principled(_)
+        | MaterialDesc::PrincipledThin(_) => {}
     }
 }
 
@@ -131,13 +134,14 @@ pub fn set_plastic_model(m: &mut MaterialDesc, value: PlasticModel) {
     }
 }
 
-/// The material's colour: the albedo, a principled's base colour, or a conductor's reflectance
+/// The material's colour: the albedo, a principled's (thin or not) base colour, or a conductor's reflectance
 /// tint. `None` for
 /// conductors given by a complex index of refraction (their colour is physics, not a knob).
 pub fn colour(m: &MaterialDesc) -> Option<DVec3> {
     match m {
         MaterialDesc::Diffuse { albedo } | MaterialDesc::Plastic { albedo, .. } => Some(*albedo),
         MaterialDesc::Principled(p) => Some(p.base_color),
+        MaterialDesc::PrincipledThin(p) => Some(p.base_color),
         MaterialDesc::Conductor {
             fresnel: FresnelDesc::Reflectance(r),
             ..
@@ -154,6 +158,7 @@ pub fn set_colour(m: &mut MaterialDesc, value: DVec3) {
     match m {
         MaterialDesc::Diffuse { albedo } | MaterialDesc::Plastic { albedo, .. } => *albedo = value,
         MaterialDesc::Principled(p) => p.base_color = value,
+        MaterialDesc::PrincipledThin(p) => p.base_color = value,
         MaterialDesc::Conductor {
             fresnel: FresnelDesc::Reflectance(r),
             ..
@@ -263,6 +268,46 @@ pub fn set_principled_scalar(m: &mut MaterialDesc, param: PrincipledParam, value
         if p.transmission && p.eta == 1.0 {
             p.eta = f64::from(mitsuba_eta(Some(1.0), None, true));
         }
+    }
+}
+
+/// A thin principled's parameters offered as sliders (beside its base colour), each over its
+/// [`thin_slider_range`].
+pub const THIN_SLIDERS: [ThinParam; 5] = [
+    ThinParam::Roughness,
+    ThinParam::SpecTrans,
+    ThinParam::DiffTrans,
+    ThinParam::Sheen,
+    ThinParam::Eta,
+];
+
+/// A thin principled slider's range: the parameter's own, η over the indices of real sheets
+/// (1 to 3; the format allows (0, 10]).
+pub fn thin_slider_range(param: ThinParam) -> RangeInclusive<f64> {
+    match param {
+        ThinParam::Eta => 1.0..=3.0,
+        _ => {
+            let (lo, hi) = param.range();
+            f64::from(lo)..=f64::from(hi)
+        }
+    }
+}
+
+/// A thin principled's scalar `param`; `None` for other materials.
+pub fn thin_scalar(m: &MaterialDesc, param: ThinParam) -> Option<f64> {
+    match m {
+        MaterialDesc::PrincipledThin(p) => Some(p.scalars[param as usize]),
+        _ => None,
+    }
+}
+
+/// Sets a thin principled's scalar `param`, clamped to its slider's range.
+pub fn set_thin_scalar(m: &mut MaterialDesc, param: ThinParam, value: f64) {
+    if let MaterialDesc::PrincipledThin(p) = m
+        && value.is_finite()
+    {
+        let range = thin_slider_range(param);
+        p.scalars[param as usize] = value.clamp(*range.start(), *range.end());
     }
 }
 

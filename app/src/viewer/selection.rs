@@ -212,6 +212,25 @@ impl ViewerApp {
                 changed = true;
             }
         }
+        // A thin principled's, likewise.
+        for param in edit::THIN_SLIDERS {
+            let Some(mut v) = edit::thin_scalar(m, param) else {
+                break;
+            };
+            let slot = &mut textures.principled[param as usize];
+            let label = match slot {
+                Some(_) => format!("{} (texture mean)", param.name()),
+                None => param.name().to_owned(),
+            };
+            if ui
+                .add(egui::Slider::new(&mut v, edit::thin_slider_range(param)).text(label))
+                .changed()
+            {
+                edit::set_thin_scalar(m, param, v);
+                *slot = None;
+                changed = true;
+            }
+        }
         if let Some(mut s) = edit::specular(m)
             && ui
                 .add(egui::Slider::new(&mut s, 0.0..=1.0).text("specular (sets η)"))

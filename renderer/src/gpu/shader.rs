@@ -73,6 +73,7 @@ const MODULES: &[Module] = &[
     module!("materials/thin_dielectric.wgsl"),
     module!("materials/gtr1.wgsl"),
     module!("materials/principled.wgsl"),
+    module!("materials/principled_thin.wgsl"),
     module!("lights/mod.wgsl"),
     module!("lights/light_sampler.wgsl"),
     module!("lights/light_bvh.wgsl"),
@@ -172,6 +173,9 @@ pub struct Features {
     pub has_principled: bool,
     /// A principled with specular transmission (its back side is the inside).
     pub has_principled_transmission: bool,
+    /// Mitsuba's thin principled BSDF (`materials/principled_thin.wgsl`, with the principled's
+    /// helpers).
+    pub has_principled_thin: bool,
     /// Disk shapes.
     pub has_disk_shape: bool,
     /// Sphere shapes.
@@ -234,6 +238,7 @@ impl Features {
             has_thin_dielectric: true,
             has_principled: true,
             has_principled_transmission: true,
+            has_principled_thin: true,
             has_disk_shape: true,
             has_sphere_shape: true,
             has_cylinder_shape: true,
@@ -321,6 +326,10 @@ impl Features {
                     f.has_principled_transmission |= p.transmission;
                     f.has_ggx = true;
                 }
+                Material::PrincipledThin(_) => {
+                    f.has_principled_thin = true;
+                    f.has_ggx = true;
+                }
             }
         }
         // A textured α may be rough where the material's constant (its mean) is smooth; a
@@ -350,9 +359,17 @@ impl Features {
         self.has_textures || self.has_normal_maps || self.has_masks
     }
 
+    /// A principled, thin or not.
+    fn principled_family(&self) -> bool {
+        self.has_principled || self.has_principled_thin
+    }
+
     /// A material that light passes through ([`Material::transmits`]).
     pub fn has_transmission(&self) -> bool {
-        self.has_dielectric || self.has_thin_dielectric || self.has_principled_transmission
+        self.has_dielectric
+            || self.has_thin_dielectric
+            || self.has_principled_transmission
+            || self.has_principled_thin
     }
 
     /// Whether the scene has a delta light (point, spot, directional, projector).
@@ -364,7 +381,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 41] {
+    fn defines(&self) -> [(&'static str, bool); 42] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -406,6 +423,7 @@ impl Features {
             ("HAS_DIELECTRIC", self.has_dielectric),
             ("HAS_THIN_DIELECTRIC", self.has_thin_dielectric),
             ("HAS_PRINCIPLED", self.has_principled),
+            ("HAS_PRINCIPLED_THIN", self.has_principled_thin),
             // A material that light passes through: the path tracer's transmission code.
             ("HAS_TRANSMISSION", self.has_transmission()),
             // A material that refracts (glass, a transmitting principled; not a thin sheet).
@@ -414,13 +432,13 @@ impl Features {
                 self.has_dielectric || self.has_principled_transmission,
             ),
             // The exact dielectric Fresnel: glass, thin sheets, Mitsuba's plastic coat and the
-            // principled's main lobe.
+            // principled's main lobe (thin or not).
             (
                 "HAS_DIELECTRIC_FRESNEL",
                 self.has_dielectric
                     || self.has_thin_dielectric
                     || self.has_mitsuba_plastic
-                    || self.has_principled,
+                    || self.principled_family(),
             ),
             ("HAS_DISK_SHAPE", self.has_disk_shape),
             ("HAS_SPHERE_SHAPE", self.has_sphere_shape),
@@ -479,7 +497,7 @@ impl Features {
                     || self.has_mitsuba_plastic
                     || self.has_dielectric
                     || self.has_thin_dielectric
-                    || self.has_principled
+                    || self.principled_family()
             }
             "materials/ggx.wgsl" => self.has_ggx,
             "materials/beckmann.wgsl" => self.has_ggx && self.has_beckmann,
@@ -487,14 +505,16 @@ impl Features {
                 self.has_conductor
                     || self.has_dielectric
                     || self.has_mitsuba_plastic
-                    || self.has_principled
+                    || self.principled_family()
             }
             "materials/conductor.wgsl" => self.has_conductor,
             "materials/plastic.wgsl" => self.has_plastic,
             "materials/plastic_mitsuba.wgsl" => self.has_mitsuba_plastic,
             "materials/dielectric.wgsl" => self.has_dielectric,
             "materials/thin_dielectric.wgsl" => self.has_thin_dielectric,
-            "materials/gtr1.wgsl" | "materials/principled.wgsl" => self.has_principled,
+            // The thin one shares the principled's helpers (which call GTR1's).
+            "materials/gtr1.wgsl" | "materials/principled.wgsl" => self.principled_family(),
+            "materials/principled_thin.wgsl" => self.has_principled_thin,
             // A disk light's ellipse samples find their point as a disk hit does.
             "geometry/disk.wgsl" => self.has_disk_shape || (lights && self.has_disk_light),
             // A cylinder's intersection solves the sphere's quadratic (`careful_roots`).

@@ -294,6 +294,7 @@ mod tests {
                 has_mitsuba_plastic: false,
                 has_principled: false,
                 has_principled_transmission: false,
+                has_principled_thin: false,
                 ..Features::all()
             },
         ];
@@ -319,6 +320,22 @@ mod tests {
             !thin.contains("refract"),
             "refraction in a thin sheet's program"
         );
+        // A thin principled alone: like a thin sheet, the transmission code without refraction,
+        // and the principled's helpers it shares.
+        let thin_principled = program_body(&Features {
+            has_principled_thin: true,
+            has_ggx: true,
+            has_lights: true,
+            ..Features::default()
+        });
+        for name in TRANSMISSION_CODE.iter().filter(|n| **n != "refract") {
+            assert!(
+                thin_principled.contains(name),
+                "a thin principled's program lacks {name:?}"
+            );
+        }
+        assert!(!thin_principled.contains("refract"));
+        assert!(thin_principled.contains("fn principled_thin_eval("));
         // Mitsuba's plastic coat: the dielectric Fresnel, nothing of transmission.
         let coat = program_body(&Features {
             has_mitsuba_plastic: true,

@@ -15,12 +15,20 @@ fn microfacet_is_smooth(mf: Microfacet) -> bool {
     return max(mf.alpha.x, mf.alpha.y) < SMOOTH_ALPHA;
 }
 
-// `Material::is_anisotropic`: a rough conductor, dielectric or principled with α_u ≠ α_v.
+// `Material::is_anisotropic`: a rough conductor, dielectric or principled (thin or not) with
+// α_u ≠ α_v.
 fn material_anisotropic(m: Material) -> bool {
 // #if HAS_PRINCIPLED
     if m.h.x == MATERIAL_PRINCIPLED {
         let mf = principled_microfacet(m);
         return mf.alpha.x != mf.alpha.y;
+    }
+// #endif
+// #if HAS_PRINCIPLED_THIN
+    if m.h.x == MATERIAL_PRINCIPLED_THIN {
+        let r = principled_thin_reflection_mf(m);
+        let t = principled_thin_transmission_mf(m);
+        return r.alpha.x != r.alpha.y || t.alpha.x != t.alpha.y;
     }
 // #endif
     if m.h.x != MATERIAL_CONDUCTOR && m.h.x != MATERIAL_DIELECTRIC {

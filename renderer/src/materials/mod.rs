@@ -1,10 +1,10 @@
 //! Materials (BSDFs): Lambertian diffuse, GGX conductor, a rough plastic, a dielectric, a thin
-//! dielectric sheet and Mitsuba's principled BSDF.
+//! dielectric sheet and Mitsuba's principled and thin principled BSDFs.
 //!
 //! Everything works in the local shading frame: normal = +z, `wo` points towards the viewer and
 //! `wi` towards the light, both unit and pointing away from the surface. The integrator flips the
 //! frame of two-sided materials so that `wo.z > 0`; the reflection-only materials give zero for
-//! `wo.z <= 0` or `wi.z <= 0`. The dielectrics alone ([`Material::transmits`]) see both sides:
+//! `wo.z <= 0` or `wi.z <= 0`. The transmitting ones ([`Material::transmits`]) see both sides:
 //! their frame is never flipped, `wo.z < 0` means the viewer is inside, and `wi` may lie on either
 //! side.
 //!
@@ -32,6 +32,7 @@ pub mod plastic;
 pub mod plastic_mitsuba;
 pub mod plastic_textured;
 pub mod principled;
+pub mod principled_thin;
 #[cfg(test)]
 mod testing;
 pub mod textured;
@@ -45,6 +46,7 @@ pub use microfacet::{Distribution, Microfacet};
 pub use mix::Mix;
 pub use plastic::Plastic;
 pub use principled::Principled;
+pub use principled_thin::PrincipledThin;
 pub use thin_dielectric::ThinDielectric;
 
 use glam::{Vec2, Vec3};
@@ -113,6 +115,8 @@ pub enum Material {
     /// Mitsuba's principled BSDF (Burley's Disney BSDF); transmits where it has specular
     /// transmission.
     Principled(Principled),
+    /// Mitsuba's thin principled BSDF: a sheet with the same two sides, which transmits.
+    PrincipledThin(PrincipledThin),
 }
 
 impl Material {
@@ -132,14 +136,19 @@ impl Material {
             Material::Plastic(m) => m.eval(wo, wi),
             Material::Principled(m) if !m.transmission || TRANSMISSION => m.eval(wo, wi),
             Material::Dielectric(m) if TRANSMISSION => Vec3::splat(m.eval_pdf(wo, wi).0),
-            Material::Dielectric(_) | Material::ThinDielectric(_) | Material::Principled(_)
+            Material::PrincipledThin(m) if TRANSMISSION => m.eval(wo, wi),
+            Material::Dielectric(_)
+            | Material::ThinDielectric(_)
+            | Material::Principled(_)
+            | Material::PrincipledThin(_)
                 if !TRANSMISSION =>
             {
                 no_transmission()
             }
-            Material::Dielectric(_) | Material::ThinDielectric(_) | Material::Principled(_) => {
-                Vec3::ZERO
-            }
+            Material::Dielectric(_)
+            | Material::ThinDielectric(_)
+            | Material::Principled(_)
+            | Material::PrincipledThin(_) => Vec3::ZERO,
         }
     }
 
@@ -157,12 +166,19 @@ impl Material {
             Material::Plastic(m) => m.pdf(wo, wi),
             Material::Principled(m) if !m.transmission || TRANSMISSION => m.pdf(wo, wi),
             Material::Dielectric(m) if TRANSMISSION => m.eval_pdf(wo, wi).1,
-            Material::Dielectric(_) | Material::ThinDielectric(_) | Material::Principled(_)
+            Material::PrincipledThin(m) if TRANSMISSION => m.pdf(wo, wi),
+            Material::Dielectric(_)
+            | Material::ThinDielectric(_)
+            | Material::Principled(_)
+            | Material::PrincipledThin(_)
                 if !TRANSMISSION =>
             {
                 no_transmission()
             }
-            Material::Dielectric(_) | Material::ThinDielectric(_) | Material::Principled(_) => 0.0,
+            Material::Dielectric(_)
+            | Material::ThinDielectric(_)
+            | Material::Principled(_)
+            | Material::PrincipledThin(_) => 0.0,
         };
         pdf * crate::mutants::bsdf_pdf(self.kind_tag())
     }
@@ -193,9 +209,11 @@ impl Material {
             Material::Principled(m) if !m.transmission || TRANSMISSION => m.sample(wo, u_lobe, u),
             Material::Dielectric(m) if TRANSMISSION => m.sample(wo, u_lobe, u),
             Material::ThinDielectric(m) if TRANSMISSION => m.sample(wo, u_lobe, u),
-            Material::Dielectric(_) | Material::ThinDielectric(_) | Material::Principled(_) => {
-                no_transmission()
-            }
+            Material::PrincipledThin(m) if TRANSMISSION => m.sample(wo, u_lobe, u),
+            Material::Dielectric(_)
+            | Material::ThinDielectric(_)
+            | Material::Principled(_)
+            | Material::PrincipledThin(_) => no_transmission(),
         }?;
         if cfg!(feature = "mutants") && !s.delta {
             let k = crate::mutants::bsdf_pdf(self.kind_tag());
@@ -214,7 +232,7 @@ impl Material {
             Material::Dielectric(m) => !m.is_delta(),
             Material::ThinDielectric(_) => false,
             // Its diffuse or its rough (α ≥ 0.001) specular lobes.
-            Material::Principled(_) => true,
+            Material::Principled(_) | Material::PrincipledThin(_) => true,
         }
     }
 
@@ -226,6 +244,7 @@ impl Material {
             Material::Conductor(c) => !c.is_delta() && c.microfacet.is_anisotropic(),
             Material::Dielectric(d) => !d.is_delta() && d.microfacet.is_anisotropic(),
             Material::Principled(p) => p.is_anisotropic(),
+            Material::PrincipledThin(p) => p.is_anisotropic(),
             Material::Diffuse(_) | Material::Plastic(_) | Material::ThinDielectric(_) => false,
         }
     }
@@ -236,6 +255,8 @@ impl Material {
     pub fn transmits(&self) -> bool {
         match self {
             Material::Dielectric(_) | Material::ThinDielectric(_) => true,
+            // Symmetric: its back side is its front side mirrored.
+            Material::PrincipledThin(_) => true,
             Material::Principled(p) => p.transmission,
             Material::Diffuse(_) | Material::Conductor(_) | Material::Plastic(_) => false,
         }
@@ -253,6 +274,7 @@ impl Material {
             Material::Conductor(m) => m.normal_reflectance(),
             Material::Plastic(m) => m.albedo_hint(),
             Material::Principled(m) => m.base_color,
+            Material::PrincipledThin(m) => m.base_color,
             Material::Dielectric(_) | Material::ThinDielectric(_) => Vec3::ONE,
         }
     }

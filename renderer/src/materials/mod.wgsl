@@ -1,6 +1,6 @@
 // The closed set of materials, the twin of `materials/mod.rs`: one record per material, a `switch`
 // on the same variant order as `Material` (Diffuse, Conductor, Plastic, Dielectric,
-// ThinDielectric, Principled); and, under
+// ThinDielectric, Principled, PrincipledThin); and, under
 // HAS_TEXTURES, `material_at`, the twin of `materials/textured.rs`, which evaluates a material's
 // textures at a hit.
 //
@@ -22,7 +22,11 @@
 //   ThinDielectric: a.x ior; never two-sided (it is the same from both sides).
 //   Principled: a.xyz base colour, b, c.xyz and d its scalars, h.z its rates, transmission flag
 //               and scalar texture ids in `tables` (`materials/principled.wgsl`); c.w is not
-//               NONE where a scalar is textured. Only it fills d.
+//               NONE where a scalar is textured.
+//   PrincipledThin: a.xyz base colour, b, c.xyz and d.xy its scalars, h.z its rates and scalar
+//               texture ids in `tables` (`materials/principled_thin.wgsl`); c.w as a
+//               principled's; the same from both sides, never two-sided.
+//   Only the principled kinds fill d.
 //   Every kind: a.w, c.w = bits of the ids of its colour texture (a diffuse's or plastic's albedo,
 //       a conductor's reflectance: replaces a.xyz) and its roughness textures (α, or α_u in the
 //       low 16 bits and α_v in the high 16, 0xFFFF for none: replace a conductor's or
@@ -77,7 +81,7 @@ fn material_transmits(m: Material) -> bool {
         return principled_transmission(m);
     }
 // #endif
-    return false;
+    return m.h.x == MATERIAL_PRINCIPLED_THIN;
 }
 // #endif
 
@@ -115,6 +119,11 @@ fn material_eval(m: Material, wo: vec3f, wi: vec3f) -> vec3f {
 // #if HAS_PRINCIPLED
         case MATERIAL_PRINCIPLED: {
             return principled_eval(m, wo, wi);
+        }
+// #endif
+// #if HAS_PRINCIPLED_THIN
+        case MATERIAL_PRINCIPLED_THIN: {
+            return principled_thin_eval(m, wo, wi);
         }
 // #endif
         default: {
@@ -165,6 +174,11 @@ fn material_pdf_unmutated(m: Material, wo: vec3f, wi: vec3f) -> f32 {
             return principled_pdf(m, wo, wi);
         }
 // #endif
+// #if HAS_PRINCIPLED_THIN
+        case MATERIAL_PRINCIPLED_THIN: {
+            return principled_thin_pdf(m, wo, wi);
+        }
+// #endif
         default: {
             return unknown_tag();
         }
@@ -206,6 +220,11 @@ fn material_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample 
 // #if HAS_PRINCIPLED
         case MATERIAL_PRINCIPLED: {
             s = principled_sample(m, wo, u_lobe, u);
+        }
+// #endif
+// #if HAS_PRINCIPLED_THIN
+        case MATERIAL_PRINCIPLED_THIN: {
+            s = principled_thin_sample(m, wo, u_lobe, u);
         }
 // #endif
         default: {
@@ -292,6 +311,16 @@ fn material_at(m_in: Material, at: TexPoint) -> Material {
             }
         }
 // #endif
+// #if HAS_PRINCIPLED_THIN
+        case MATERIAL_PRINCIPLED_THIN: {
+            if colour != NONE {
+                m.a = vec4f(texture_eval(colour, at), m.a.w);
+            }
+            if slot != NONE {
+                m = principled_thin_at(m, at);
+            }
+        }
+// #endif
         default: {
             m.a = vec4f(unknown_tag());
         }
@@ -347,6 +376,11 @@ fn material_smooth_part(m: Material) -> bool {
 // #endif
 // #if HAS_PRINCIPLED
         case MATERIAL_PRINCIPLED: {
+            return true;
+        }
+// #endif
+// #if HAS_PRINCIPLED_THIN
+        case MATERIAL_PRINCIPLED_THIN: {
             return true;
         }
 // #endif

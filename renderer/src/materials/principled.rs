@@ -201,7 +201,7 @@ pub fn mitsuba_eta(eta: Option<f32>, specular: Option<f32>, transmission: bool) 
 }
 
 /// Schlick's weight (1 − cos)⁵, the argument clamped to [0, 1].
-fn schlick_weight(cos: f32) -> f32 {
+pub(super) fn schlick_weight(cos: f32) -> f32 {
     let m = (1.0 - cos).clamp(0.0, 1.0);
     let m2 = m * m;
     m2 * m2 * m
@@ -210,15 +210,27 @@ fn schlick_weight(cos: f32) -> f32 {
 /// Mitsuba's `calc_schlick`: Schlick's approximation with F0 `r0`, at the cosine of the incident
 /// side when that side has the lower index, else at the cosine of the transmitted direction (1 at
 /// total internal reflection).
-fn calc_schlick(r0: Vec3, cos_i: f32, eta: f32) -> Vec3 {
+pub(super) fn calc_schlick(r0: Vec3, cos_i: f32, eta: f32) -> Vec3 {
     let eta_it = if cos_i >= 0.0 { eta } else { 1.0 / eta };
     let eta_ti = 1.0 / eta_it;
     let cos_t = safe_sqrt(1.0 - (1.0 - cos_i * cos_i) * eta_ti * eta_ti);
     fresnel_schlick_rgb(r0, if eta_it > 1.0 { cos_i.abs() } else { cos_t })
 }
 
+/// Mitsuba's `calc_dist_params`: GGX with α = max(0.001, roughness²), stretched by the aspect
+/// √(1 − 0.9·anisotropic) (α_u = α/aspect, α_v = α·aspect, each at least 0.001).
+pub(super) fn microfacet(roughness: f32, anisotropic: f32) -> Microfacet {
+    let r2 = roughness * roughness;
+    let aspect = (1.0 - 0.9 * anisotropic).sqrt();
+    Microfacet {
+        distribution: Distribution::Ggx,
+        alpha_u: (r2 / aspect).max(0.001),
+        alpha_v: (r2 * aspect).max(0.001),
+    }
+}
+
 /// `base` over its luminance (a hue of luminance 1), or white for black.
-fn tint(base: Vec3) -> Vec3 {
+pub(super) fn tint(base: Vec3) -> Vec3 {
     let lum = luminance(base);
     if lum > 0.0 { base / lum } else { Vec3::ONE }
 }
@@ -259,16 +271,9 @@ impl Principled {
         )
     }
 
-    /// The main lobes' GGX microfacets: α = max(0.001, roughness²), stretched by the aspect
-    /// √(1 − 0.9·anisotropic) (Mitsuba's `calc_dist_params`).
+    /// The main lobes' GGX microfacets ([`microfacet`]).
     pub fn microfacet(&self) -> Microfacet {
-        let r2 = self.roughness * self.roughness;
-        let aspect = (1.0 - 0.9 * self.anisotropic).sqrt();
-        Microfacet {
-            distribution: Distribution::Ggx,
-            alpha_u: (r2 / aspect).max(0.001),
-            alpha_v: (r2 * aspect).max(0.001),
-        }
+        microfacet(self.roughness, self.anisotropic)
     }
 
     /// True if the main lobes' α_u ≠ α_v.

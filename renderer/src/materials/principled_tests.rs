@@ -5,11 +5,7 @@
 use super::*;
 use crate::materials::{Material, testing};
 use serde_json::Value;
-
-fn vec3(v: &Value) -> Vec3 {
-    let c = |i: usize| v[i].as_f64().expect("a number") as f32;
-    Vec3::new(c(0), c(1), c(2))
-}
+use testing::json_vec3 as vec3;
 
 /// The principled of one case of `tests/data/refs/mitsuba_principled_values.json`, Mitsuba's
 /// defaults and flags applied as the scene parser applies them.
@@ -34,16 +30,10 @@ fn principled_of(case: &Value) -> Principled {
     p
 }
 
-/// Relative difference with an absolute floor of 1e-4 of the pair's larger value's scale: the
-/// cases hold values down to 1e-9 at grazing angles, where f32 rounding of the half vector alone
-/// moves them by more than any relative tolerance.
-fn relative(a: f32, b: f32, scale: f32) -> f32 {
-    (a - b).abs() / a.abs().max(b.abs()).max(1e-4 * scale).max(1e-30)
-}
-
 /// lumis' eval and pdf against Mitsuba's (variant llvm_ad_rgb, `tools/mitsuba_principled_values.py`)
 /// at 6723 direction pairs of 18 principled BSDFs covering every parameter, both sides and
-/// transmission. Tolerance 2e-3 relative on eval and pdf (f32 arithmetic in a different order:
+/// transmission ([`testing::assert_matches_mitsuba_values`]). Tolerance 2e-3 relative on eval and
+/// pdf (f32 arithmetic in a different order:
 /// Mitsuba's own scalar and JIT variants differ by up to 4.4e-4 on these pairs, as the tool's
 /// author measured); the floor is 1e-4 of the case's largest value. Power: the sheen evaluated
 /// only where the diffuse lobe is on (Mitsuba's scalar variant) differs by 3.3% at the tool's
@@ -51,54 +41,9 @@ fn relative(a: f32, b: f32, scale: f32) -> f32 {
 /// √base all move values by far more.
 #[test]
 fn values_match_mitsuba() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../tests/data/refs/mitsuba_principled_values.json");
-    let data: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
-    let (mut worst_eval, mut worst_pdf, mut pairs) = (0.0f32, 0.0f32, 0);
-    let mut failures = Vec::new();
-    for case in data["cases"].as_array().unwrap() {
-        let bsdf = &case["bsdf"];
-        let m = Material::Principled(principled_of(bsdf));
-        let values = case["values"].as_array().unwrap();
-        let all_pairs = || values.iter().flat_map(|e| e["pairs"].as_array().unwrap());
-        let eval_scale = all_pairs()
-            .map(|p| vec3(&p["eval"]).max_element())
-            .fold(0.0, f32::max);
-        let pdf_scale = all_pairs()
-            .map(|p| p["pdf"].as_f64().unwrap() as f32)
-            .fold(0.0, f32::max);
-        for entry in values {
-            let wo = vec3(&entry["wo"]);
-            for pair in entry["pairs"].as_array().unwrap() {
-                let wi = vec3(&pair["wi"]);
-                let (f, pdf) = (m.eval(wo, wi), m.pdf(wo, wi));
-                let (f_mi, pdf_mi) = (vec3(&pair["eval"]), pair["pdf"].as_f64().unwrap() as f32);
-                let d_eval = (0..3)
-                    .map(|c| relative(f[c], f_mi[c], eval_scale))
-                    .fold(0.0, f32::max);
-                let d_pdf = relative(pdf, pdf_mi, pdf_scale);
-                worst_eval = worst_eval.max(d_eval);
-                worst_pdf = worst_pdf.max(d_pdf);
-                pairs += 1;
-                if d_eval >= 2e-3 || d_pdf >= 2e-3 {
-                    failures.push(format!(
-                        "{bsdf} wo {wo} wi {wi}: lumis {f} pdf {pdf}, Mitsuba {f_mi} pdf {pdf_mi}"
-                    ));
-                }
-            }
-        }
-    }
-    eprintln!(
-        "{pairs} pairs; largest relative differences from Mitsuba: eval {worst_eval:.2e}, pdf \
-         {worst_pdf:.2e}"
-    );
-    assert!(pairs > 6000);
-    assert!(
-        failures.is_empty(),
-        "{} of {pairs} pairs differ:\n{}",
-        failures.len(),
-        failures[..failures.len().min(30)].join("\n")
-    );
+    testing::assert_matches_mitsuba_values("mitsuba_principled_values.json", 6000, 2e-3, |c| {
+        Material::Principled(principled_of(c))
+    });
 }
 
 /// The shared material checks (seed 9300) on principled BSDFs that exercise each lobe, with the

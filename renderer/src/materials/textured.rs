@@ -11,6 +11,7 @@
 
 use super::plastic_textured::CoatGrid;
 use super::principled::PrincipledParam;
+use super::principled_thin::ThinParam;
 use super::{ConductorFresnel, Material, Microfacet, Plastic};
 use crate::textures::{TexPoint, Texture};
 
@@ -28,8 +29,8 @@ pub struct MaterialTextures {
     pub alpha_v: Option<Texture>,
     /// A plastic with a textured α: its coat tables on the α grid, for its F0.
     pub(crate) coat_grid: Option<CoatGrid>,
-    /// A principled's scalar parameters, in [`PrincipledParam::ALL`]'s order (its base colour is
-    /// `albedo`).
+    /// A principled's scalar parameters, in [`PrincipledParam::ALL`]'s order, or a thin
+    /// principled's in [`ThinParam::ALL`]'s (the base colour of either is `albedo`).
     pub principled: [Option<Texture>; 10],
 }
 
@@ -64,7 +65,7 @@ impl MaterialTextures {
         let pair = self.alpha_v.is_none()
             || (self.alpha.is_some()
                 && matches!(base, Material::Conductor(_) | Material::Dielectric(_)));
-        let principled = matches!(base, Material::Principled(_));
+        let principled = matches!(base, Material::Principled(_) | Material::PrincipledThin(_));
         let ok = pair
             && (principled || self.principled.iter().all(Option::is_none))
             && match base {
@@ -79,7 +80,9 @@ impl MaterialTextures {
                     self.albedo.is_none() && self.reflectance.is_none() && self.alpha.is_none()
                 }
                 // Its base colour in `albedo`, the rest in `principled`.
-                Material::Principled(_) => self.reflectance.is_none() && self.alpha.is_none(),
+                Material::Principled(_) | Material::PrincipledThin(_) => {
+                    self.reflectance.is_none() && self.alpha.is_none()
+                }
             };
         if ok {
             Ok(())
@@ -131,6 +134,16 @@ impl MaterialTextures {
                     p.base_color = t.eval(uv);
                 }
                 for (param, t) in PrincipledParam::ALL.into_iter().zip(&self.principled) {
+                    if let Some(t) = t {
+                        param.set(p, t.eval_scalar(uv));
+                    }
+                }
+            }
+            Material::PrincipledThin(p) => {
+                if let Some(t) = &self.albedo {
+                    p.base_color = t.eval(uv);
+                }
+                for (param, t) in ThinParam::ALL.into_iter().zip(&self.principled) {
                     if let Some(t) = t {
                         param.set(p, t.eval_scalar(uv));
                     }

@@ -153,6 +153,7 @@ fn material(desc: &MaterialDesc) -> Material {
             Material::ThinDielectric(ThinDielectric { ior: *ior as f32 })
         }
         MaterialDesc::Principled(p) => Material::Principled(p.material()),
+        MaterialDesc::PrincipledThin(p) => Material::PrincipledThin(p.material()),
     }
 }
 

@@ -325,8 +325,9 @@ pub struct MaterialTextures {
     /// α_v of a conductor or dielectric whose `alpha` is a pair with a texture in it (then
     /// `alpha` holds α_u, a number of the pair as a constant texture).
     pub alpha_v: Option<TextureDesc>,
-    /// A principled's scalars, in [`crate::materials::principled::PrincipledParam::ALL`]'s order
-    /// (its base colour is `albedo`).
+    /// A principled's scalars, in [`crate::materials::principled::PrincipledParam::ALL`]'s order,
+    /// or a thin principled's in [`crate::materials::principled_thin::ThinParam::ALL`]'s (the
+    /// base colour of either is `albedo`).
     pub principled: [Option<TextureDesc>; 10],
 }
 
@@ -463,6 +464,54 @@ pub enum MaterialDesc {
     },
     /// Mitsuba's principled BSDF (`materials/principled.rs`).
     Principled(PrincipledDesc),
+    /// Mitsuba's thin principled BSDF (`materials/principled_thin.rs`): the same from both
+    /// sides, so it has no `two_sided`.
+    PrincipledThin(PrincipledThinDesc),
+}
+
+/// A thin principled BSDF's parameters (`scene/parse_principled_thin.rs`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PrincipledThinDesc {
+    /// Base colour, in [0, 1].
+    pub base_color: DVec3,
+    /// The scalars in [`crate::materials::principled_thin::ThinParam::ALL`]'s order, each in its
+    /// range ([`crate::materials::principled_thin::ThinParam::range`]).
+    pub scalars: [f64; 9],
+    /// Sampling rates in [`crate::materials::principled_thin::ThinRates::KEYS`]' order (each ≥ 0).
+    pub rates: [f64; 4],
+}
+
+impl Default for PrincipledThinDesc {
+    /// Mitsuba's defaults.
+    fn default() -> Self {
+        let p = crate::materials::PrincipledThin::default();
+        let params = crate::materials::principled_thin::ThinParam::ALL;
+        PrincipledThinDesc {
+            base_color: p.base_color.as_dvec3(),
+            scalars: params.map(|k| k.get(&p) as f64),
+            rates: p.rates.to_array().map(f64::from),
+        }
+    }
+}
+
+impl PrincipledThinDesc {
+    /// The material it describes.
+    pub fn material(&self) -> crate::materials::PrincipledThin {
+        let mut p = crate::materials::PrincipledThin {
+            base_color: self.base_color.as_vec3(),
+            rates: crate::materials::principled_thin::ThinRates::from_array(
+                self.rates.map(|r| r as f32),
+            ),
+            ..Default::default()
+        };
+        for (k, v) in crate::materials::principled_thin::ThinParam::ALL
+            .into_iter()
+            .zip(self.scalars)
+        {
+            k.set(&mut p, v as f32);
+        }
+        p
+    }
 }
 
 /// A principled BSDF's parameters, Mitsuba's rules applied (`scene/parse_principled.rs`).
@@ -526,7 +575,9 @@ impl MaterialDesc {
     /// thin sheet, alike), so `two_sided` does not apply.
     pub fn transmits(&self) -> bool {
         match self {
-            MaterialDesc::Dielectric { .. } | MaterialDesc::ThinDielectric { .. } => true,
+            MaterialDesc::Dielectric { .. }
+            | MaterialDesc::ThinDielectric { .. }
+            | MaterialDesc::PrincipledThin(_) => true,
             MaterialDesc::Principled(p) => p.transmission,
             _ => false,
         }
@@ -1016,11 +1067,31 @@ fn bsdf_json(m: &NamedMaterial) -> Value {
             }
             obj
         }
+        MaterialDesc::PrincipledThin(p) => {
+            let mut obj = json!({"type": "principled_thin", "base_color": vec3(p.base_color)});
+            let params = crate::materials::principled_thin::ThinParam::ALL;
+            for ((k, v), tex) in params.iter().zip(p.scalars).zip(&m.textures.principled) {
+                obj[k.name()] = match tex {
+                    Some(t) if !t.texture.is_constant() => t.to_json(),
+                    _ => json!(v),
+                };
+            }
+            let keys = crate::materials::principled_thin::ThinRates::KEYS;
+            for (key, rate) in keys.iter().zip(p.rates) {
+                obj[*key] = json!(rate);
+            }
+            if let Some(tex) = m.textures.albedo.as_ref()
+                && !tex.texture.is_constant()
+            {
+                obj["base_color"] = tex.to_json();
+            }
+            obj
+        }
     };
     let t = &m.textures;
     // A principled's base colour is its `base_color` (written above).
     let albedo = match &m.material {
-        MaterialDesc::Principled(_) => &None,
+        MaterialDesc::Principled(_) | MaterialDesc::PrincipledThin(_) => &None,
         _ => &t.albedo,
     };
     for (key, slot) in [

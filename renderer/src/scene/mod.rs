@@ -23,6 +23,7 @@ mod parse_mesh;
 mod parse_mesh_attribute;
 mod parse_mesh_file;
 pub(crate) mod parse_principled;
+pub(crate) mod parse_principled_thin;
 mod parse_shapes;
 mod parse_surface_detail;
 mod parse_texture;

@@ -178,6 +178,7 @@ fn parse_material(
             MaterialDesc::ThinDielectric { ior }
         }
         "principled" => super::parse_principled::parse_principled(obj, loader, t)?,
+        "principled_thin" => super::parse_principled_thin::parse_principled_thin(obj, loader, t)?,
         "mix" => {
             if obj.get("two_sided").is_some() {
                 let msg = "a mix has no sides of its own: its materials' `two_sided` apply";
@@ -202,7 +203,8 @@ fn parse_material(
                 obj.at("type"),
                 format!(
                     "unknown material type `{other}` (expected diffuse, conductor, plastic, \
-                     dielectric, thin_dielectric, principled, mix or two_sided)"
+                     dielectric, thin_dielectric, principled, principled_thin, mix or \
+                     two_sided)"
                 ),
             ));
         }

@@ -79,10 +79,20 @@ fn slots(m: &mut NamedMaterial) -> Vec<Slot<'_>> {
             v.push((key, use_, tex));
         }
     }
-    let params = crate::materials::principled::PrincipledParam::ALL;
-    for (param, slot) in params.into_iter().zip(&mut t.principled) {
+    let thin = matches!(m.material, MaterialDesc::PrincipledThin(_));
+    for (k, slot) in t.principled.iter_mut().enumerate() {
         if let Some(tex) = slot {
-            v.push((param.name(), TextureUse::Parameter, tex));
+            let (key, use_) = if thin {
+                let param = crate::materials::principled_thin::ThinParam::ALL[k];
+                (
+                    param.name(),
+                    crate::scene::parse_principled_thin::texture_use(param),
+                )
+            } else {
+                let param = crate::materials::principled::PrincipledParam::ALL[k];
+                (param.name(), TextureUse::Parameter)
+            };
+            v.push((key, use_, tex));
         }
     }
     if let Some(n) = &mut m.normal_map {
@@ -325,6 +335,13 @@ fn stand_in(m: &mut NamedMaterial, key: &str, mean: DVec3) {
         (MaterialDesc::Principled(p), "albedo") => p.base_color = mean,
         (MaterialDesc::Principled(p), key) => {
             let params = crate::materials::principled::PrincipledParam::ALL;
+            if let Some(k) = params.iter().position(|q| q.name() == key) {
+                p.scalars[k] = scalar;
+            }
+        }
+        (MaterialDesc::PrincipledThin(p), "albedo") => p.base_color = mean,
+        (MaterialDesc::PrincipledThin(p), key) => {
+            let params = crate::materials::principled_thin::ThinParam::ALL;
             if let Some(k) = params.iter().position(|q| q.name() == key) {
                 p.scalars[k] = scalar;
             }

@@ -42,13 +42,22 @@ pub(crate) enum TextureUse {
     Opacity,
     /// A principled's scalar parameter (roughness, metallic, …): a scalar in [0, 1].
     Parameter,
+    /// A thin principled's `diff_trans`: a scalar in [0, 2].
+    DiffuseTransmission,
+    /// A thin principled's `eta`: a positive scalar, at most the dielectric's largest index.
+    Eta,
 }
 
 impl TextureUse {
     pub(crate) fn is_scalar(self) -> bool {
         matches!(
             self,
-            TextureUse::Alpha | TextureUse::Weight | TextureUse::Opacity | TextureUse::Parameter
+            TextureUse::Alpha
+                | TextureUse::Weight
+                | TextureUse::Opacity
+                | TextureUse::Parameter
+                | TextureUse::DiffuseTransmission
+                | TextureUse::Eta
         )
     }
 
@@ -71,6 +80,12 @@ impl TextureUse {
                 .then_some("is outside [0, 1]: an opacity must lie in [0, 1]"),
             TextureUse::Parameter => (!(0.0..=1.0).contains(&x))
                 .then_some("is outside [0, 1]: a principled parameter must lie in [0, 1]"),
+            TextureUse::DiffuseTransmission => (!(0.0..=2.0).contains(&x))
+                .then_some("is outside [0, 2]: diff_trans must lie in [0, 2]"),
+            TextureUse::Eta => (!(x > 0.0 && x <= crate::materials::dielectric::MAX_IOR as f64))
+                .then_some(
+                    "is not in (0, 10]: an index of refraction must be positive and at most 10",
+                ),
             TextureUse::NormalMap => (!(0.0..=1.0).contains(&x))
                 .then_some("is outside [0, 1]: a normal map encodes (n + 1)/2 in [0, 1]"),
             TextureUse::Height => (!x.is_finite()).then_some("is not finite"),

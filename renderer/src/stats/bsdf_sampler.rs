@@ -4,7 +4,7 @@
 //! on the normal; other reflection-only materials by direction. A transmitting material (a
 //! dielectric, seen from outside or inside) always by generalised half vector over the whole
 //! sphere ([`Domain::generalised_half_vector`]), zoomed on the normal in both halves (by 10α when
-//! narrow, 45° otherwise: see `WIDE_CAP`). In directions, its refraction lobe is far narrower
+//! narrow, 45° otherwise: see `WIDE_CAP`); a thin principled by direction over the whole sphere. In directions, its refraction lobe is far narrower
 //! than α when η is near 1 (dωi/dωh ≈ (η − 1)²/η² at normal incidence): at η 1.1, α = 0.3 would
 //! cover about two cells of a direction histogram.
 
@@ -67,6 +67,10 @@ impl BsdfSampler {
             Material::Dielectric(d) => Some(widest(&d.microfacet)),
             // Its main lobes' α (the clearcoat's is at most 0.1 too, beside it).
             Material::Principled(p) => Some(widest(&p.microfacet())),
+            // The wider of its reflection's and its (η-scaled) transmission's.
+            Material::PrincipledThin(p) => {
+                Some(widest(&p.microfacet()).max(widest(&p.transmission_microfacet())))
+            }
         }
     }
 }
@@ -94,6 +98,11 @@ impl DirectionalSampler for BsdfSampler {
             Material::Principled(p) if p.transmission => Some(p.eta),
             _ => None,
         };
+        // A thin principled's transmission mirrors its reflection, which a sphere of directions
+        // resolves for the wide lobes its cases use (α > NARROW_ALPHA).
+        if let Material::PrincipledThin(_) = self.material {
+            return Domain::sphere();
+        }
         if let Some(ior) = ior {
             let alpha = self.alpha().unwrap_or(0.0);
             let a = alpha as f64;

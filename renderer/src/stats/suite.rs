@@ -692,6 +692,83 @@ pub fn principled_cases() -> Vec<Case> {
     out
 }
 
+/// Mitsuba's thin principled BSDF (`materials/principled_thin.rs`), its lobes chosen with
+/// Mitsuba's probabilities, over the whole sphere of directions (its transmission mirrors its
+/// reflection; every lobe here has α ≥ 0.19, wide enough for direction cells): the defaults and a
+/// leaf (diffuse transmission, sheen, some specular) at every angle of [`THETAS_DEG`]; a glossy
+/// anisotropic tinted sheet at θo ∈ {30°, 85°} × φo ∈ {0°, 45°}; flatness and non-default
+/// sampling rates from both sides at 30°; a fully specular one of η 1.2 from below at 60°. Named
+/// `principled_thin/{what}/…/th{θ}`.
+pub fn principled_thin_cases() -> Vec<Case> {
+    use crate::materials::PrincipledThin;
+    use crate::materials::principled_thin::ThinRates;
+    let at = sampler_at;
+    let every_angle = |what: &str, m: &Material| -> Vec<Case> {
+        THETAS_DEG
+            .iter()
+            .map(|&th| {
+                case(
+                    format!("principled_thin/{what}/th{th}"),
+                    at(m, th, 0.0, false),
+                )
+            })
+            .collect()
+    };
+    let mut out = every_angle(
+        "default",
+        &Material::PrincipledThin(PrincipledThin::default()),
+    );
+    let leaf = Material::PrincipledThin(PrincipledThin {
+        base_color: Vec3::new(0.3, 0.7, 0.2),
+        roughness: 0.7,
+        spec_trans: 0.3,
+        diff_trans: 1.2,
+        sheen: 0.6,
+        sheen_tint: 0.5,
+        ..PrincipledThin::default()
+    });
+    out.extend(every_angle("leaf", &leaf));
+    let glossy = Material::PrincipledThin(PrincipledThin {
+        base_color: Vec3::new(0.9, 0.85, 0.7),
+        roughness: 0.7,
+        anisotropic: 0.5,
+        spec_trans: 0.8,
+        spec_tint: 0.5,
+        ..PrincipledThin::default()
+    });
+    for th in [30.0, 85.0] {
+        for ph in [0.0, 45.0] {
+            let name = format!("principled_thin/glossy/th{th}/ph{ph}");
+            out.push(case(name, at(&glossy, th, ph, false)));
+        }
+    }
+    let rates = Material::PrincipledThin(PrincipledThin {
+        base_color: Vec3::new(0.8, 0.5, 0.2),
+        roughness: 0.6,
+        spec_trans: 0.5,
+        diff_trans: 0.8,
+        flatness: 0.5,
+        rates: ThinRates::from_array([0.5, 2.0, 3.0, 0.7]),
+        ..PrincipledThin::default()
+    });
+    for (side, inside) in [("out", false), ("in", true)] {
+        let name = format!("principled_thin/rates/{side}/th30");
+        out.push(case(name, at(&rates, 30.0, 0.0, inside)));
+    }
+    let specular = Material::PrincipledThin(PrincipledThin {
+        base_color: Vec3::new(0.2, 0.6, 0.9),
+        roughness: 0.8,
+        spec_trans: 1.0,
+        eta: 1.2,
+        ..PrincipledThin::default()
+    });
+    out.push(case(
+        "principled_thin/eta1.2/in/th60".into(),
+        at(&specular, 60.0, 0.0, true),
+    ));
+    out
+}
+
 /// Every case of the suite.
 pub fn all_cases() -> Vec<Case> {
     let mut v = warp_cases();
@@ -700,6 +777,7 @@ pub fn all_cases() -> Vec<Case> {
     v.extend(microfacet_cases());
     v.extend(mitsuba_plastic_cases());
     v.extend(principled_cases());
+    v.extend(principled_thin_cases());
     v.extend(light_cases());
     v.extend(envmap_cases());
     v.extend(mixture_cases());

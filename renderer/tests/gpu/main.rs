@@ -27,6 +27,7 @@ mod parity_filter;
 mod parity_mesh;
 mod parity_optimal;
 mod parity_principled;
+mod parity_principled_thin;
 mod parity_sampler;
 mod parity_spherical;
 mod parity_textures;

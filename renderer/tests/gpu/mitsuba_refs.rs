@@ -197,6 +197,14 @@ fn gpu_xml_principled_matches_the_cpu_and_mitsuba() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// `xml_principledthin.xml` (Mitsuba's thin principled BSDF, `materials/principled_thin.wgsl`:
+/// every lobe from both sides, textured base colour, diff_trans, η and spec_trans).
+#[test]
+fn gpu_xml_principledthin_matches_the_cpu_and_mitsuba() {
+    let failures = check("xml_principledthin");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// `xml_blend_delta.xml` (Mitsuba's `blendbsdf` around delta lobes: `blend_delta_weight` and the
 /// resolve loop's partner in `materials/mix.wgsl`); against Mitsuba only, as `xml_blend` (its
 /// mixes hash hit distances, which the two sides round differently).

@@ -357,7 +357,8 @@ fn resolution_scene() -> Scene {
         "tinted": {"type": "conductor", "reflectance": [0.9, 0.8, 0.7], "alpha": 0.3},
         "glass": {"type": "dielectric", "ior": 1.5, "alpha": 0.1},
         "plain": {"type": "diffuse", "albedo": [0.25, 0.5, 0.75]},
-        "principled": {"type": "principled", "spec_trans": 0.5, "sheen": 0.3}
+        "principled": {"type": "principled", "spec_trans": 0.5, "sheen": 0.3},
+        "thin": {"type": "principled_thin", "spec_trans": 0.5, "sheen": 0.3}
       },
       "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "matte"}]
     }"#;
@@ -432,6 +433,20 @@ fn resolution_scene() -> Scene {
     t.principled[3] = bitmap(Channel::R);
     t.principled[9] = checker(Vec3::splat(0.2), Vec3::splat(0.9));
     scene.material_textures[i] = Some(t);
+    // A thin principled's: its own slot order (`ThinParam::ALL`), slots 1, 5, 7 and 8 (b, c
+    // and d of its record), diff_trans and η beyond [0, 1].
+    let i = scene
+        .material_names
+        .iter()
+        .position(|n| n == "thin")
+        .unwrap();
+    let base = checker(Vec3::new(0.3, 0.7, 0.2), Vec3::new(0.5, 0.7, 0.2));
+    let mut t = MaterialTextures::new(base, None, None, None, &scene.materials[i]).unwrap();
+    t.principled[1] = bitmap(Channel::B);
+    t.principled[5] = checker(Vec3::ZERO, Vec3::ONE);
+    t.principled[7] = checker(Vec3::splat(0.4), Vec3::splat(1.6));
+    t.principled[8] = checker(Vec3::splat(1.2), Vec3::splat(1.8));
+    scene.material_textures[i] = Some(t);
     scene
 }
 
@@ -479,7 +494,7 @@ fn textured_materials_resolve_as_on_the_cpu() {
         1,
         6,
     );
-    let (mut flips, mut tints, mut principled) = (0, 0, 0);
+    let (mut flips, mut tints, mut principled, mut thin) = (0, 0, 0, 0);
     for (&(mi, uv), o) in items.iter().zip(out.chunks(6)) {
         let what = format!("material {} at {uv}", scene.material_names[mi as usize]);
         let base = &scene.materials[mi as usize];
@@ -536,9 +551,21 @@ fn textured_materials_resolve_as_on_the_cpu() {
                 let d = [p.flatness, p.clearcoat, p.clearcoat_gloss, p.eta];
                 assert_eq!(o[5], d, "{what}: d");
             }
+            Material::PrincipledThin(p) => {
+                thin += 1;
+                assert_eq!(xyz(o[1]), p.base_color, "{what}: base colour");
+                let b = [p.roughness, p.anisotropic, p.spec_trans, p.spec_tint];
+                assert_eq!(o[4], b, "{what}: b");
+                let c = Vec3::new(p.sheen, p.sheen_tint, p.flatness);
+                assert_eq!(xyz(o[2]), c, "{what}: c");
+                assert_eq!((o[5][0], o[5][1]), (p.diff_trans, p.eta), "{what}: d");
+            }
         }
     }
-    assert!(principled > 300, "{principled} principled points");
+    assert!(
+        principled > 300 && thin > 300,
+        "{principled} principled, {thin} thin points"
+    );
     eprintln!("{flips} points changed the smooth-part flag, {tints} turned a conductor to a tint");
     assert!(flips > 500 && tints > 200, "{flips} flips, {tints} tints");
 }

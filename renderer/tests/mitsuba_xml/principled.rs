@@ -78,3 +78,68 @@ fn principled_refusals_are_located() {
         "diff_trans",
     );
 }
+
+/// `principledthin`: every key copied (a textured η and diff_trans included), no sides (it
+/// transmits; Mitsuba refuses it inside twosided: `refusals.rs`).
+#[test]
+fn principledthin_maps_key_for_key() {
+    let dir = Dir::new("principledthin");
+    let body = r#"<shape type="sphere"><bsdf type="principledthin" id="plain"/></shape>
+<shape type="sphere"><bsdf type="principledthin" id="full">
+    <rgb name="base_color" value="0.3 0.7 0.2"/><float name="roughness" value="0.3"/>
+    <float name="anisotropic" value="0.5"/><float name="spec_trans" value="0.4"/>
+    <float name="spec_tint" value="0.4"/><float name="sheen" value="0.3"/>
+    <float name="sheen_tint" value="0.2"/><float name="flatness" value="0.1"/>
+    <float name="diff_trans" value="1.5"/><float name="eta" value="1.33"/>
+    <float name="specular_reflectance_sampling_rate" value="0.5"/>
+    <float name="specular_transmittance_sampling_rate" value="2"/>
+    <float name="diffuse_reflectance_sampling_rate" value="3"/>
+    <float name="diffuse_transmittance_sampling_rate" value="0.7"/></bsdf></shape>
+<shape type="sphere"><bsdf type="principledthin" id="textured">
+    <texture name="eta" type="checkerboard"><float name="color0" value="1.2"/><float name="color1" value="1.8"/></texture>
+    <texture name="diff_trans" type="checkerboard"><float name="color0" value="0.4"/><float name="color1" value="1.6"/></texture>
+</bsdf></shape>"#;
+    let m = ok(&dir, body);
+    let want = expected(
+        &dir,
+        json!({
+            "materials": {
+                "plain": {"type": "principled_thin"},
+                "full": {"type": "principled_thin", "base_color": [0.3, 0.7, 0.2],
+                         "roughness": 0.3, "anisotropic": 0.5, "spec_trans": 0.4,
+                         "spec_tint": 0.4, "sheen": 0.3, "sheen_tint": 0.2, "flatness": 0.1,
+                         "diff_trans": 1.5, "eta": 1.33,
+                         "specular_reflectance_sampling_rate": 0.5,
+                         "specular_transmittance_sampling_rate": 2,
+                         "diffuse_reflectance_sampling_rate": 3,
+                         "diffuse_transmittance_sampling_rate": 0.7},
+                // Mitsuba's eval_1 swaps a checkerboard's colours.
+                "textured": {"type": "principled_thin",
+                             "eta": {"type": "checkerboard", "color0": 1.8, "color1": 1.2},
+                             "diff_trans": {"type": "checkerboard", "color0": 1.6, "color1": 0.4}},
+            },
+            "shapes": unit_spheres(&["plain", "full", "textured"]),
+        }),
+    );
+    assert_same(&m.desc, &want);
+    assert!(m.desc.warnings.is_empty(), "{:?}", m.desc.warnings);
+}
+
+#[test]
+fn principledthin_refusals_are_located() {
+    let dir = Dir::new("principledthin_refusals");
+    refused(
+        &dir,
+        r#"<shape type="sphere"><bsdf type="principledthin"><float name="metallic" value="0.5"/></bsdf></shape>"#,
+        "metallic",
+        "scene/shape/bsdf/float",
+        "metallic",
+    );
+    refused(
+        &dir,
+        r#"<shape type="sphere"><bsdf type="principledthin"><float name="diff_trans" value="2.5"/></bsdf></shape>"#,
+        "name=\"diff_trans",
+        "scene/shape/bsdf/float",
+        "diff_trans 2.5 is outside [0, 2]",
+    );
+}

@@ -221,7 +221,7 @@ fn a_bumpmap_maps_onto_the_materials_bump_map() {
 #[test]
 fn refusals_name_file_line_and_element() {
     let dir = Dir::new("refusals");
-    let cases: [(&str, &str, &str, &str); 30] = [
+    let cases: [(&str, &str, &str, &str); 31] = [
         (
             r#"<emitter type="sunsky"/>"#,
             "sunsky",
@@ -289,10 +289,16 @@ fn refusals_name_file_line_and_element() {
             "a blendbsdf needs two nested <bsdf>, it has 0",
         ),
         (
-            r#"<shape type="sphere"><bsdf type="principledthin"/></shape>"#,
+            r#"<shape type="sphere"><bsdf type="twosided"><bsdf type="principledthin"/></bsdf></shape>"#,
             "principledthin",
+            "scene/shape/bsdf/bsdf",
+            "a `principledthin` cannot be nested in twosided (Mitsuba refuses",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="velvet"/></shape>"#,
+            "velvet",
             "scene/shape/bsdf",
-            "BSDF type `principledthin` is not supported; lumis maps",
+            "BSDF type `velvet` is not supported; lumis maps",
         ),
         (
             r#"<shape type="sphere"><bsdf type="mask"><bsdf type="mask"><bsdf type="diffuse"/></bsdf></bsdf></shape>"#,

@@ -42,8 +42,8 @@ pub struct GpuMaterial {
     pub(crate) a: [f32; 4],
     pub(crate) b: [f32; 4],
     pub(crate) c: [f32; 4],
-    /// A fourth parameter vec4: only the principled fills it (its textured parameters do not fit
-    /// in three).
+    /// A fourth parameter vec4: only the principled kinds fill it (their textured parameters do
+    /// not fit in three).
     pub(crate) d: [f32; 4],
 }
 
@@ -73,6 +73,8 @@ gpu_tags! {
         /// ([`crate::materials::two_sided::TwoSided`]), which `materials/mix.wgsl`'s resolve loop
         /// resolves as it does a mix.
         TwoSided => "MATERIAL_TWO_SIDED",
+        /// [`Material::PrincipledThin`] (`materials/principled_thin.wgsl`).
+        PrincipledThin => "MATERIAL_PRINCIPLED_THIN",
     }
 }
 
@@ -87,6 +89,7 @@ impl MaterialTag {
             Material::Dielectric(_) => MaterialTag::Dielectric,
             Material::ThinDielectric(_) => MaterialTag::ThinDielectric,
             Material::Principled(_) => MaterialTag::Principled,
+            Material::PrincipledThin(_) => MaterialTag::PrincipledThin,
         }
     }
 }
@@ -328,6 +331,20 @@ pub(super) fn encode(
                         d: [p.flatness, p.clearcoat, p.clearcoat_gloss, p.eta],
                     }
                 }
+                // The same from both sides: never two-sided.
+                Material::PrincipledThin(p) => {
+                    let offset = tables.len() as u32;
+                    let ids = principled.get(index).copied().unwrap_or([NONE; 10]);
+                    tables.extend(p.rates.to_array());
+                    tables.extend(ids[..9].iter().map(|&i| bits(i)));
+                    GpuMaterial {
+                        h: [kind, 0, offset, smooth],
+                        a: v4(p.base_color, 0.0),
+                        b: [p.roughness, p.anisotropic, p.spec_trans, p.spec_tint],
+                        c: [p.sheen, p.sheen_tint, p.flatness, 0.0],
+                        d: [p.diff_trans, p.eta, 0.0, 0.0],
+                    }
+                }
                 // The same from both sides.
                 Material::ThinDielectric(t) => GpuMaterial {
                     h: [kind, 0, 0, smooth],
@@ -339,9 +356,10 @@ pub(super) fn encode(
             };
             r.a[3] = bits(colour);
             r.c[3] = bits(roughness_slot(alpha, alpha_v));
-            // A principled with a textured scalar: a roughness slot that is not `NONE` makes
-            // `material_textured` see it (its ids are in `tables`; `alpha` is never set for it).
-            if let Material::Principled(_) = m
+            // A principled (thin or not) with a textured scalar: a roughness slot that is not
+            // `NONE` makes `material_textured` see it (its ids are in `tables`; `alpha` is never
+            // set for it).
+            if let Material::Principled(_) | Material::PrincipledThin(_) = m
                 && principled
                     .get(index)
                     .is_some_and(|ids| ids.iter().any(|&i| i != NONE))

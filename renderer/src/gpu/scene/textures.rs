@@ -231,7 +231,8 @@ pub(crate) struct SceneTextures {
     /// constant).
     pub(crate) slots: Vec<[u32; 3]>,
     /// Per material: the ids of a principled's scalar textures in
-    /// [`crate::materials::principled::PrincipledParam::ALL`]'s order (`NONE`: constant).
+    /// [`crate::materials::principled::PrincipledParam::ALL`]'s order, or a thin principled's in
+    /// [`crate::materials::principled_thin::ThinParam::ALL`]'s (`NONE`: constant).
     pub(crate) principled: Vec<[u32; 10]>,
     /// Per material: the id of its weight's texture if it is a mix with a textured weight, else
     /// `NONE` (`materials/mix.wgsl`).
@@ -318,14 +319,18 @@ pub(crate) fn encode(scene: &Scene) -> SceneTextures {
             id
         });
         out.slots.push(ids);
-        let params = crate::materials::principled::PrincipledParam::ALL;
+        let thin = matches!(
+            scene.materials[i],
+            crate::materials::Material::PrincipledThin(_)
+        );
         for (k, texture) in textures.principled.iter().enumerate() {
             let Some(texture) = texture else { continue };
-            let what = format!(
-                "material \"{}\" {}",
-                scene.material_names[i],
-                params[k].name()
-            );
+            let name = if thin {
+                crate::materials::principled_thin::ThinParam::ALL[k].name()
+            } else {
+                crate::materials::principled::PrincipledParam::ALL[k].name()
+            };
+            let what = format!("material \"{}\" {name}", scene.material_names[i]);
             out.principled[i][k] = (out.records.len() as u32) / RECORD_VEC4S;
             out.records
                 .extend(record(texture, &what, &mut out.texels, &mut stored));

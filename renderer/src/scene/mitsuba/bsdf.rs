@@ -26,8 +26,8 @@ use serde_json::{Value as Json, json};
 
 /// The BSDF types lumis maps, for messages.
 const SUPPORTED: &str = "diffuse, conductor, roughconductor, plastic, roughplastic, dielectric, \
-                         roughdielectric, thindielectric, principled, twosided, normalmap, \
-                         bumpmap, mask, blendbsdf, null";
+                         roughdielectric, thindielectric, principled, principledthin, \
+                         twosided, normalmap, bumpmap, mask, blendbsdf, null";
 
 /// The scene format's material for BSDF element `el` (translated once, then named again),
 /// or `None` for a `null` BSDF.
@@ -145,7 +145,12 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
     if two_sided
         && matches!(
             inner_plugin.ty,
-            "dielectric" | "roughdielectric" | "thindielectric" | "twosided" | "null"
+            "dielectric"
+                | "roughdielectric"
+                | "thindielectric"
+                | "principledthin"
+                | "twosided"
+                | "null"
         )
     {
         return Err(inner_plugin.error(format!(
@@ -169,7 +174,7 @@ pub fn material(ctx: &mut Ctx, el: &Element) -> Result<Option<String>, SceneErro
     let mut m = bsdf(ctx, &inner_plugin, &path)?;
     let transmits = matches!(
         inner_plugin.ty,
-        "dielectric" | "roughdielectric" | "thindielectric"
+        "dielectric" | "roughdielectric" | "thindielectric" | "principledthin"
     ) || principled_transmits(&m);
     if two_sided && transmits {
         return Err(inner_plugin.error(
@@ -260,7 +265,12 @@ fn composite(
         let refused = match kind {
             Composite::TwoSided => matches!(
                 ty,
-                "dielectric" | "roughdielectric" | "thindielectric" | "null" | "mask"
+                "dielectric"
+                    | "roughdielectric"
+                    | "thindielectric"
+                    | "principledthin"
+                    | "null"
+                    | "mask"
             ),
             Composite::Blend => matches!(ty, "null" | "mask"),
         };
@@ -448,6 +458,7 @@ fn bsdf(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, Sc
             })
         }
         "principled" => principled(ctx, b, path)?,
+        "principledthin" => principled_thin(ctx, b, path)?,
         "dielectric" | "roughdielectric" | "thindielectric" => {
             let eta = index_ratio(ctx, b, "bk7", &at("ior"))?;
             for key in ["specular_reflectance", "specular_transmittance"] {
@@ -526,10 +537,52 @@ fn distribution_key(m: &mut Json, distribution: Distribution) {
 
 /// A rough model's α and distribution: `distribution` beckmann (Mitsuba's default) or ggx,
 /// Mitsuba's `principled`: its keys are the scene format's (`scene/parse_principled.rs`), which
-/// applies Mitsuba's defaults and rules; a parameter it does not give is left out.
+/// applies Mitsuba's defaults and rules; a parameter it does not give is left out. Mitsuba
+/// refuses both `eta` and `specular`; the scene format says so at the same place.
 fn principled(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Json, SceneError> {
+    let scalars = crate::materials::principled::PrincipledParam::ALL.map(|k| k.name());
+    let numbers = ["eta", "specular"]
+        .into_iter()
+        .chain(crate::scene::parse_principled::RATE_KEYS);
+    let m = principled_keys(ctx, b, path, "principled", &scalars, numbers)?;
+    b.finish(
+        "base_color, roughness, anisotropic, metallic, spec_trans, spec_tint, sheen, sheen_tint, \
+         flatness, clearcoat, clearcoat_gloss, eta or specular, and the three sampling rates",
+    )?;
+    Ok(m)
+}
+
+/// Mitsuba's `principledthin`: its keys are the scene format's `principled_thin`
+/// (`scene/parse_principled_thin.rs`), which applies Mitsuba's defaults; a parameter it does not
+/// give is left out. `eta` may be a texture there, as in Mitsuba.
+fn principled_thin(
+    ctx: &mut Ctx,
+    b: &super::plugin::Plugin,
+    path: &str,
+) -> Result<Json, SceneError> {
+    let scalars = crate::materials::principled_thin::ThinParam::ALL.map(|k| k.name());
+    let numbers = crate::materials::principled_thin::ThinRates::KEYS;
+    let m = principled_keys(ctx, b, path, "principled_thin", &scalars, numbers)?;
+    b.finish(
+        "base_color, roughness, anisotropic, spec_trans, spec_tint, sheen, sheen_tint, flatness, \
+         diff_trans, eta and the four sampling rates",
+    )?;
+    Ok(m)
+}
+
+/// A principled kind's material object (`ty`) with the keys that `b` gives, copied: its
+/// `base_color` (a colour or a texture), its `scalars` (each a number or a texture read as a
+/// scalar) and its `numbers` (plain floats).
+fn principled_keys<'a>(
+    ctx: &mut Ctx,
+    b: &super::plugin::Plugin,
+    path: &str,
+    ty: &str,
+    scalars: &[&str],
+    numbers: impl IntoIterator<Item = &'a str>,
+) -> Result<Json, SceneError> {
     let at = |k: &str| format!("{path}.{k}");
-    let mut m = json!({"type": "principled"});
+    let mut m = json!({ "type": ty });
     if b.has("base_color") {
         m["base_color"] = color_param(
             ctx,
@@ -540,26 +593,17 @@ fn principled(ctx: &mut Ctx, b: &super::plugin::Plugin, path: &str) -> Result<Js
             &at("base_color"),
         )?;
     }
-    for k in crate::materials::principled::PrincipledParam::ALL {
-        let key = k.name();
+    for &key in scalars {
         if b.has(key) {
             m[key] = scalar_param(ctx, b, key, 0.0, &at(key))?;
         }
     }
-    // Mitsuba refuses both; the scene format says so at the same place.
-    let numbers = ["eta", "specular"]
-        .into_iter()
-        .chain(crate::scene::parse_principled::RATE_KEYS);
     for key in numbers {
         if let Some(p) = b.get(key) {
             ctx.origin(&at(key), p.pos());
             m[key] = json!(b.float(key, 0.0)?);
         }
     }
-    b.finish(
-        "base_color, roughness, anisotropic, metallic, spec_trans, spec_tint, sheen, sheen_tint, \
-         flatness, clearcoat, clearcoat_gloss, eta or specular, and the three sampling rates",
-    )?;
     Ok(m)
 }
 

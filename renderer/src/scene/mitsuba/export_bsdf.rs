@@ -353,6 +353,22 @@ fn material(
                 x.leaf("float", &[("name", key), ("value", &num(rate))]);
             }
         }
+        // Mitsuba's own keys, `diff_trans` in its [0, 2] and a texturable `eta`.
+        MaterialDesc::PrincipledThin(p) => {
+            color_slot(x, "base_color", p.base_color, tex(&t.albedo), folder, &path)?;
+            let params = crate::materials::principled_thin::ThinParam::ALL;
+            for ((k, v), slot) in params.iter().zip(p.scalars).zip(&t.principled) {
+                let key = k.name();
+                match tex(slot) {
+                    Some(tt) => texture_xml(x, key, &tt, true, folder, &format!("{path}.{key}"))?,
+                    None => x.leaf("float", &[("name", key), ("value", &num(v))]),
+                }
+            }
+            let keys = crate::materials::principled_thin::ThinRates::KEYS;
+            for (key, rate) in keys.iter().zip(p.rates) {
+                x.leaf("float", &[("name", key), ("value", &num(rate))]);
+            }
+        }
     }
     nest.close(x);
     Ok(())
@@ -366,7 +382,9 @@ fn has_delta_lobe(m: &NamedMaterial, all: &[NamedMaterial]) -> bool {
     }
     let smooth = |alpha: f64| alpha == 0.0 && m.textures.alpha.is_none();
     match &m.material {
-        MaterialDesc::Diffuse { .. } | MaterialDesc::Principled(_) => false,
+        MaterialDesc::Diffuse { .. }
+        | MaterialDesc::Principled(_)
+        | MaterialDesc::PrincipledThin(_) => false,
         MaterialDesc::ThinDielectric { .. } => true,
         MaterialDesc::Conductor { alpha, .. }
         | MaterialDesc::Plastic { alpha, .. }
@@ -392,6 +410,7 @@ fn bsdf_type(m: &NamedMaterial) -> &'static str {
         MaterialDesc::Dielectric { .. } => "dielectric",
         MaterialDesc::ThinDielectric { .. } => "thindielectric",
         MaterialDesc::Principled(_) => "principled",
+        MaterialDesc::PrincipledThin(_) => "principledthin",
     }
 }
 
