@@ -18,7 +18,8 @@
 //! other ([`PrincipledThin::eval`]). lumis evaluates with wo towards the viewer, as Mitsuba's
 //! path tracer (and the references) do.
 //! Mitsuba's "has" flags reduce to the values here (every lobe they switch off then has factor
-//! 0). WGSL twin: `materials/principled_thin.wgsl`.
+//! 0).
+//! WGSL twin: `materials/principled_thin.wgsl`.
 
 use super::fresnel::{fresnel_dielectric, schlick_f0_from_ior};
 use super::principled::{calc_schlick, microfacet, schlick_weight, tint};
