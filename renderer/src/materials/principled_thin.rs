@@ -152,11 +152,12 @@ impl ThinParam {
         }
     }
 
-    /// The range of its values: [0, 1], except `diff_trans` [0, 2] and `eta` (0, ∞).
+    /// The range of its values: [0, 1], except `diff_trans` [0, 2] and `eta` (0, 10] (the
+    /// dielectric's largest index; 0 itself is not allowed).
     pub fn range(self) -> (f32, f32) {
         match self {
             ThinParam::DiffTrans => (0.0, 2.0),
-            ThinParam::Eta => (0.0, f32::INFINITY),
+            ThinParam::Eta => (0.0, super::dielectric::MAX_IOR),
             _ => (0.0, 1.0),
         }
     }
