@@ -984,6 +984,33 @@ fn material_json(m: &NamedMaterial, all: &[NamedMaterial]) -> Value {
     obj
 }
 
+/// A principled kind's keys into `obj`: each scalar of `names` (its texture where `textures`
+/// has one in that slot, else the constant: a constant "texture" is written as the constant),
+/// each sampling rate, and a textured base colour over the constant one.
+fn principled_family_keys(
+    obj: &mut Value,
+    names: &[&str],
+    scalars: &[f64],
+    rate_keys: &[&str],
+    rates: &[f64],
+    textures: &MaterialTextures,
+) {
+    for ((key, v), tex) in names.iter().zip(scalars).zip(&textures.principled) {
+        obj[*key] = match tex {
+            Some(t) if !t.texture.is_constant() => t.to_json(),
+            _ => json!(v),
+        };
+    }
+    for (key, rate) in rate_keys.iter().zip(rates) {
+        obj[*key] = json!(rate);
+    }
+    if let Some(tex) = textures.albedo.as_ref()
+        && !tex.texture.is_constant()
+    {
+        obj["base_color"] = tex.to_json();
+    }
+}
+
 /// A material with a BSDF of its own (no mix, no pair) in the file format, without its opacity.
 fn bsdf_json(m: &NamedMaterial) -> Value {
     let mut obj = match &m.material {
@@ -1048,43 +1075,16 @@ fn bsdf_json(m: &NamedMaterial) -> Value {
             let mut obj = json!({
                 "type": "principled", "base_color": vec3(p.base_color), "eta": p.eta,
             });
-            let params = crate::materials::principled::PrincipledParam::ALL;
-            for ((k, v), tex) in params.iter().zip(p.scalars).zip(&m.textures.principled) {
-                // A constant "texture" is written as the slot's constant, as below.
-                obj[k.name()] = match tex {
-                    Some(t) if !t.texture.is_constant() => t.to_json(),
-                    _ => json!(v),
-                };
-            }
-            let keys = crate::scene::parse_principled::RATE_KEYS;
-            for (key, rate) in keys.iter().zip(p.rates) {
-                obj[*key] = json!(rate);
-            }
-            if let Some(tex) = m.textures.albedo.as_ref()
-                && !tex.texture.is_constant()
-            {
-                obj["base_color"] = tex.to_json();
-            }
+            let names = crate::materials::principled::PrincipledParam::ALL.map(|k| k.name());
+            let rates = crate::scene::parse_principled::RATE_KEYS;
+            principled_family_keys(&mut obj, &names, &p.scalars, &rates, &p.rates, &m.textures);
             obj
         }
         MaterialDesc::PrincipledThin(p) => {
             let mut obj = json!({"type": "principled_thin", "base_color": vec3(p.base_color)});
-            let params = crate::materials::principled_thin::ThinParam::ALL;
-            for ((k, v), tex) in params.iter().zip(p.scalars).zip(&m.textures.principled) {
-                obj[k.name()] = match tex {
-                    Some(t) if !t.texture.is_constant() => t.to_json(),
-                    _ => json!(v),
-                };
-            }
-            let keys = crate::materials::principled_thin::ThinRates::KEYS;
-            for (key, rate) in keys.iter().zip(p.rates) {
-                obj[*key] = json!(rate);
-            }
-            if let Some(tex) = m.textures.albedo.as_ref()
-                && !tex.texture.is_constant()
-            {
-                obj["base_color"] = tex.to_json();
-            }
+            let names = crate::materials::principled_thin::ThinParam::ALL.map(|k| k.name());
+            let rates = crate::materials::principled_thin::ThinRates::KEYS;
+            principled_family_keys(&mut obj, &names, &p.scalars, &rates, &p.rates, &m.textures);
             obj
         }
     };
