@@ -1,7 +1,8 @@
 //! Bump maps on the GPU (issue 40 item 1): Mitsuba's gallery scene `bsdf_bumpmap_with.xml` (the
 //! material preview's rough plastic under a PNG of heights, scale 0.02, the museum environment
 //! map), opened unchanged from `tests/data/gallery/` at an eighth of its film size (120×90),
-//! rendered by the GPU and by the CPU in every strategy and compared by the block z-test of
+//! rendered by the GPU and by the CPU with light sampling, BSDF sampling and MIS
+//! (`GPU_VS_CPU_STRATEGIES`) and compared by the block z-test of
 //! `renderer/tests/gpu/images.rs` (8×8 blocks, family-wise α = 0.01, both films' variances, the
 //! suite's two stages; 32 spp each, GPU seeds 4500 + i, CPU 5500 + i for strategy i of
 //! `STRATEGIES_AND_OPTIMAL`), as `normal_map.rs` does for the normal map and for the same reason
@@ -13,9 +14,7 @@
 
 use crate::common::STRATEGIES_AND_OPTIMAL;
 use crate::common::surface_detail::gallery_scene_at;
-use crate::gpu_common::images::{
-    CPU_SEED_OFFSET, cpu_render, gpu_render, gpu_vs_cpu_every_strategy,
-};
+use crate::gpu_common::images::{CPU_SEED_OFFSET, cpu_render, gpu_render, gpu_vs_cpu_estimators};
 use crate::gpu_common::parity::{f4, run};
 use crate::gpu_common::{Compare, context};
 use glam::Vec2;
@@ -40,7 +39,7 @@ fn scene(scale: f32) -> Arc<Scene> {
 }
 
 #[test]
-fn the_gpu_renders_the_cpus_bump_mapped_image_in_every_strategy() {
+fn the_gpu_renders_the_cpus_bump_mapped_image_with_each_estimator() {
     let scene = scene(1.0);
     assert_eq!(
         scene
@@ -51,8 +50,7 @@ fn the_gpu_renders_the_cpus_bump_mapped_image_in_every_strategy() {
             .count(),
         1
     );
-    let Some(failures) =
-        gpu_vs_cpu_every_strategy("gpu bsdf_bumpmap_with", &scene, SPP, 4500, BLOCK)
+    let Some(failures) = gpu_vs_cpu_estimators("gpu bsdf_bumpmap_with", &scene, SPP, 4500, BLOCK)
     else {
         return;
     };

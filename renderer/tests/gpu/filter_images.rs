@@ -1,9 +1,11 @@
-//! The GPU's gaussian, tent and signed (lanczos, mitchell, catmullrom) pixel filters in whole images (issue 18; `camera/filter.wgsl` function by function
+//! The GPU's gaussian, tent and signed (lanczos, mitchell, catmullrom) pixel filters in whole
+//! images (issue 18; `camera/filter.wgsl` function by function
 //! in `renderer/tests/gpu/parity_filter.rs`): the imported `gaussian_edges.xml` (Mitsuba's default
 //! gaussian, σ = 0.5 px, r = 2 px, sample_border false: sharp tilted edges, one leaving the film)
 //! rendered on the GPU agrees with its Mitsuba 3.9.1 reference by the block z-test of the CPU's
 //! `imported_gaussian_filter_renders_to_the_mitsuba_reference` (`renderer/tests/mitsuba_xml.rs`), and a
-//! box filter fails it; and the GPU draws the CPU's film positions from the same random numbers.
+//! box filter fails it; and the GPU draws the CPU's film positions from the same random numbers,
+//! for the gaussian and for each other filter (same seed, same samples).
 //!
 //! Runs on any wgpu adapter (lavapipe where there is no GPU); `LUMIS_SKIP_GPU_TESTS=1` skips.
 
@@ -11,7 +13,7 @@ use crate::common;
 use crate::gpu_common;
 use common::protocol::decide;
 use common::{data_dir, reference, variance_image};
-use gpu_common::images::{cpu_render, gpu_render};
+use gpu_common::images::{cpu_render, diverged_pixels, gpu_render, same_seed_check_spp};
 use lumis::engine::Film;
 use lumis::integrator::{Heuristic, Settings, Strategy};
 use lumis::metrics::{BlockTest, ImageWithVariance, block_z_test};
@@ -143,88 +145,74 @@ fn gaussian_same_seed_gives_the_cpu_image() {
     assert!(e < 1e-5, "relMSE against the CPU {e:e}");
 }
 
-/// `tent_edges.xml` (gaussian_edges.xml's scene under Mitsuba's `tent`, radius 1.5 px) on the
-/// GPU against its Mitsuba 3.9.1 reference, as [`gpu_gaussian_filter_renders_to_the_mitsuba_reference`]
-/// (MIS, [`SPP`] spp, seed 2151), and the box filter must fail it.
-#[test]
-fn gpu_tent_filter_renders_to_the_mitsuba_reference() {
-    if gpu_common::context().is_none() {
-        return;
-    }
-    let (desc, settings) = imported_as("tent_edges", FilterDesc::Tent { radius: 1.5 });
-    let decision = |what: &str, desc: &SceneDesc| {
-        let scene = build(desc);
-        decide(what, 2151, SPP, |seed, n, alpha| {
-            let film = gpu_render(&scene, settings, n, seed).expect("a GPU");
-            assert_eq!(film.nonfinite, 0, "{what}: non-finite samples");
-            against_reference("tent_edges", &film, alpha)
-        })
-    };
-    decision("gpu tent_edges.xml", &desc).unwrap_or_else(|msg| panic!("{msg}"));
-    let mut boxed = desc.clone();
-    boxed.camera.filter = FilterDesc::Box;
-    assert!(
-        decision("gpu box-filtered tent_edges", &boxed).is_err(),
-        "a box filter must fail against the tent reference"
-    );
-}
-
-/// `NAME_edges.xml` under a filter with negative lobes on the GPU against its Mitsuba 3.9.1
-/// reference with `strategy` ([`SPP`] spp, `seed`, the z-test of [`against_reference`]), and, if
-/// `control`, the box filter must fail it (the lanczos test's control stands for the three: the
-/// same edges, the same z-test).
-fn signed_filter_matches(
-    name: &str,
-    filter: FilterDesc,
-    strategy: Strategy,
-    seed: u32,
-    control: bool,
-) {
-    if gpu_common::context().is_none() {
-        return;
-    }
+/// `NAME_edges.xml` (gaussian_edges.xml's scene under another of Mitsuba's filters) on the
+/// GPU with `strategy`, same seed and samples as the CPU (`same_seed_check_spp`: at most 1
+/// pixel in 1000 diverged, relMSE < 1e-5): the GPU's film is the CPU's, and the CPU's agrees
+/// with the Mitsuba reference by `renderer/tests/mitsuba_xml.rs`
+/// (`imported_NAME_filter_renders_to_the_mitsuba_reference`). Until 2026-12-07 each of these
+/// four filters was z-tested on the GPU against the reference at [`SPP`] spp as the gaussian
+/// still is (170 s of the GPU binary's time on lavapipe, when the CI had reached 80 of its 90
+/// minutes); the same-seed check is the stronger of the two for a GPU-only difference.
+fn same_seed_as_the_cpu(name: &str, filter: FilterDesc, strategy: Strategy, spp: u32) {
     let (desc, mut settings) = imported_as(&format!("{name}_edges"), filter);
     settings.strategy = strategy;
-    let decision = |what: &str, desc: &SceneDesc| {
-        let scene = build(desc);
-        decide(what, seed, SPP, |seed, n, alpha| {
-            let film = gpu_render(&scene, settings, n, seed).expect("a GPU");
-            assert_eq!(film.nonfinite, 0, "{what}: non-finite samples");
-            against_reference(&format!("{name}_edges"), &film, alpha)
-        })
-    };
-    decision(&format!("gpu {name}_edges.xml"), &desc).unwrap_or_else(|msg| panic!("{msg}"));
-    if !control {
-        return;
+    let what = format!("gpu {name}_edges.xml {strategy:?} same seed as the CPU");
+    if let Some(Err(e)) = same_seed_check_spp(&what, &build(&desc), settings, spp) {
+        panic!("{e}");
     }
-    let mut boxed = desc.clone();
-    boxed.camera.filter = FilterDesc::Box;
-    assert!(
-        decision(&format!("gpu box-filtered {name}_edges"), &boxed).is_err(),
-        "a box filter must fail against the {name} reference"
-    );
 }
 
-/// `lanczos_edges.xml` (2 lobes) on the GPU, MIS, seed 2440.
+/// `tent_edges.xml` (radius 1.5 px), MIS.
 #[test]
-fn gpu_lanczos_filter_renders_to_the_mitsuba_reference() {
+fn tent_same_seed_gives_the_cpu_image() {
     let mis = Strategy::Mis {
         heuristic: Heuristic::Power,
     };
-    signed_filter_matches("lanczos", FilterDesc::Lanczos { lobes: 2 }, mis, 2440, true);
+    same_seed_as_the_cpu("tent", FilterDesc::Tent { radius: 1.5 }, mis, 2);
 }
 
-/// `mitchell_edges.xml` (B 0.4, C 0.3) on the GPU under optimal MIS, seed 2441.
+/// The samples per pixel of the signed filters' same-seed checks. At 2 spp the lanczos and
+/// catmull-rom films had 37 of 3072 pixels "diverged" at relMSE 6e-15 (first run, 2026-12-07):
+/// with two samples a pixel's filter weights can sum to nearly 0, and the mean's rounding swings
+/// in absolute terms while the image agrees; 12 spp (mitchell's, which had 0) keeps the sums
+/// away from 0.
+const SIGNED_SPP: u32 = 12;
+
+/// `lanczos_edges.xml` (2 lobes), MIS; and the control: the GPU's render of the scene under a
+/// box filter is not the CPU's lanczos image (the same-seed check sees a wrong filter).
 #[test]
-fn gpu_mitchell_filter_renders_to_the_mitsuba_reference() {
+fn lanczos_same_seed_gives_the_cpu_image() {
+    let mis = Strategy::Mis {
+        heuristic: Heuristic::Power,
+    };
+    let lanczos = FilterDesc::Lanczos { lobes: 2 };
+    same_seed_as_the_cpu("lanczos", lanczos, mis, SIGNED_SPP);
+    let (desc, mut settings) = imported_as("lanczos_edges", lanczos);
+    settings.strategy = mis;
+    let mut boxed = desc.clone();
+    boxed.camera.filter = FilterDesc::Box;
+    let Some(gpu) = gpu_render(&build(&boxed), settings, 2, 11) else {
+        return;
+    };
+    let cpu = cpu_render(&build(&desc), settings, 2, 11);
+    let diverged = diverged_pixels(&gpu.mean(), &cpu.mean());
+    assert!(
+        diverged * 1000 > gpu.mean().len(),
+        "a box filter on the GPU passes as the CPU's lanczos ({diverged} pixels diverged)"
+    );
+}
+
+/// `mitchell_edges.xml` (B 0.4, C 0.3) under optimal MIS (at [`SIGNED_SPP`], past its first
+/// stage, so that its α plays a part).
+#[test]
+fn mitchell_same_seed_gives_the_cpu_image() {
     let mitchell = FilterDesc::Mitchell { b: 0.4, c: 0.3 };
-    signed_filter_matches("mitchell", mitchell, Strategy::MisOptimal, 2441, false);
+    same_seed_as_the_cpu("mitchell", mitchell, Strategy::MisOptimal, SIGNED_SPP);
 }
 
-/// `catmullrom_edges.xml` on the GPU under the one-sample mixture of light and BSDF sampling,
-/// seed 2442.
+/// `catmullrom_edges.xml` under the one-sample mixture of light and BSDF sampling.
 #[test]
-fn gpu_catmullrom_filter_renders_to_the_mitsuba_reference() {
+fn catmullrom_same_seed_gives_the_cpu_image() {
     let mixture = Strategy::Mixture { light_weight: 0.5 };
-    signed_filter_matches("catmullrom", FilterDesc::CatmullRom, mixture, 2442, false);
+    same_seed_as_the_cpu("catmullrom", FilterDesc::CatmullRom, mixture, SIGNED_SPP);
 }

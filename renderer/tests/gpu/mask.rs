@@ -15,8 +15,8 @@
 //!   every material of `textured_mesh.json` leaves the GPU's film bit for bit as it was, though
 //!   the program then carries the masked traversals (lavapipe: the same arithmetic, only the
 //!   added any-hit test), and opacity ½ changes it (MIS, 4 spp, seed 4610).
-//! - [`the_gpu_renders_the_cpus_masked_image_in_every_strategy`]: `xml_mask.xml` on the GPU and
-//!   the CPU in every strategy, compared by the block z-test of `renderer/tests/gpu/images.rs`
+//! - [`the_gpu_renders_the_cpus_masked_image_with_each_estimator`]: `xml_mask.xml` on the GPU and
+//!   the CPU with light sampling, BSDF sampling and MIS, compared by the block z-test of `renderer/tests/gpu/images.rs`
 //!   (8×8 blocks, family-wise α = 0.01, both films' variances, the suite's two stages; 32 spp,
 //!   GPU seeds 4620 + i, CPU 5620 + i), as for the normal map's scene and for the same reason:
 //!   a decision hashes the hit's distance, whose last bits the two sides round differently, so
@@ -24,7 +24,7 @@
 
 use crate::common::surface_detail::{mitsuba_scene, with_opacity};
 use crate::gpu_common::context;
-use crate::gpu_common::images::{gpu_render, gpu_vs_cpu_every_strategy};
+use crate::gpu_common::images::{gpu_render, gpu_vs_cpu_estimators};
 use crate::gpu_common::parity::{f4, run};
 use glam::Vec3;
 use lumis::geometry::Ray;
@@ -136,9 +136,9 @@ fn opacity_one_changes_no_gpu_bit() {
 }
 
 #[test]
-fn the_gpu_renders_the_cpus_masked_image_in_every_strategy() {
+fn the_gpu_renders_the_cpus_masked_image_with_each_estimator() {
     let scene = mitsuba_scene("xml_mask");
-    let Some(failures) = gpu_vs_cpu_every_strategy("gpu xml_mask", &scene, 32, 4620, 8) else {
+    let Some(failures) = gpu_vs_cpu_estimators("gpu xml_mask", &scene, 32, 4620, 8) else {
         return;
     };
     assert!(failures.is_empty(), "{}", failures.join("\n"));

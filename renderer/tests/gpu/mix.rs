@@ -35,10 +35,11 @@
 //!   checkerboard of 0.02 and 0.5 (IOR 1.5), under a quad light. The CPU's render of the same
 //!   scene with the inner mix's weight inverted (0.9/0.1) must fail the same test: the test's
 //!   power against a swapped choice.
-//! - [`the_gpu_renders_the_cpus_blend_in_every_strategy`]: the scene
+//! - [`the_gpu_renders_the_cpus_blend_with_each_estimator`]: the scene
 //!   `tests/data/mitsuba/xml_blend.xml` (Mitsuba's `blendbsdf`, which the importer maps onto
 //!   mixes: a texture weight, a constant
-//!   one, a blend nested in a blend), GPU against CPU in every strategy by the block z-test (8×8
+//!   one, a blend nested in a blend), GPU against CPU with light sampling, BSDF sampling and
+//!   MIS by the block z-test (8×8
 //!   blocks, both films' variances, the suite's two stages; 32 spp, GPU seeds 4640 + i, CPU
 //!   5640 + i). The CPU agrees with Mitsuba's image by `renderer/tests/mitsuba_xml_refs.rs`
 //!   (`xml_blend_matches_its_mitsuba_reference`), the GPU's MIS by `gpu/mitsuba_refs.rs`.
@@ -516,17 +517,18 @@ fn gpu_mix_scene_matches_the_cpu() {
     );
 }
 
-/// `xml_blend_delta.xml`'s mixes of model mitsuba, GPU against CPU in every strategy by the
-/// z-test (seeds 4650–4655): the delta samples' reweighting on both sides.
+/// `xml_blend_delta.xml`'s mixes of model mitsuba, GPU against CPU with light sampling, BSDF
+/// sampling and MIS by the z-test (GPU seeds 4650 + i, `GPU_VS_CPU_STRATEGIES`): the delta
+/// samples' reweighting on both sides.
 #[test]
-fn the_gpu_renders_the_cpus_mitsuba_blend_in_every_strategy() {
+fn the_gpu_renders_the_cpus_mitsuba_blend_with_each_estimator() {
     let scene = common::surface_detail::mitsuba_scene("xml_blend_delta");
     assert_eq!(
         scene.mixes.iter().flatten().filter(|m| m.mitsuba).count(),
         2
     );
     let Some(failures) =
-        gpu_common::images::gpu_vs_cpu_every_strategy("gpu xml_blend_delta", &scene, 32, 4650, 8)
+        gpu_common::images::gpu_vs_cpu_estimators("gpu xml_blend_delta", &scene, 32, 4650, 8)
     else {
         return;
     };
@@ -534,11 +536,11 @@ fn the_gpu_renders_the_cpus_mitsuba_blend_in_every_strategy() {
 }
 
 #[test]
-fn the_gpu_renders_the_cpus_blend_in_every_strategy() {
+fn the_gpu_renders_the_cpus_blend_with_each_estimator() {
     let scene = common::surface_detail::mitsuba_scene("xml_blend");
     assert_eq!(scene.mixes.iter().flatten().count(), 3);
     let Some(failures) =
-        gpu_common::images::gpu_vs_cpu_every_strategy("gpu xml_blend", &scene, 32, 4640, 8)
+        gpu_common::images::gpu_vs_cpu_estimators("gpu xml_blend", &scene, 32, 4640, 8)
     else {
         return;
     };

@@ -1,7 +1,8 @@
 //! Normal maps on the GPU (issue 40 item 1): Mitsuba's gallery scene `bsdf_normalmap_with.xml`
 //! (a rough plastic on the material preview, a JPEG normal map, the museum environment map), opened
 //! unchanged from `tests/data/gallery/` at an eighth of its film size (120×90), rendered by the
-//! GPU and by the CPU in every strategy and compared by the block z-test of
+//! GPU and by the CPU with light sampling, BSDF sampling and MIS
+//! (`GPU_VS_CPU_STRATEGIES`) and compared by the block z-test of
 //! `renderer/tests/gpu/images.rs` (8×8 blocks, family-wise α = 0.01, both films' variances,
 //! the suite's two stages, `common/protocol.rs`; 32 spp each, GPU seeds 4400 + i, CPU 5400 + i
 //! for strategy i of `STRATEGIES_AND_OPTIMAL`). A first version at a sixteenth of the size
@@ -21,9 +22,7 @@
 
 use crate::common::STRATEGIES_AND_OPTIMAL;
 use crate::common::surface_detail::gallery_scene_at;
-use crate::gpu_common::images::{
-    CPU_SEED_OFFSET, cpu_render, gpu_render, gpu_vs_cpu_every_strategy,
-};
+use crate::gpu_common::images::{CPU_SEED_OFFSET, cpu_render, gpu_render, gpu_vs_cpu_estimators};
 use lumis::integrator::Settings;
 use lumis::scene::Scene;
 use std::sync::Arc;
@@ -43,11 +42,10 @@ fn scene(scale: f64, shadowing: bool) -> Arc<Scene> {
 }
 
 #[test]
-fn the_gpu_renders_the_cpus_normal_mapped_image_in_every_strategy() {
+fn the_gpu_renders_the_cpus_normal_mapped_image_with_each_estimator() {
     let scene = scene(1.0 / 8.0, true);
     assert_eq!(scene.normal_maps.iter().flatten().count(), 1);
-    let Some(failures) =
-        gpu_vs_cpu_every_strategy("gpu bsdf_normalmap_with", &scene, SPP, 4400, BLOCK)
+    let Some(failures) = gpu_vs_cpu_estimators("gpu bsdf_normalmap_with", &scene, SPP, 4400, BLOCK)
     else {
         return;
     };

@@ -34,10 +34,20 @@ pub fn cpu_render(scene: &Arc<Scene>, settings: Settings, spp: u32, seed: u32) -
 /// pairs 4000/5000, 4100/5100, … keep their seeds).
 pub const CPU_SEED_OFFSET: u32 = 1000;
 
-/// [`decide_gpu_vs_cpu`] for strategy `i` of [`crate::common::STRATEGIES_AND_OPTIMAL`] at GPU seed
+/// The strategies a GPU-against-CPU z-test renders, as indices into
+/// [`crate::common::STRATEGIES_AND_OPTIMAL`]: light sampling, BSDF sampling and MIS with the
+/// power heuristic, the three estimators a material or light feeds. The mixture, the balance
+/// heuristic and mis-optimal only weight those same samples differently; their GPU weights are
+/// pinned to the CPU's by the same-seed renders of `gpu/images.rs` (every strategy on the shared
+/// scenes). All six were z-tested here until 2026-12-07, when the suite's time (CI 80 minutes
+/// of a 90-minute limit) made the other three the cheapest to drop: about 270 s of the GPU
+/// binary's test time on lavapipe.
+pub const GPU_VS_CPU_STRATEGIES: [usize; 3] = [0, 1, 3];
+
+/// [`decide_gpu_vs_cpu`] for each strategy `i` of [`GPU_VS_CPU_STRATEGIES`] at GPU seed
 /// `seed + i` (default settings otherwise), named `{label} {strategy:?} vs cpu`: the failures,
 /// or `None` when GPU tests are skipped.
-pub fn gpu_vs_cpu_every_strategy(
+pub fn gpu_vs_cpu_estimators(
     label: &str,
     scene: &Arc<Scene>,
     spp: u32,
@@ -45,10 +55,8 @@ pub fn gpu_vs_cpu_every_strategy(
     block: u32,
 ) -> Option<Vec<String>> {
     let mut failures = Vec::new();
-    for (i, strategy) in crate::common::STRATEGIES_AND_OPTIMAL
-        .into_iter()
-        .enumerate()
-    {
+    for i in GPU_VS_CPU_STRATEGIES {
+        let strategy = crate::common::STRATEGIES_AND_OPTIMAL[i];
         let settings = Settings {
             strategy,
             ..Settings::default()
