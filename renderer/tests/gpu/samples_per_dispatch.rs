@@ -2,9 +2,8 @@
 //! images get on a real GPU) give the same film, bit for bit, as one sample per dispatch: each
 //! layer's radiance waits in a scratch plane and `fold` adds the layers in sample order with the
 //! same updates. Passes of 5 and 6 samples exercise a last dispatch of fewer layers. On lavapipe
-//! (a CPU adapter) the default is four samples per dispatch, so every GPU test runs the
-//! multi-sample path; this file checks it against one sample per dispatch. Both samplers; and
-//! the split into passes does not matter either. With
+//! (a CPU adapter, where the default is one sample per dispatch) this is the only coverage of the
+//! multi-sample path. Both samplers; and the split into passes does not matter either. With
 //! `mis-optimal` the layers' moments wait in scratch planes too, and dispatches are split where
 //! a stage starts: the same film for every layering and pass split.
 
