@@ -120,38 +120,23 @@ fn gpu_gaussian_filter_renders_to_the_mitsuba_reference() {
 /// of 3072 pixels diverged; `filter_film_axis` sampling `[−r, r]`: relMSE 4.8e-4 (2 pixels).
 #[test]
 fn gaussian_same_seed_gives_the_cpu_image() {
-    let (desc, settings) = imported();
-    let scene = build(&desc);
-    let Some(gpu) = gpu_render(&scene, settings, 2, 11) else {
-        return;
+    let gaussian = FilterDesc::Gaussian {
+        stddev: 0.5,
+        radius: 2.0,
     };
-    let cpu = cpu_render(&scene, settings, 2, 11);
-    let (g, c) = (gpu.mean(), cpu.mean());
-    let e = lumis::metrics::relmse(&g, &c);
-    let diverged = g
-        .iter()
-        .zip(&c)
-        .filter(|(a, b)| (**a - **b).abs().max_element() > 1e-3 * (1.0 + b.max_element()))
-        .count();
-    eprintln!(
-        "gaussian_edges: relMSE {e:.2e}, {diverged} of {} pixels diverged",
-        g.len()
-    );
-    assert!(
-        diverged * 1000 <= g.len(),
-        "{diverged} of {} pixels differ from the CPU's",
-        g.len()
-    );
-    assert!(e < 1e-5, "relMSE against the CPU {e:e}");
+    let mis = Strategy::Mis {
+        heuristic: Heuristic::Power,
+    };
+    same_seed_as_the_cpu("gaussian", gaussian, mis, 2);
 }
 
-/// `NAME_edges.xml` (gaussian_edges.xml's scene under another of Mitsuba's filters) on the
-/// GPU with `strategy`, same seed and samples as the CPU (`same_seed_check_spp`: at most 1
+/// `NAME_edges.xml` (gaussian_edges.xml's scene, or it under another of Mitsuba's filters) on
+/// the GPU with `strategy`, same seed and samples as the CPU (`same_seed_check_spp`: at most 1
 /// pixel in 1000 diverged, relMSE < 1e-5): the GPU's film is the CPU's, and the CPU's agrees
 /// with the Mitsuba reference by `renderer/tests/mitsuba_xml.rs`
-/// (`imported_NAME_filter_renders_to_the_mitsuba_reference`). Until 2026-12-07 each of these
-/// four filters was z-tested on the GPU against the reference at [`SPP`] spp as the gaussian
-/// still is (170 s of the GPU binary's time on lavapipe, when the CI had reached 80 of its 90
+/// (`imported_NAME_filter_renders_to_the_mitsuba_reference`). Until 2026-12-07 the other four
+/// filters were also z-tested on the GPU against their references at [`SPP`] spp, as the
+/// gaussian still is (170 s of the GPU binary's time on lavapipe, when the CI had reached 80 of its 90
 /// minutes); the same-seed check is the stronger of the two for a GPU-only difference.
 fn same_seed_as_the_cpu(name: &str, filter: FilterDesc, strategy: Strategy, spp: u32) {
     let (desc, mut settings) = imported_as(&format!("{name}_edges"), filter);

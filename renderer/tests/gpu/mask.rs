@@ -16,7 +16,8 @@
 //!   the program then carries the masked traversals (lavapipe: the same arithmetic, only the
 //!   added any-hit test), and opacity ½ changes it (MIS, 4 spp, seed 4610).
 //! - [`the_gpu_renders_the_cpus_masked_image_with_each_estimator`]: `xml_mask.xml` on the GPU and
-//!   the CPU with light sampling, BSDF sampling and MIS, compared by the block z-test of `renderer/tests/gpu/images.rs`
+//!   the CPU with light sampling, BSDF sampling and MIS, compared by the block z-test of
+//!   `renderer/tests/gpu/images.rs`
 //!   (8×8 blocks, family-wise α = 0.01, both films' variances, the suite's two stages; 32 spp,
 //!   GPU seeds 4620 + i, CPU 5620 + i), as for the normal map's scene and for the same reason:
 //!   a decision hashes the hit's distance, whose last bits the two sides round differently, so
