@@ -136,6 +136,8 @@ pub fn bench(args: &BenchArgs) -> anyhow::Result<()> {
         check_output_dir(plot)?;
     }
 
+    lumis_app::scene_file::set_studio(!args.no_studio);
+
     lumis_app::scene_file::set_defines(&args.scene, args.define.clone(), None);
     let (scene, rr_depth) = load_scene(&args.scene, &args.film.size)?;
     let scene = Arc::new(scene);

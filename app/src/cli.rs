@@ -202,6 +202,11 @@ pub struct RenderArgs {
     /// overriding its `<default>` (as `mitsuba -D`); repeatable. Only for `.xml` scenes.
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
     pub define: Vec<(String, String)>,
+    /// A model file opened on its own (.obj, .ply, .gltf, .glb, .serialized) is shown without
+    /// the studio (its grey ground and studio lights): under a white environment of radiance 1,
+    /// as before issue 43. Nothing changes for scene files.
+    #[arg(long)]
+    pub no_studio: bool,
     /// Samples per pixel (default for a Mitsuba scene: its sampler's `sample_count`; required
     /// otherwise, unless --sample-range is given). In a Mitsuba scene it is also the value of
     /// `$spp`, as `-D spp=N` would be, but no error where the scene has no `$spp`.
@@ -313,6 +318,11 @@ pub struct ExportArgs {
     /// A parameter of a Mitsuba XML scene, `-D NAME=VALUE` (as for `render`).
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
     pub define: Vec<(String, String)>,
+    /// A model file opened on its own (.obj, .ply, .gltf, .glb, .serialized) is shown without
+    /// the studio (its grey ground and studio lights): under a white environment of radiance 1,
+    /// as before issue 43. Nothing changes for scene files.
+    #[arg(long)]
+    pub no_studio: bool,
     /// The sampler's `sample_count` to write (default: the scene's, if it names one, else none:
     /// Mitsuba's 4).
     #[arg(long)]
@@ -361,6 +371,11 @@ pub struct BenchArgs {
     /// overriding its `<default>` (as `mitsuba -D`); repeatable. Only for `.xml` scenes.
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
     pub define: Vec<(String, String)>,
+    /// A model file opened on its own (.obj, .ply, .gltf, .glb, .serialized) is shown without
+    /// the studio (its grey ground and studio lights): under a white environment of radiance 1,
+    /// as before issue 43. Nothing changes for scene files.
+    #[arg(long)]
+    pub no_studio: bool,
 
     /// Reference image (EXR or PFM) of the same size; without it the error is estimated from two
     /// independent half images.
@@ -423,6 +438,11 @@ pub struct ViewArgs {
     /// overriding its `<default>` (as `mitsuba -D`); repeatable. Only for `.xml` scenes.
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
     pub define: Vec<(String, String)>,
+    /// A model file opened on its own (.obj, .ply, .gltf, .glb, .serialized) is shown without
+    /// the studio (its grey ground and studio lights): under a white environment of radiance 1,
+    /// as before issue 43. Nothing changes for scene files.
+    #[arg(long)]
+    pub no_studio: bool,
 
     /// Reference image (EXR or PFM, the film's size) for the error; without it the error is
     /// estimated from two independent half images.

@@ -22,6 +22,7 @@ pub fn export(args: &ExportArgs) -> anyhow::Result<()> {
     {
         bail!("{}: no such folder", dir.display());
     }
+    lumis_app::scene_file::set_studio(!args.no_studio);
     lumis_app::scene_file::set_defines(&args.scene, args.define.clone(), args.spp);
     let loaded = lumis_app::scene_file::load_scene_file(&args.scene)?;
     let mut options = ExportOptions {

@@ -23,6 +23,7 @@ pub fn render(args: &RenderArgs) -> anyhow::Result<()> {
         check_part_options(args)?;
     }
     check_output_dir(&args.output)?;
+    lumis_app::scene_file::set_studio(!args.no_studio);
     lumis_app::scene_file::set_defines(&args.scene, args.define.clone(), args.spp);
     let loaded = lumis_app::scene_file::load_scene_file(&args.scene)?;
     // clap allows at most one of --spp and --sample-range; a Mitsuba scene names a default.

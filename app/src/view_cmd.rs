@@ -105,6 +105,7 @@ pub fn view(args: &ViewArgs) -> anyhow::Result<()> {
         target_relmse: args.equal_error.unwrap_or(defaults.target_relmse),
     };
     let scene = args.scene.clone().unwrap_or_else(default_scene);
+    lumis_app::scene_file::set_studio(!args.no_studio);
     lumis_app::scene_file::set_defines(&scene, args.define.clone(), None);
     run(ViewerOptions {
         scene,

@@ -817,15 +817,33 @@ fn dropping_a_model_file_opens_it_and_a_broken_one_shows_its_line() {
     let names: Vec<String> = (h.state().desc.as_ref().unwrap().materials.iter())
         .map(|m| m.name.clone())
         .collect();
-    assert_eq!(names, ["model"], "the model scene's one material");
+    assert_eq!(
+        names,
+        ["model", "studio_ground"],
+        "the model scene's one material and the studio's ground's"
+    );
     wait_for_current_scene(&mut h, "the dropped model");
     let scene = h.state().output().scene.clone().unwrap();
     assert_eq!(
         scene.accel.primitives().len(),
-        2,
-        "the model's two triangles"
+        4,
+        "the model's two triangles and the studio's ground (a quad: two more)"
     );
     assert_eq!(scene.material_names[0], "model");
+
+    // The studio switched off reloads the model without its ground, and on again with it
+    // (issue 43 item 2; the switch is process-wide: restored before the test ends).
+    let materials = |h: &mut Harness<'static, ViewerApp>| -> Vec<String> {
+        (h.state().desc.as_ref().unwrap().materials.iter())
+            .map(|m| m.name.clone())
+            .collect()
+    };
+    h.get_by_role_and_label(Role::CheckBox, "Studio").click();
+    h.run_steps(2);
+    assert_eq!(materials(&mut h), ["model"], "without the studio");
+    h.get_by_role_and_label(Role::CheckBox, "Studio").click();
+    h.run_steps(2);
+    assert_eq!(materials(&mut h), ["model", "studio_ground"], "with it");
 
     // A malformed OBJ (a face naming vertex 7 of 3, on line 4): its error, naming the file
     // and the line, is shown in the window, and the model keeps rendering.

@@ -9,6 +9,7 @@ const SCALE_RANGE: std::ops::RangeInclusive<f64> = 1e-3..=1e3;
 
 impl ViewerApp {
     pub(crate) fn environment_controls(&mut self, ui: &mut egui::Ui) {
+        self.studio_toggle(ui);
         let Some(desc) = &mut self.desc else { return };
         let mut changed = false;
         match &mut desc.background {
@@ -49,6 +50,26 @@ impl ViewerApp {
         }
         if changed {
             self.scene_changed();
+        }
+    }
+
+    /// For a model file opened on its own: the studio (ground and studio lights) on or off,
+    /// which reloads the model (`--no-studio` starts with it off).
+    fn studio_toggle(&mut self, ui: &mut egui::Ui) {
+        let Some(path) = self.scene_path.clone() else {
+            return;
+        };
+        if !lumis::scene::model::is_model_file(&path) {
+            return;
+        }
+        let mut on = crate::scene_file::studio();
+        if ui
+            .checkbox(&mut on, "Studio")
+            .on_hover_text("The model on a grey ground under studio lights; off: a white sky")
+            .changed()
+        {
+            crate::scene_file::set_studio(on);
+            self.load_scene(&path);
         }
     }
 }

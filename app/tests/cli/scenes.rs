@@ -43,9 +43,11 @@ fn scene_warnings_are_printed() {
 }
 
 /// A mesh file renders on its own (`scene/model.rs`): a convex tetrahedron (diffuse 0.8) under the
-/// default white environment (1). With BSDF sampling every sample is exact (a ray leaving a
-/// convex object escapes to the environment: 0.8 × 1), so every pixel lies between 0.8 (the
-/// model) and 1 (the environment), and the model fills part of the frame.
+/// white environment (1) that `--no-studio` gives. With BSDF sampling every sample is exact (a
+/// ray leaving a convex object escapes to the environment: 0.8 × 1), so every pixel lies between
+/// 0.8 (the model) and 1 (the environment), and the model fills part of the frame. Without the
+/// flag the studio's grey ground fills the background (the image's bottom corners, below the
+/// model, are far darker than 1): the flag reaches the scene.
 #[test]
 fn a_model_file_renders_on_its_own() {
     let dir = TempDir::new("model");
@@ -56,7 +58,11 @@ fn a_model_file_renders_on_its_own() {
     )
     .unwrap();
     let out = dir.path("tet.exr");
-    let stats = render(&obj, &out, &["--spp", "4", "--strategy", "bsdf"]);
+    let stats = render(
+        &obj,
+        &out,
+        &["--spp", "4", "--strategy", "bsdf", "--no-studio"],
+    );
     assert_eq!(stats.nonfinite, 0);
     let img = read(&out);
     assert_eq!((img.width, img.height), (640, 480));
@@ -75,6 +81,17 @@ fn a_model_file_renders_on_its_own() {
         (0.05..0.9).contains(&model),
         "the model covers {model} of the frame"
     );
+
+    let studio = dir.path("tet_studio.exr");
+    render(&obj, &studio, &["--spp", "2", "--resolution-scale", "0.1"]);
+    let img = read(&studio);
+    let (w, h) = (img.width as usize, img.height as usize);
+    for corner in [img.data[(h - 1) * w], img.data[h * w - 1]] {
+        assert!(
+            corner.max_element() < 0.5,
+            "{corner}: not the studio's ground"
+        );
+    }
 }
 
 /// A Mitsuba XML scene with `<default>` parameters: a twosided diffuse floor of reflectance

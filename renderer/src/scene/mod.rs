@@ -14,6 +14,8 @@ pub mod error;
 pub mod mesh;
 pub mod mitsuba;
 pub mod model;
+mod model_gltf;
+mod model_studio;
 pub mod parse;
 mod parse_background;
 mod parse_composite;
@@ -42,7 +44,8 @@ pub use desc::{
     ShapeDesc, TextureDesc,
 };
 pub use error::SceneError;
+pub use model::ModelOptions;
 pub use parse::{
-    LoadedScene, load_scene, load_scene_params, load_scene_with, parse_scene, parse_scene_in,
-    parse_scene_value, parse_scene_value_in,
+    LoadedScene, load_scene, load_scene_options, load_scene_params, load_scene_with, parse_scene,
+    parse_scene_in, parse_scene_value, parse_scene_value_in,
 };

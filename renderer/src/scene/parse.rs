@@ -6,6 +6,7 @@
 
 use super::desc::{BackgroundDesc, CameraDesc, FilterDesc, ProjectionDesc, SceneDesc};
 use super::error::SceneError;
+use super::model::ModelOptions;
 use super::parse_background::parse_background;
 use super::parse_materials::parse_materials;
 use super::parse_shapes::{parse_shapes, unit};
@@ -73,6 +74,16 @@ pub fn load_scene_params(
     path: &Path,
     params: &super::mitsuba::Params,
 ) -> Result<LoadedScene, SceneError> {
+    load_scene_options(path, params, ModelOptions::default())
+}
+
+/// [`load_scene_params`] with the options of a model file opened on its own (`model`: the
+/// studio or not; ignored for scene files).
+pub fn load_scene_options(
+    path: &Path,
+    params: &super::mitsuba::Params,
+    model: ModelOptions,
+) -> Result<LoadedScene, SceneError> {
     let defines = &params.defines;
     if super::mitsuba::is_mitsuba_file(path) {
         let m = super::mitsuba::load_params(path, params)?;
@@ -90,8 +101,9 @@ pub fn load_scene_params(
         .in_file(path));
     }
     let desc = if super::model::is_model_file(path) {
-        super::model::model_scene(path)?
+        super::model::model_scene_with(path, model)?
     } else {
+        check_scene_extension(path)?;
         let folder = path.parent().unwrap_or(Path::new(""));
         parse_scene_in(&read_scene_file(path)?, folder).map_err(|e| e.in_file(path))?
     };
@@ -100,6 +112,27 @@ pub fn load_scene_params(
         spp: None,
         rr_depth: None,
     })
+}
+
+/// Every file type lumis opens, for messages.
+const FILE_TYPES: &str = ".json (lumis' scene format), .xml (a Mitsuba 3 scene) and the model \
+     files .obj, .ply, .gltf, .glb and .serialized";
+
+/// Refuses a file that is neither a JSON scene nor anything else lumis reads, by its extension,
+/// naming what lumis reads (and pbrt-v4's format by name), instead of a JSON syntax error about
+/// a file that was never JSON. A file without an extension is read as JSON.
+fn check_scene_extension(path: &Path) -> Result<(), SceneError> {
+    let Some(ext) = path.extension().and_then(|e| e.to_str()) else {
+        return Ok(());
+    };
+    let message = match ext.to_ascii_lowercase().as_str() {
+        "json" => return Ok(()),
+        "pbrt" => format!(
+            "a pbrt-v4 scene: lumis does not read pbrt's format (yet); it opens {FILE_TYPES}"
+        ),
+        _ => format!("lumis does not open '.{ext}' files: it opens {FILE_TYPES}"),
+    };
+    Err(SceneError::new("", message).in_file(path))
 }
 
 /// The text of a scene file; the error (missing, a directory, not UTF-8, …) names the file.
@@ -161,13 +194,12 @@ pub(crate) fn parse_scene_value_preloaded(
 
     let hide_emitters = root.opt_bool("hide_emitters")?.unwrap_or(false);
 
-    let background = match root.get("background") {
-        None => BackgroundDesc::Constant(DVec3::ZERO),
-        Some(v) => parse_background(v, folder)?,
-    };
-
     // One loader for the whole scene, so that a file named twice is read once.
     let mut textures = TextureLoader::new(folder).with_preloaded(preloaded);
+    let background = match root.get("background") {
+        None => BackgroundDesc::Constant(DVec3::ZERO),
+        Some(v) => parse_background(v, folder, &textures)?,
+    };
     let materials = match root.get("materials") {
         Some(v) => parse_materials(&Obj::new(v, "materials")?, &mut textures)?,
         None => Vec::new(),

@@ -7,6 +7,7 @@
 use super::desc::{BackgroundDesc, EnvmapDesc};
 use super::error::SceneError;
 use super::parse::{MAX_RADIANCE, check_radiance};
+use super::parse_texture::TextureLoader;
 use super::walk::{Obj, array, number, vec3};
 use crate::image_io::Image;
 use glam::{DMat3, DVec3};
@@ -18,7 +19,13 @@ use std::sync::Arc;
 pub const MAX_ENVMAP_TEXELS: u64 = 1 << 27;
 
 /// Parses `background`; an envmap's `file` is relative to `folder`.
-pub(crate) fn parse_background(v: &Value, folder: &Path) -> Result<BackgroundDesc, SceneError> {
+/// A map the front end holds in memory (`textures`' preloaded images, such as a model's studio,
+/// `scene/model_studio.rs`) is taken from there and checked as a file's would be.
+pub(crate) fn parse_background(
+    v: &Value,
+    folder: &Path,
+    textures: &TextureLoader,
+) -> Result<BackgroundDesc, SceneError> {
     let path = "background";
     if !v.is_object() {
         let le = vec3(v, path)?;
@@ -45,8 +52,12 @@ pub(crate) fn parse_background(v: &Value, folder: &Path) -> Result<BackgroundDes
         return Err(SceneError::new(file_path, "the file name is empty"));
     }
     let file = folder.join(name);
-    let image =
-        Image::read_rgb_map(&file).map_err(|e| SceneError::new(&file_path, e.to_string()))?;
+    let image = match textures.preloaded_image(&file) {
+        Some(image) => Image::clone(&image),
+        None => {
+            Image::read_rgb_map(&file).map_err(|e| SceneError::new(&file_path, e.to_string()))?
+        }
+    };
     let texels = image.width as u64 * image.height as u64;
     if texels == 0 || texels > MAX_ENVMAP_TEXELS {
         return Err(SceneError::new(

@@ -161,6 +161,11 @@ impl TextureLoader {
         Ok(m)
     }
 
+    /// The preloaded image (linear, as `raw`) that the resolved path `file` names.
+    pub fn preloaded_image(&self, file: &Path) -> Option<Arc<Image>> {
+        self.preloaded.images.get(&(file.to_owned(), true)).cloned()
+    }
+
     /// The preloaded mesh that the resolved path `file` names, taken out (each is for one shape).
     pub fn take_mesh(&mut self, file: &Path) -> Option<MeshData> {
         self.preloaded.meshes.remove(file)

@@ -648,3 +648,32 @@ fn camera_filter_parses_round_trips_and_names_errors() {
         assert!(e.to_string().contains(path), "{f}: {e}");
     }
 }
+
+/// A file lumis does not read is named with what lumis reads (issue 43 item 4), before it is
+/// read at all: not a JSON syntax error about a file that was never JSON. A `.pbrt` file is
+/// named as pbrt-v4's format. (The files need not exist: the extension decides.)
+#[test]
+fn unknown_file_types_name_the_formats_lumis_reads() {
+    for (file, words) in [
+        (
+            "scenes/killeroo.pbrt",
+            &["pbrt-v4", "does not read pbrt"][..],
+        ),
+        ("scenes/model.xyz", &["does not open '.xyz' files"][..]),
+        ("scenes/model.USD", &["does not open '.USD' files"][..]),
+    ] {
+        let e = load_scene(std::path::Path::new(file)).unwrap_err();
+        let text = e.to_string();
+        assert!(text.contains(file), "{text}");
+        for w in words
+            .iter()
+            .chain(&[".json", ".xml", ".obj", ".ply", ".gltf", ".glb"])
+        {
+            assert!(text.contains(w), "{w:?} not in: {text}");
+        }
+        assert!(!text.contains("JSON"), "{text}");
+    }
+    // A file without an extension is still read as JSON (and this one is missing).
+    let e = load_scene(std::path::Path::new("scenes/no_extension")).unwrap_err();
+    assert!(e.to_string().contains("cannot read the scene file"), "{e}");
+}

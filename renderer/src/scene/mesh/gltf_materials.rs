@@ -7,11 +7,12 @@
 //! The base colour's alpha becomes the material's `opacity` (alpha masks): `MASK` the alpha
 //! against `alphaCutoff` per texel, `BLEND` the alpha itself as stochastic opacity.
 //!
-//! What lumis does not render (normal and occlusion maps, extensions other than
+//! What lumis does not render (normal maps, extensions other than
 //! `KHR_materials_ior`, `KHR_materials_transmission`, `KHR_materials_emissive_strength` and
 //! `KHR_texture_transform`, texture rotation, a second texture coordinate set, a sampler whose
 //! two axes wrap differently, nearest filtering) is collected by glTF path into
-//! [`Materials::ignored`], which the caller writes as one warning. Errors name the file and
+//! [`Materials::ignored`], which the caller writes as one warning (occlusion maps are not named:
+//! a path tracer computes occlusion). Errors name the file and
 //! the glTF path of the problem (`materials[2].pbrMetallicRoughness.baseColorTexture`).
 //!
 //! Raw JSON is read for the extensions (the `gltf` crate is built without its typed ones) and
@@ -207,9 +208,8 @@ impl Reader<'_> {
         if m.normal_texture.is_some() {
             self.out.ignored.push(format!("{at}.normalTexture"));
         }
-        if m.occlusion_texture.is_some() {
-            self.out.ignored.push(format!("{at}.occlusionTexture"));
-        }
+        // `occlusionTexture` is not named: a path tracer computes occlusion, so a warning about
+        // it would change nothing.
         // The alpha mode: `Some(Some(cutoff))` for MASK, `Some(None)` for BLEND.
         let alpha_mode = match m.alpha_mode {
             Checked::Valid(json::material::AlphaMode::Opaque) => None,

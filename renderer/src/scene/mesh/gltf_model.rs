@@ -46,9 +46,27 @@ pub struct CameraNode {
     pub camera: usize,
     /// Camera to world (the camera looks along its −z with +y up).
     pub world: Mat4,
-    /// `yfov` (radians) and `aspectRatio` of a perspective camera; `None` for an orthographic
-    /// one.
-    pub perspective: Option<(f32, Option<f32>)>,
+    /// The camera's projection and its parameters.
+    pub projection: CameraProjection,
+}
+
+/// A glTF camera's projection, its parameters as the file has them (unchecked).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CameraProjection {
+    /// `perspective`.
+    Perspective {
+        /// `yfov`, radians.
+        yfov: f32,
+        /// `aspectRatio`.
+        aspect: Option<f32>,
+    },
+    /// `orthographic`.
+    Orthographic {
+        /// `xmag`: half the view's width.
+        xmag: f32,
+        /// `ymag`: half the view's height.
+        ymag: f32,
+    },
 }
 
 /// Reads `path` as [`super::load`] does, as a [`Model`]: the same checks and errors, and also
@@ -106,15 +124,21 @@ pub fn load_model(path: &Path) -> Result<Model, MeshError> {
             .nth(node)
             .and_then(|n| n.camera())
             .expect("a camera node found by `placements`");
-        let perspective = match cam.projection() {
-            ::gltf::camera::Projection::Perspective(p) => Some((p.yfov(), p.aspect_ratio())),
-            ::gltf::camera::Projection::Orthographic(_) => None,
+        let projection = match cam.projection() {
+            ::gltf::camera::Projection::Perspective(p) => CameraProjection::Perspective {
+                yfov: p.yfov(),
+                aspect: p.aspect_ratio(),
+            },
+            ::gltf::camera::Projection::Orthographic(o) => CameraProjection::Orthographic {
+                xmag: o.xmag(),
+                ymag: o.ymag(),
+            },
         };
         CameraNode {
             node,
             camera: cam.index(),
             world,
-            perspective,
+            projection,
         }
     });
     Ok(Model {

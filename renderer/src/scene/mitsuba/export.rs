@@ -306,11 +306,9 @@ fn background(x: &mut Xml, desc: &SceneDesc, folder: &Path) -> Result<(), SceneE
             x.close("emitter");
         }
         BackgroundDesc::Envmap(e) => {
+            let name = envmap_file(e, folder)?;
             x.open("emitter", &[("type", "envmap")]);
-            x.leaf(
-                "string",
-                &[("name", "filename"), ("value", &file_name(&e.file, folder))],
-            );
+            x.leaf("string", &[("name", "filename"), ("value", &name)]);
             x.leaf("float", &[("name", "scale"), ("value", &num(e.scale))]);
             if e.rotate_y_deg != 0.0 || e.rotation.is_some() {
                 // Mitsuba applies a transform's elements in order: the rotation, then the turn
@@ -331,6 +329,24 @@ fn background(x: &mut Xml, desc: &SceneDesc, folder: &Path) -> Result<(), SceneE
         }
     }
     Ok(())
+}
+
+/// The envmap's file name for the exported scene: its own file, or, for a map that exists only
+/// in memory (a model's studio, `scene/model_studio.rs`, named `model.obj#studio.exr`), the map
+/// written as an EXR beside the scene (`#` becomes `_`).
+fn envmap_file(e: &crate::scene::EnvmapDesc, folder: &Path) -> Result<String, SceneError> {
+    if e.file.exists() {
+        return Ok(file_name(&e.file, folder));
+    }
+    let name = e
+        .file
+        .file_name()
+        .map(|n| n.to_string_lossy().replace('#', "_"))
+        .unwrap_or_else(|| "environment.exr".into());
+    e.image
+        .write(&folder.join(&name), 0.0)
+        .map_err(|err| SceneError::new("background", err.to_string()))?;
+    Ok(name)
 }
 
 /// Each light as the Mitsuba delta emitter the importer maps back to it (`delta_emitter`): a
