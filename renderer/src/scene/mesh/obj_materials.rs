@@ -130,15 +130,10 @@ pub fn load_obj_model_bytes(
         groups.push(ObjGroup { mesh, material });
     }
     warnings.extend(unknown_usemtl(&text, &names));
-    if unrendered.len() > MAX_NAMES {
-        let more = unrendered.len() - MAX_NAMES;
-        unrendered.truncate(MAX_NAMES);
-        unrendered.push(format!("and {more} more materials"));
-    }
     if !unrendered.is_empty() {
         warnings.push(format!(
             "lumis does not render these .mtl statements: {}",
-            unrendered.join("; ")
+            listed(unrendered, "; ")
         ));
     }
     // They quote the files' own words, which may hold line breaks.
@@ -151,8 +146,8 @@ pub fn load_obj_model_bytes(
 }
 
 /// Every material of the `.mtl` files the OBJ `text` names, in order, each with the folder its
-/// file is in relative to the OBJ's (where its textures are); each file is read once. A file
-/// that cannot be read is a warning.
+/// file is in relative to the OBJ's (where its textures are); each file is read once. The files
+/// that cannot be read are one warning.
 fn read_libraries(
     folder: &Path,
     text: &str,
@@ -160,37 +155,30 @@ fn read_libraries(
     warnings: &mut Vec<String>,
 ) -> Result<Vec<(PathBuf, MtlMaterial)>, MeshError> {
     let mut library = Vec::new();
-    let mut seen: Vec<PathBuf> = Vec::new();
+    let mut seen = HashSet::new();
+    let mut missing = Vec::new();
     for (i, line) in text.lines().enumerate() {
         if line.split_whitespace().next() != Some("mtllib") {
             continue;
         }
+        // An `mtllib` without a name reads nothing; its `usemtl`s are warned about.
         let name = line.trim_start()["mtllib".len()..].trim();
-        if name.is_empty() {
-            warnings.push(format!("line {}: mtllib without a file name", i + 1));
+        if name.is_empty() || !seen.insert(folder.join(name)) {
             continue;
         }
         let files = match mtl(&folder.join(name)) {
             Some(bytes) => vec![(name, Some(bytes))],
             None if name.contains(char::is_whitespace) => name
                 .split_whitespace()
+                .filter(|word| seen.insert(folder.join(word)))
                 .map(|word| (word, mtl(&folder.join(word))))
                 .collect(),
             None => vec![(name, None)],
         };
         for (name, bytes) in files {
             let file = folder.join(name);
-            if seen.contains(&file) {
-                continue;
-            }
-            seen.push(file.clone());
             let Some(bytes) = bytes else {
-                warnings.push(format!(
-                    "line {}: cannot read the material library {} (its materials get lumis' \
-                     default material)",
-                    i + 1,
-                    file.display()
-                ));
+                missing.push(format!("{} (line {})", file.display(), i + 1));
                 continue;
             };
             let materials = mtl::parse(&file, &String::from_utf8_lossy(&bytes))?;
@@ -198,7 +186,23 @@ fn read_libraries(
             library.extend(materials.into_iter().map(|m| (dir.clone(), m)));
         }
     }
+    if !missing.is_empty() {
+        warnings.push(format!(
+            "cannot read the material library {} (its materials get lumis' default material)",
+            listed(missing, ", ")
+        ));
+    }
     Ok(library)
+}
+
+/// `items` joined by `separator`, at most [`MAX_NAMES`] of them.
+fn listed(mut items: Vec<String>, separator: &str) -> String {
+    if items.len() > MAX_NAMES {
+        let more = items.len() - MAX_NAMES;
+        items.truncate(MAX_NAMES);
+        items.push(format!("and {more} more"));
+    }
+    items.join(separator)
 }
 
 /// The warning about `usemtl` names that no material has, if any: each name once, with the line
@@ -221,17 +225,13 @@ fn unknown_usemtl(text: &str, names: &[String]) -> Option<String> {
     if unknown.is_empty() {
         return None;
     }
-    let mut quoted: Vec<String> = unknown
+    let quoted = unknown
         .iter()
-        .take(MAX_NAMES)
         .map(|(name, line)| format!("'{name}' (line {line})"))
         .collect();
-    if unknown.len() > MAX_NAMES {
-        quoted.push(format!("and {} more", unknown.len() - MAX_NAMES));
-    }
     Some(format!(
         "usemtl names a material no .mtl file defines: {} (its faces get lumis' default material)",
-        quoted.join(", ")
+        listed(quoted, ", ")
     ))
 }
 

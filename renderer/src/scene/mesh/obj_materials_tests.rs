@@ -275,7 +275,7 @@ fn a_missing_library_is_a_warning_and_the_default_material() {
     assert_eq!(
         m.warnings,
         [
-            "line 1: cannot read the material library models/gone.mtl (its materials get \
+            "cannot read the material library models/gone.mtl (line 1) (its materials get \
              lumis' default material)",
             "usemtl names a material no .mtl file defines: 'Paint' (line 6) (its faces get \
              lumis' default material)",
@@ -364,6 +364,33 @@ fn warnings_are_one_line_whatever_they_quote() {
         [
             r"usemtl names a material no .mtl file defines: 'b\u{b}lue' (line 6) (its faces get lumis' default material)",
             r"lumis does not render these .mtl statements: mtl 'A\u{85}B': map_Ks",
+        ]
+    );
+}
+
+/// A warning names at most ten things, then how many more; missing libraries are one warning,
+/// each named once however often the OBJ names it.
+#[test]
+fn warnings_name_at_most_ten_things() {
+    let mut obj = format!("mtllib a.mtl\nmtllib b.mtl\nmtllib a.mtl\n{SQUARE}");
+    for k in 0..12 {
+        obj += &format!("usemtl m{k}\nf 1 2 3\n");
+    }
+    let m = model(&obj, &[]);
+    let names: Vec<String> = (0..10)
+        .map(|k| format!("'m{k}' (line {})", 8 + 2 * k))
+        .collect();
+    assert_eq!(
+        m.warnings,
+        [
+            "cannot read the material library models/a.mtl (line 1), models/b.mtl (line 2) \
+             (its materials get lumis' default material)"
+                .to_owned(),
+            format!(
+                "usemtl names a material no .mtl file defines: {}, and 2 more (its faces get \
+                 lumis' default material)",
+                names.join(", ")
+            ),
         ]
     );
 }

@@ -182,9 +182,9 @@ fn colour(m: &mut MtlMaterial, keyword: &str, values: &[&str]) -> Result<Option<
         .iter()
         .map(|w| number(keyword, w))
         .collect::<Result<Vec<_>, _>>()?;
-    match v.as_slice() {
-        &[g] => Ok(Some([g; 3])),
-        &[r, g, b] => Ok(Some([r, g, b])),
+    match *v.as_slice() {
+        [g] => Ok(Some([g; 3])),
+        [r, g, b] => Ok(Some([r, g, b])),
         _ => Err(format!(
             "'{keyword}' needs 1 or 3 numbers, found {}",
             v.len()
