@@ -394,3 +394,50 @@ fn warnings_name_at_most_ten_things() {
         ]
     );
 }
+
+/// The mapped materials are materials the scene front end accepts and a scene builds with, with
+/// their textures, opacity and emission: catches a key lumis does not know, a value out of its
+/// range, or an opacity left on an emitter's material (which the build refuses).
+#[test]
+fn mapped_materials_pass_the_scene_front_end() {
+    let dir = test_dir().join("obj_scene");
+    std::fs::create_dir_all(dir.join("mats/tex")).unwrap();
+    image::RgbImage::from_pixel(2, 2, image::Rgb([200, 100, 50]))
+        .save(dir.join("mats/tex/wood.png"))
+        .unwrap();
+    let obj = format!(
+        "mtllib mats/lib.mtl\n{SQUARE}vt 0 0\nusemtl Wood\nf 1/1 2/1 3/1\nusemtl Glass\nf 1 3 4\n\
+         usemtl Lamp\nf 2 3 4\nusemtl Plain\nf 1 2 4\n"
+    );
+    let mtl = "newmtl Wood\nKd 0.9 0.8 0.7\nKs 0.04 0.04 0.04\nNs 250\nNi 1.45\nd 0.75\n\
+               map_Kd -s 2 2 tex\\wood.png\n\
+               newmtl Glass\nKd 0.2 0.3 0.4\nTr 0.6\nillum 1\n\
+               newmtl Lamp\nKe 10 8 6\nKd 0.5\nd 0.5\n\
+               newmtl Plain\nKd 2 2 2\nKs 1 1 1\n";
+    std::fs::write(dir.join("car.obj"), &obj).unwrap();
+    std::fs::write(dir.join("mats/lib.mtl"), mtl).unwrap();
+    let m = load_obj_model(&dir.join("car.obj")).unwrap();
+    assert_eq!(m.materials.len(), 4);
+    let mut materials = serde_json::Map::new();
+    let mut shapes = Vec::new();
+    for (k, group) in m.groups.iter().enumerate() {
+        let material = &m.materials[group.material.unwrap()];
+        materials.insert(format!("m{k}"), material.json.clone());
+        let positions: Vec<[f32; 3]> = group.mesh.positions.iter().map(|p| p.to_array()).collect();
+        let mut shape = json!({"type": "triangles", "positions": positions,
+                               "indices": group.mesh.indices, "material": format!("m{k}")});
+        if let Some(e) = material.emission {
+            shape["emission"] = json!(e);
+        }
+        shapes.push(shape);
+    }
+    let scene = json!({
+        "camera": {"from": [0.5, 0.5, 3], "to": [0.5, 0.5, 0], "up": [0, 1, 0], "vfov_deg": 30,
+                   "width": 8, "height": 8},
+        "materials": materials,
+        "shapes": shapes,
+    });
+    let desc = crate::scene::parse::parse_scene_value_in(&scene, &dir)
+        .unwrap_or_else(|e| panic!("{e}\n{scene:#}"));
+    crate::scene::Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}\n{scene:#}"));
+}
