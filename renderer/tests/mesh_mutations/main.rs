@@ -5,10 +5,13 @@
 //! The valid files are made here at test time: ASCII, binary little-endian and binary big-endian
 //! PLY from `ply::write` (a 3×3 grid with normals and texture coordinates), an ASCII and a
 //! big-endian PLY written by hand (quads and a pentagon, `double` and `ushort` values, a skipped
-//! list and a skipped element, `vertex_index`/`s`/`t`), an OBJ from `obj::write` and one by hand
-//! (`v`/`vt`/`vn`, quads and a pentagon, negative indices, groups, materials, a `w`), and a glTF
-//! asset (two primitives, TRIANGLES and TRIANGLE_STRIP, one with a sparse POSITION accessor, under
-//! a translated, rotated, scaled parent node) as `.gltf` with a `data:` URI buffer and as `.glb`.
+//! list and a skipped element, `vertex_index`/`s`/`t`), an ASCII and a little-endian PLY of
+//! triangle strips (`tristrips`: restarts, degenerate joins, a skipped property; the binary one
+//! beside a `face` element), an OBJ from `obj::write` and one by hand (`v`/`vt`/`vn`, quads and a
+//! pentagon, negative indices, groups, materials, a `w`), the same OBJ with a `.mtl` (opened on
+//! its own through `load_obj_model_bytes`, its `.mtl` mutated too: see below), and a glTF asset
+//! (two primitives, TRIANGLES and TRIANGLE_STRIP, one with a sparse POSITION accessor, under a
+//! translated, rotated, scaled parent node) as `.gltf` with a `data:` URI buffer and as `.glb`.
 //!
 //! Each case applies one to four mutations, each at one of four levels, which run in this order:
 //! the glTF buffer's bytes (then re-encoded, so the container stays consistent), the glTF JSON as
@@ -23,6 +26,12 @@
 //!   coordinates (every reader promises that);
 //! * a `MeshError` whose message starts with the file's path and is one line.
 //!
+//! The OBJ+MTL seed's mutations at the buffer and JSON levels (which it has not) go to its
+//! `.mtl` text instead; its outcome must be groups that each pass the first point, materials of
+//! finite, in-range numbers, one-line warnings and as many triangles as the plain reader reads,
+//! or an error as the second point says that names the OBJ or the `.mtl` (where it names the
+//! OBJ, the plain reader's very error).
+//!
 //! A panic is caught and reported with the seed file, the mutations, a backtrace and the mutated
 //! bytes (escaped, and saved under the temp folder) so that it can be replayed. The runner is
 //! seeded (ChaCha, seed `b"lumis mesh mutation, issue 17 .."`), so every run tries the same
@@ -33,6 +42,7 @@
 //! files to `DIR/mesh_obj`, `DIR/mesh_ply` and `DIR/mesh_gltf`, the fuzz targets' corpora
 //! (`fuzz/README.md`).
 
+use lumis::scene::mesh::obj_materials::{load_obj_model, load_obj_model_bytes};
 use lumis::scene::mesh::{MeshData, MeshError, check, load_mesh, load_mesh_bytes};
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
 use std::collections::BTreeMap;
@@ -62,35 +72,154 @@ enum Outcome {
 
 /// Loads `path` and judges the result; `Err` is a broken promise.
 fn judge(path: &Path, result: Result<MeshData, MeshError>) -> Result<Outcome, String> {
-    let name = path.display().to_string();
     match result {
         Ok(mesh) => {
-            check(path, &mesh).map_err(|e| format!("loaded, but fails check: {e}"))?;
-            if mesh.indices.is_empty() {
-                return Err("loaded a mesh without triangles".into());
-            }
-            let p = mesh.positions.iter().position(|p| !p.is_finite());
-            let n = mesh.normals.iter().flatten().position(|p| !p.is_finite());
-            let t = mesh.uvs.iter().flatten().position(|p| !p.is_finite());
-            for (what, i) in [("position", p), ("normal", n), ("texture coordinate", t)] {
-                if let Some(i) = i {
-                    return Err(format!("loaded, but {what} {i} is not finite"));
-                }
-            }
+            judge_mesh(path, &mesh)?;
             Ok(Outcome::Loaded)
         }
         Err(MeshError(message)) => {
-            if !message.starts_with(&name) {
-                return Err(format!("error does not name the file: {message:?}"));
-            }
-            let breaks = [
-                '\n', '\r', '\u{b}', '\u{c}', '\u{85}', '\u{2028}', '\u{2029}',
-            ];
-            if message.contains(breaks) {
-                return Err(format!("error is not one line: {message:?}"));
-            }
+            judge_error(&message, &[path])?;
             Ok(Outcome::Rejected)
         }
+    }
+}
+
+/// What every mesh a reader returns must be.
+fn judge_mesh(path: &Path, mesh: &MeshData) -> Result<(), String> {
+    check(path, mesh).map_err(|e| format!("loaded, but fails check: {e}"))?;
+    if mesh.indices.is_empty() {
+        return Err("loaded a mesh without triangles".into());
+    }
+    let p = mesh.positions.iter().position(|p| !p.is_finite());
+    let n = mesh.normals.iter().flatten().position(|p| !p.is_finite());
+    let t = mesh.uvs.iter().flatten().position(|p| !p.is_finite());
+    for (what, i) in [("position", p), ("normal", n), ("texture coordinate", t)] {
+        if let Some(i) = i {
+            return Err(format!("loaded, but {what} {i} is not finite"));
+        }
+    }
+    Ok(())
+}
+
+/// An error message must start with one of `files` and be one line.
+fn judge_error(message: &str, files: &[&Path]) -> Result<(), String> {
+    if !files
+        .iter()
+        .any(|f| message.starts_with(&f.display().to_string()))
+    {
+        return Err(format!("error does not name the file: {message:?}"));
+    }
+    one_line(message, "error")
+}
+
+/// `text` (an error or a warning) must be one line.
+fn one_line(text: &str, what: &str) -> Result<(), String> {
+    let breaks = [
+        '\n', '\r', '\u{b}', '\u{c}', '\u{85}', '\u{2028}', '\u{2029}',
+    ];
+    if text.contains(breaks) {
+        return Err(format!("{what} is not one line: {text:?}"));
+    }
+    Ok(())
+}
+
+/// An OBJ+MTL case: the OBJ `obj` at `path` opened on its own, its `.mtl` (`MTL_NAME` beside
+/// it) being `mtl`. Beside `judge`'s promises for each group and the error, the materials must
+/// be what the mapping makes (finite numbers in range, a positive emission), the warnings one
+/// line each, and the grouping must keep the plain reader's geometry: as many triangles, and its
+/// very error where the OBJ itself is at fault.
+fn judge_obj_model(
+    path: &Path,
+    obj: &[u8],
+    mtl: &[u8],
+    through_file: bool,
+) -> Result<Outcome, String> {
+    let mtl_path = path.parent().unwrap().join(MTL_NAME);
+    let supply = |p: &Path| (p == mtl_path).then(|| mtl.to_vec());
+    let result = load_obj_model_bytes(path, obj, &supply);
+    if through_file {
+        std::fs::create_dir_all(mtl_path.parent().unwrap()).unwrap();
+        std::fs::write(path, obj).unwrap();
+        std::fs::write(&mtl_path, mtl).unwrap();
+        let from_file = load_obj_model(path);
+        if from_file != result {
+            return Err(format!(
+                "load_obj_model gives {from_file:?} but load_obj_model_bytes {result:?}"
+            ));
+        }
+    }
+    let mtl_error = |e: &MeshError| e.0.starts_with(&mtl_path.display().to_string());
+    match (&result, load_mesh_bytes(path, obj)) {
+        (Ok(model), Ok(mesh)) => {
+            let n: usize = model.groups.iter().map(|g| g.mesh.indices.len()).sum();
+            if n != mesh.indices.len() {
+                return Err(format!(
+                    "{n} triangles in the groups, {} in the plain mesh",
+                    mesh.indices.len()
+                ));
+            }
+        }
+        (Ok(_), Err(e)) => return Err(format!("loads on its own, but not plain: {e}")),
+        (Err(e), Ok(_)) if !mtl_error(e) => {
+            return Err(format!("loads plain, but on its own fails: {e}"));
+        }
+        (Err(e), Err(plain)) if !mtl_error(e) && *e != plain => {
+            return Err(format!("on its own fails with {e}, plain with {plain}"));
+        }
+        _ => {}
+    }
+    let model = match result {
+        Ok(model) => model,
+        Err(MeshError(message)) => {
+            judge_error(&message, &[path, &mtl_path])?;
+            return Ok(Outcome::Rejected);
+        }
+    };
+    for (g, group) in model.groups.iter().enumerate() {
+        judge_mesh(path, &group.mesh).map_err(|e| format!("group {g}: {e}"))?;
+        if group.material.is_some_and(|k| k >= model.materials.len()) {
+            return Err(format!(
+                "group {g}: material {:?} out of range",
+                group.material
+            ));
+        }
+    }
+    for m in &model.materials {
+        material_json(&m.json, "").map_err(|e| format!("material '{}' {}: {e}", m.name, m.json))?;
+        if let Some(e) = m.emission
+            && (e.iter().any(|c| !c.is_finite() || *c < 0.0) || e.iter().all(|&c| c == 0.0))
+        {
+            return Err(format!("material '{}': emission {e:?}", m.name));
+        }
+    }
+    for w in &model.warnings {
+        one_line(w, "warning")?;
+    }
+    Ok(Outcome::Loaded)
+}
+
+/// Every number of a mapped material is in [0, 1] but `ior`, in (1, 10]; none is null (where
+/// serde_json puts a NaN).
+fn material_json(v: &serde_json::Value, key: &str) -> Result<(), String> {
+    use serde_json::Value;
+    match v {
+        Value::Null => Err(format!("'{key}' is null")),
+        Value::Number(n) => {
+            let x = n.as_f64().unwrap_or(f64::NAN);
+            let ok = if key == "ior" {
+                x > 1.0 && x <= 10.0
+            } else {
+                (0.0..=1.0).contains(&x)
+            };
+            if ok {
+                Ok(())
+            } else {
+                Err(format!("'{key}' = {x}"))
+            }
+        }
+        Value::Array(items) => items.iter().try_for_each(|i| material_json(i, key)),
+        Value::Object(map) => map.iter().try_for_each(|(k, i)| material_json(i, k)),
+        Value::Bool(_) | Value::String(_) => Ok(()),
     }
 }
 
@@ -136,6 +265,10 @@ fn mutated_mesh_files_load_or_fail_with_a_located_one_line_error() {
         }
         let mesh = load_mesh(&path).unwrap_or_else(|e| panic!("seed {}: {e}", seed.name));
         assert!(matches!(judge(&path, Ok(mesh)), Ok(Outcome::Loaded)));
+        if let Kind::ObjMtl { mtl } = &seed.kind {
+            let outcome = judge_obj_model(&path, &seed.bytes, mtl, true);
+            assert!(matches!(outcome, Ok(Outcome::Loaded)), "seed {}", seed.name);
+        }
     }
     let cases = std::env::var("MESH_MUTATION_CASES")
         .ok()
@@ -166,6 +299,7 @@ fn mutated_mesh_files_load_or_fail_with_a_located_one_line_error() {
         let s = case.seed.index(seeds.len());
         let seed = &seeds[s];
         let bytes = build(seed, &case, &values);
+        let mtl = build_mtl(seed, &case);
         let path = dir.join(format!("mutant.{}", seed.ext));
         // Mostly from memory: rewriting a file costs about a millisecond on ext4 (it flushes a
         // replaced file's blocks), far more than reading it. Every 16th case also goes through
@@ -173,6 +307,9 @@ fn mutated_mesh_files_load_or_fail_with_a_located_one_line_error() {
         let through_file = case_number.get().is_multiple_of(16);
         case_number.set(case_number.get() + 1);
         let outcome = panic::catch_unwind(AssertUnwindSafe(|| {
+            if let Some(mtl) = &mtl {
+                return judge_obj_model(&path, &bytes, mtl, through_file);
+            }
             let result = load_mesh_bytes(&path, &bytes);
             if through_file {
                 std::fs::write(&path, &bytes).unwrap();
@@ -207,13 +344,22 @@ fn mutated_mesh_files_load_or_fail_with_a_located_one_line_error() {
             seed.ext
         ));
         std::fs::write(&saved, &bytes).unwrap();
-        let report = format!(
+        let mut report = format!(
             "{failure}\nfrom {} with {:?}\nsaved as {}\nbytes: b\"{}\"",
             seed.name,
             case.mutations,
             saved.display(),
             bytes.escape_ascii()
         );
+        if let Some(mtl) = &mtl {
+            let saved = saved.with_extension("mtl");
+            std::fs::write(&saved, mtl).unwrap();
+            report += &format!(
+                "\nits .mtl ({MTL_NAME}) saved as {}\nbytes: b\"{}\"",
+                saved.display(),
+                mtl.escape_ascii()
+            );
+        }
         if explore {
             let kind = format!(
                 "{}: {}",

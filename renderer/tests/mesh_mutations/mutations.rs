@@ -519,7 +519,11 @@ pub(crate) fn build(seed: &Seed, case: &Case, values: &[Value]) -> Vec<u8> {
         }
         _ => seed.bytes.clone(),
     };
-    for (_, m) in mutations {
+    for (level, m) in mutations {
+        if matches!(seed.kind, Kind::ObjMtl { .. }) && *level < Level::Text {
+            // The `.mtl`'s (`build_mtl`).
+            continue;
+        }
         let binary = match seed.kind {
             Kind::BinaryPly { big_endian } => {
                 let end = b"end_header\n";
@@ -535,4 +539,17 @@ pub(crate) fn build(seed: &Seed, case: &Case, values: &[Value]) -> Vec<u8> {
         mutate_bytes(&mut file, m, binary);
     }
     file
+}
+
+/// The mutated `.mtl` of an OBJ+MTL seed (`None` for the other seeds): its buffer- and
+/// JSON-level mutations, applied to the `.mtl` text.
+pub(crate) fn build_mtl(seed: &Seed, case: &Case) -> Option<Vec<u8>> {
+    let Kind::ObjMtl { mtl } = &seed.kind else {
+        return None;
+    };
+    let mut mtl = mtl.clone();
+    for (_, m) in case.mutations.iter().filter(|(l, _)| *l < Level::Text) {
+        mutate_bytes(&mut mtl, m, None);
+    }
+    Some(mtl)
 }

@@ -42,6 +42,10 @@ pub(crate) enum Kind {
     Text,
     /// Binary PLY: a text header, then data in this byte order (`true`: big-endian).
     BinaryPly { big_endian: bool },
+    /// An OBJ opened on its own with its `.mtl` ([`MTL_NAME`], beside it in a folder): the OBJ
+    /// text is mutated at the text and byte levels, the `.mtl` text at the buffer and JSON
+    /// levels (which have no buffer or JSON to mutate here).
+    ObjMtl { mtl: Vec<u8> },
     /// glTF: the JSON and the buffer, packed into a `.gltf` (`glb` false) or a `.glb`.
     Gltf {
         json: Value,
@@ -140,6 +144,60 @@ vt 0 0\nvt 0.5 0\nvt 1 0\nvt 0 0.5\nvt 0.5 0.5\nvt 1 0.5\nvt 0 1\nvt 0.5 1\nvt 1
 vn 0 0 1\nvn 0 0.1 1\ng left\nusemtl red\ns 1\n\
 f 1/1/1 2/2/1 5/5/2 4/4/2\nf 4/4/2 5/5/2 8/8/1 7/7/1\ng right\nusemtl blue\n\
 f -8/-8/-2 -7/-7/-2 -4/-4/-1 -1/-1/-1 -5/-5/-1\nf 5/5/2 9/9/1 8/8/1\n";
+
+/// Triangle strips over the 3×3 grid (the Igea head's layout: `list int int`, −1 between
+/// strips), as two elements, the second joined to its first strip by degenerate triangles and
+/// with a property to skip; the binary seed also has a `face` element (read before the strips)
+/// and `uchar` list lengths.
+pub(crate) fn strips_ply(big_endian: Option<bool>) -> Vec<u8> {
+    let binary = big_endian.is_some();
+    let len = if binary { ('b', "uchar") } else { ('i', "int") };
+    let mut header = "comment triangle strips\nelement vertex 9\nproperty float x\n\
+                      property float y\nproperty float z\n"
+        .to_owned();
+    if binary {
+        header += "element face 1\nproperty list uchar int vertex_indices\n";
+    }
+    header += &format!(
+        "element tristrips 2\nproperty list {} int vertex_indices\nproperty uchar flags\n",
+        len.1
+    );
+    let mut rows: Vec<Vec<(char, f64)>> = grid()
+        .positions
+        .iter()
+        .map(|p| vec![('f', p.x as f64), ('f', p.y as f64), ('f', p.z as f64)])
+        .collect();
+    if binary {
+        rows.push(vec![('b', 3.0), ('i', 0.0), ('i', 1.0), ('i', 4.0)]);
+    }
+    let strips: [&[f64]; 2] = [
+        &[0.0, 3.0, 1.0, 4.0, -1.0, 1.0, 4.0, 2.0, 5.0],
+        &[3.0, 6.0, 4.0, 7.0, 7.0, 4.0, 4.0, 7.0, 5.0, 8.0],
+    ];
+    for strip in strips {
+        let mut row = vec![(len.0, strip.len() as f64)];
+        row.extend(strip.iter().map(|&i| ('i', i)));
+        row.push(('b', 1.0));
+        rows.push(row);
+    }
+    ply_by_hand(&header, &rows, big_endian)
+}
+
+/// Where the OBJ+MTL seed's `.mtl` is, relative to the OBJ's folder.
+pub(crate) const MTL_NAME: &str = "mats/grid.mtl";
+
+/// The OBJ+MTL seed's `.mtl`: a plastic with a texture and its options, a transparent diffuse,
+/// an emitter, and statements lumis names but does not render.
+pub(crate) const GRID_MTL: &str = "# by hand\nnewmtl red\nKa 0.1 0.1 0.1\nKd 0.8 0.1 0.1\n\
+Ks 0.5 0.5 0.5\nNs 96\nNi 1.45\nillum 2\nmap_Kd -s 2 2 textures/red.png\nmap_Bump bump.png\n\
+newmtl blue\nKd 0.1 0.1 0.8\nd 0.5\nTr 0.25\nillum 7\n\
+newmtl lamp\nKe 4 4 3\nd 0.9\nillum 1\nKd 0.5\n";
+
+/// The OBJ+MTL seed's OBJ: [`RICH_OBJ`] with the `.mtl`, an emitter and a name no `.mtl`
+/// defines.
+pub(crate) fn grid_mtl_obj() -> String {
+    RICH_OBJ.replace("none.mtl", MTL_NAME) + "usemtl lamp\nf 1 2 5\nusemtl green\nf 2 3 6\n"
+}
 
 /// The glTF asset: JSON (buffer 0 without a `uri`) and its buffer.
 pub(crate) fn gltf_asset() -> (Value, Vec<u8>) {
@@ -302,6 +360,26 @@ pub(crate) fn seeds() -> Vec<Seed> {
         ext: "obj",
         kind: Kind::Text,
         bytes: RICH_OBJ.as_bytes().to_vec(),
+    });
+    seeds.push(Seed {
+        name: "strips_ascii.ply",
+        ext: "ply",
+        kind: Kind::Text,
+        bytes: strips_ply(None),
+    });
+    seeds.push(Seed {
+        name: "strips_le.ply",
+        ext: "ply",
+        kind: Kind::BinaryPly { big_endian: false },
+        bytes: strips_ply(Some(false)),
+    });
+    seeds.push(Seed {
+        name: "grid_mtl.obj",
+        ext: "obj",
+        kind: Kind::ObjMtl {
+            mtl: GRID_MTL.as_bytes().to_vec(),
+        },
+        bytes: grid_mtl_obj().into_bytes(),
     });
     let (json, bin) = gltf_asset();
     for (name, ext, glb) in [("grid.gltf", "gltf", false), ("grid.glb", "glb", true)] {

@@ -7,6 +7,7 @@
 pub mod gltf;
 pub mod normals;
 pub mod obj;
+pub mod obj_materials;
 pub mod ply;
 pub mod serialized;
 // A generated test mesh (the scale tests and `examples/make_mesh`): only with `testing`.

@@ -13,19 +13,22 @@
 //! Mitsuba 3 likewise needs them on every vertex), and is then shaded flat.
 //!
 //! Ignored: materials (`mtllib`, `usemtl`; no `.mtl` file is opened, so a missing one is no
-//! error), lines (`l`), points (`p`), smoothing groups, free-form geometry.
+//! error: a `mesh` shape has one material; `obj_materials.rs` reads them for an OBJ file opened
+//! on its own), lines (`l`), points (`p`), smoothing groups, free-form geometry.
 //!
 //! Errors name the file and the line (`bunny.obj line 17: face index 4021 out of range (3000
 //! vertices)`). tobj's own errors carry no line, so the text is checked first, here: numbers
 //! that do not parse or are not finite, a face index of 0 or out of range (also for `vt` and
 //! `vn`), a face with fewer than 3 vertices. A few constructs tobj mishandles are rewritten
 //! before it sees them: `l` lines (tobj would turn a polyline into triangles), `usemtl` lines
-//! (one without a name after a space is an error in tobj), vertex colours (tobj fails when only some vertices have one) and
+//! (one without a name after a space is an error in tobj, and it reads another name where a
+//! tab follows the keyword), vertex colours (tobj fails when only some vertices have one) and
 //! one-number `vt` lines.
 
 use super::{MeshData, MeshError, check};
 use glam::{Vec2, Vec3};
 use std::borrow::Cow;
+use std::cell::Cell;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
@@ -40,14 +43,60 @@ pub fn load(path: &Path) -> Result<MeshData, MeshError> {
 /// Reads the OBJ text `bytes` as [`load`] reads a file; `path` only names it in errors (no file
 /// is opened: materials are ignored). The entry point of the fuzz target `mesh_obj`.
 pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
-    // Invalid UTF-8 can only matter in names and comments; tobj needs a `str`.
-    let text = String::from_utf8_lossy(bytes);
-    let totals = count(&text);
-    let rewrite = scan(path, &text, &totals)?;
-    let text: Cow<str> = if rewrite {
-        Cow::Owned(rewritten(&text))
+    let models = tobj_models(path, &text(bytes), &[])?;
+    let mesh = merge(path, &models.iter().collect::<Vec<_>>())?;
+    check(path, &mesh)?;
+    Ok(mesh)
+}
+
+/// The text of an OBJ file (invalid UTF-8 can only matter in names and comments; tobj needs a
+/// `str`).
+pub(super) fn text(bytes: &[u8]) -> Cow<'_, str> {
+    String::from_utf8_lossy(bytes)
+}
+
+/// The models tobj reads from the OBJ `text` (named `path` in errors), after this module's
+/// checks and rewriting (the module doc): triangulated, one vertex per distinct `v/vt/vn`
+/// triple, split where an `o` or `g` starts or the material changes. A `usemtl` resolves
+/// against `materials`, the names of every material the file's `.mtl` files define, in order
+/// (a name given twice: its last definition), wherever the `mtllib` lines are; a model's
+/// `material_id` indexes `materials`. With no materials, every `material_id` is `None`.
+pub(super) fn tobj_models(
+    path: &Path,
+    text: &str,
+    materials: &[String],
+) -> Result<Vec<tobj::Model>, MeshError> {
+    let totals = count(text);
+    let rewrite = scan(path, text, &totals)?;
+    let mut text: Cow<str> = if rewrite {
+        Cow::Owned(rewritten(text))
     } else {
-        text
+        Cow::Borrowed(text)
+    };
+    if !materials.is_empty() {
+        // tobj resolves a `usemtl` against the materials that `mtllib` lines before it have
+        // loaded: one `mtllib` line in front, for which the loader returns them all, makes
+        // every `usemtl` see every material (the file's own `mtllib` lines then load nothing).
+        text = Cow::Owned(format!("mtllib\n{text}"));
+    }
+    let first = Cell::new(true);
+    let loader = |_: &Path| -> tobj::MTLLoadResult {
+        if materials.is_empty() || !first.replace(false) {
+            return Err(tobj::LoadError::OpenFileFailed);
+        }
+        let names = materials
+            .iter()
+            .map(|name| tobj::Material {
+                name: name.clone(),
+                ..Default::default()
+            })
+            .collect();
+        let index = materials
+            .iter()
+            .enumerate()
+            .map(|(i, name)| (name.clone(), i))
+            .collect();
+        Ok((names, index))
     };
     let options = tobj::LoadOptions {
         single_index: true,
@@ -55,13 +104,16 @@ pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, _) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |_| {
-        Err(tobj::LoadError::OpenFileFailed)
-    })
-    .map_err(|e| MeshError::at(path, "", format!("tobj: {e}")))?;
-    let mesh = merge(path, &models)?;
-    check(path, &mesh)?;
-    Ok(mesh)
+    let (models, _) = tobj::load_obj_buf(&mut text.as_bytes(), &options, loader)
+        .map_err(|e| MeshError::at(path, "", format!("tobj: {e}")))?;
+    Ok(models)
+}
+
+/// The material a `usemtl` line names: everything after the keyword, trimmed (a name may hold
+/// spaces); `None` if nothing.
+pub(super) fn usemtl_name(line: &str) -> Option<&str> {
+    let name = line.trim_start().strip_prefix("usemtl")?.trim();
+    (!name.is_empty()).then_some(name)
 }
 
 /// How many `v`, `vt` and `vn` lines a file has.
@@ -112,11 +164,14 @@ fn scan(path: &Path, text: &str, totals: &Counts) -> Result<bool, MeshError> {
                 Ok(())
             }
             Some("usemtl") => {
-                // tobj takes the name after the first space; none (a bare `usemtl`, or a tab) is
-                // an error there.
-                rewrite |= line
+                // tobj takes the name after the first space: none (a bare `usemtl`, or a tab)
+                // is an error there, and a space in front or a tab after the keyword gives
+                // another name than `usemtl_name`'s.
+                let tobj_name = line
                     .split_once(' ')
-                    .is_none_or(|(_, name)| name.trim().is_empty());
+                    .map(|(_, name)| name.trim())
+                    .filter(|name| !name.is_empty());
+                rewrite |= tobj_name.is_none() || tobj_name != usemtl_name(line);
                 Ok(())
             }
             _ => Ok(()),
@@ -261,7 +316,13 @@ fn rewritten(text: &str) -> String {
     for line in text.lines() {
         let words: Vec<&str> = line.split_whitespace().collect();
         match words.as_slice() {
-            ["l", ..] | ["usemtl", ..] => {}
+            ["l", ..] => {}
+            ["usemtl", ..] => {
+                if let Some(name) = usemtl_name(line) {
+                    out.push_str("usemtl ");
+                    out.push_str(name);
+                }
+            }
             ["v", x, y, z, _, _, _] => out.push_str(&format!("v {x} {y} {z}")),
             ["vt", u] => out.push_str(&format!("vt {u} 0")),
             _ => out.push_str(line),
@@ -271,8 +332,8 @@ fn rewritten(text: &str) -> String {
     out
 }
 
-/// All of tobj's models as one mesh.
-fn merge(path: &Path, models: &[tobj::Model]) -> Result<MeshData, MeshError> {
+/// tobj's `models` as one mesh (normals and texture coordinates only if all of them have them).
+pub(super) fn merge(path: &Path, models: &[&tobj::Model]) -> Result<MeshData, MeshError> {
     let complete = |len: fn(&tobj::Mesh) -> usize| {
         models
             .iter()

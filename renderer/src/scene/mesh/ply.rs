@@ -9,6 +9,10 @@
 //! - element `face`: the list `vertex_indices` (or `vertex_index`), any integer types for the
 //!   length and the entries; polygons are fanned from their first vertex. Other properties are
 //!   attributes (below) or skipped.
+//! - element `tristrips` (triangle strips, `ply_strips.rs`): the same index list, −1 separating
+//!   strips; its other properties are skipped. A file may have it instead of `face` or beside
+//!   it; the strips' triangles then follow the faces', and the face attributes, which have no
+//!   values for them, are dropped.
 //! - every other element (`edge`, `material`, …) is skipped; elements may come in any order.
 //!
 //! Named attributes ([`MeshAttribute`]) are read from the other scalar properties of `vertex`
@@ -25,9 +29,9 @@
 //!
 //! Errors name the file and the element (`mesh.ply element face 12: index 900 out of range
 //! (512 vertices)`; ASCII files add the line), or the header line. Rejected: a missing `vertex`
-//! or `face` element, no faces, missing `x`/`y`/`z`, a non-finite (or beyond-`f32`) position,
-//! normal, texture coordinate or attribute value, an index out of range, a face with fewer than
-//! 3 vertices, a truncated file; never a panic.
+//! element, neither `face` nor `tristrips`, no triangles, missing `x`/`y`/`z`, a non-finite
+//! (or beyond-`f32`) position, normal, texture coordinate or attribute value, an index out of
+//! range, a face with fewer than 3 vertices, a truncated file; never a panic.
 //!
 //! Why not ply-rs for this (it is kept as an independent check in the tests): its header
 //! grammar panics on an element count beyond `u64` (`n.parse().unwrap()`), its ASCII grammar
@@ -44,6 +48,9 @@ use std::path::Path;
 #[path = "ply_attributes.rs"]
 mod attributes;
 use attributes::{Attributes, attribute_sources, attribute_vec};
+#[path = "ply_strips.rs"]
+mod strips;
+use strips::{Strips, read_strips};
 
 /// How a PLY file's payload (everything after `end_header`) is encoded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -520,16 +527,29 @@ fn read_payload<S: Source>(
 ) -> Result<MeshData, MeshError> {
     let find = |name: &str| header.elements.iter().find(|e| e.name == name);
     let vertex = find("vertex").ok_or_else(|| MeshError::at(path, "", "no vertex element"))?;
-    let face = find("face").ok_or_else(|| {
-        MeshError::at(
+    let face = find("face");
+    let tristrips = find("tristrips");
+    if face.is_none() && tristrips.is_none() {
+        return Err(MeshError::at(
             path,
             "",
-            "no face element (a point cloud has no surface to render)",
-        )
-    })?;
+            "no face or tristrips element (a point cloud has no surface to render)",
+        ));
+    }
     let roles = vertex_roles(path, vertex)?;
-    let index_list = face_index_list(path, face)?;
-    if face.count == 0 {
+    let face_list = face.map(|f| index_list(path, f)).transpose()?;
+    let strips = tristrips
+        .map(|t| {
+            Ok::<_, MeshError>(Strips {
+                index_list: index_list(path, t)?,
+                vertices: vertex.count,
+            })
+        })
+        .transpose()?;
+    if let Some(face) = face
+        && face.count == 0
+        && tristrips.is_none()
+    {
         return Err(MeshError::at(path, "element face", "no faces"));
     }
     if vertex.count > u64::from(u32::MAX) {
@@ -543,10 +563,13 @@ fn read_payload<S: Source>(
     let reserve = |e: &Element| e.count.min(bytes_left / e.min_size(header.encoding)) as usize;
     let mut mesh = MeshData {
         positions: Vec::with_capacity(reserve(vertex)),
-        indices: Vec::with_capacity(reserve(face)),
+        indices: Vec::with_capacity(face.map_or(0, reserve)),
         normals: roles.normal.map(|_| Vec::with_capacity(reserve(vertex))),
         uvs: roles.uv.map(|_| Vec::with_capacity(reserve(vertex))),
         attributes: Vec::new(),
+    };
+    let is = |element: &Element, other: Option<&Element>| {
+        other.is_some_and(|o| std::ptr::eq(element, o))
     };
     // The attributes of both elements, in the order the elements come in the file.
     let mut vertex_attributes = None;
@@ -554,7 +577,7 @@ fn read_payload<S: Source>(
     for element in &header.elements {
         let (kind, slot) = if std::ptr::eq(element, vertex) {
             (AttributeKind::Vertex, &mut vertex_attributes)
-        } else if std::ptr::eq(element, face) {
+        } else if is(element, face) {
             (AttributeKind::Face, &mut face_attributes)
         } else {
             continue;
@@ -570,10 +593,12 @@ fn read_payload<S: Source>(
         *slot = Some(Attributes { sources, first });
     }
     let vertex_attributes = vertex_attributes.expect("the vertex element is in the header");
-    let face_attributes = face_attributes.expect("the face element is in the header");
     let mut values = vec![0.0f64; vertex.properties.len()];
-    let mut face_values = vec![0.0f64; face.properties.len()];
+    let mut face_values = vec![0.0f64; face.map_or(0, |f| f.properties.len())];
     let mut polygon = Vec::new();
+    // The strips' triangles, kept apart so that they follow the faces' (whose attributes,
+    // one value per triangle, come first), whichever element comes first in the file.
+    let mut strip_triangles = Vec::new();
     for element in &header.elements {
         // An element without properties takes no bytes: nothing to read, however many.
         if element.properties.is_empty() {
@@ -589,11 +614,13 @@ fn read_payload<S: Source>(
                     &mut values,
                     &mut mesh,
                 )
-            } else if std::ptr::eq(element, face) {
+            } else if let (true, Some(index_list), Some(attributes)) =
+                (is(element, face), face_list, &face_attributes)
+            {
                 let face = Face {
                     index_list,
                     vertices: vertex.count,
-                    attributes: &face_attributes,
+                    attributes,
                 };
                 read_face(
                     source,
@@ -603,11 +630,27 @@ fn read_payload<S: Source>(
                     &mut polygon,
                     &mut mesh,
                 )
+            } else if let (true, Some(strips)) = (is(element, tristrips), &strips) {
+                read_strips(source, element, strips, &mut polygon, &mut strip_triangles)
             } else {
                 skip(source, element)
             };
             done.map_err(|m| MeshError::at(path, &source.position(&element.name, i), m))?;
         }
+    }
+    if !strip_triangles.is_empty() {
+        // Face attributes have no values for the strips' triangles: dropped (see the module
+        // doc), rather than refusing a file that has a surface to show.
+        mesh.attributes
+            .retain(|a| a.kind() == AttributeKind::Vertex);
+        mesh.indices.append(&mut strip_triangles);
+    }
+    if mesh.indices.is_empty() {
+        return Err(MeshError::at(
+            path,
+            "element tristrips",
+            "no triangles (every strip has fewer than 3 vertices or only degenerate triangles)",
+        ));
     }
     Ok(mesh)
 }
@@ -640,15 +683,16 @@ fn vertex_roles(path: &Path, vertex: &Element) -> Result<VertexRoles, MeshError>
     })
 }
 
-/// The index of the face element's index list (`vertex_indices` or `vertex_index`).
-fn face_index_list(path: &Path, face: &Element) -> Result<usize, MeshError> {
-    let at = |m: &str| MeshError::at(path, "element face", m);
-    let i = face
+/// The index of the index list (`vertex_indices` or `vertex_index`) of a `face` or
+/// `tristrips` element.
+fn index_list(path: &Path, element: &Element) -> Result<usize, MeshError> {
+    let at = |m: &str| MeshError::at(path, &format!("element {}", element.name), m);
+    let i = element
         .properties
         .iter()
         .position(|p| p.name == "vertex_indices" || p.name == "vertex_index")
         .ok_or_else(|| at("no property 'vertex_indices' (or 'vertex_index')"))?;
-    match face.properties[i].kind {
+    match element.properties[i].kind {
         Kind::List { item, .. } if item.int_range().is_some() => Ok(i),
         Kind::List { .. } => Err(at("the vertex index list must have an integer type")),
         Kind::Scalar(_) => Err(at("the vertex indices must be a list")),

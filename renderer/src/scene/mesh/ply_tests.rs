@@ -65,7 +65,7 @@ pub(crate) fn scrambled_mesh(
 }
 
 /// Writes `bytes` to `name` in the test folder.
-fn put(name: &str, bytes: &[u8]) -> PathBuf {
+pub(super) fn put(name: &str, bytes: &[u8]) -> PathBuf {
     let path = test_dir().join(name);
     std::fs::write(&path, bytes).unwrap();
     path
@@ -73,7 +73,7 @@ fn put(name: &str, bytes: &[u8]) -> PathBuf {
 
 /// One value of a fixture, with its PLY type.
 #[derive(Clone, Copy, Debug)]
-enum V {
+pub(super) enum V {
     I8(i8),
     U8(u8),
     I16(i16),
@@ -85,7 +85,7 @@ enum V {
 }
 
 /// A file of `header` (without `ply`/`format`/`end_header`) and `rows` (one element each).
-fn fixture(encoding: Encoding, header: &str, rows: &[Vec<V>]) -> Vec<u8> {
+pub(super) fn fixture(encoding: Encoding, header: &str, rows: &[Vec<V>]) -> Vec<u8> {
     let format = match encoding {
         Encoding::Ascii => "ascii",
         Encoding::BinaryLittleEndian => "binary_little_endian",
@@ -137,13 +137,13 @@ fn fixture(encoding: Encoding, header: &str, rows: &[Vec<V>]) -> Vec<u8> {
     out
 }
 
-const ENCODINGS: [Encoding; 3] = [
+pub(super) const ENCODINGS: [Encoding; 3] = [
     Encoding::Ascii,
     Encoding::BinaryLittleEndian,
     Encoding::BinaryBigEndian,
 ];
 
-fn tag(e: Encoding) -> &'static str {
+pub(super) fn tag(e: Encoding) -> &'static str {
     match e {
         Encoding::Ascii => "ascii",
         Encoding::BinaryLittleEndian => "le",
@@ -568,7 +568,7 @@ fn structural_errors_are_named() {
         (ascii(FACES, "3 0 1 2\n"), ": no vertex element"),
         (
             ascii(XYZ, "0 0 0\n1 0 0\n0 1 0\n"),
-            ": no face element (a point cloud has no surface to render)",
+            ": no face or tristrips element (a point cloud has no surface to render)",
         ),
         (
             ascii(
