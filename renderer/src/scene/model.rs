@@ -1,7 +1,8 @@
 //! A model file opened on its own (`lumis render bunny.ply`): the mesh becomes a scene with a
 //! camera on the model's front, lit so that its shape shows (`model_studio.rs`: the studio, and
-//! the rule by which the file's own emitters may light it instead). An OBJ or PLY file gets one
-//! diffuse material; a glTF file keeps its materials, emission and camera (`model_gltf.rs`).
+//! the rule by which the file's own emitters may light it instead). A PLY file gets one diffuse
+//! material, an OBJ file its `.mtl` materials (`mesh/obj_materials.rs`), a glTF file its
+//! materials, emission and camera (`model_gltf.rs`).
 //! Everything then goes through the JSON front end, so the model gets exactly the checks of a
 //! scene file: meshes and images already in memory (a glTF file's primitives and images, the
 //! studio's map) are handed to it under names such as `model.glb#nodes[0]
@@ -13,6 +14,7 @@
 use super::desc::{BackgroundDesc, SceneDesc};
 use super::error::SceneError;
 use super::mesh::MESH_EXTENSIONS;
+use super::mesh::obj_materials::load_obj_model;
 use super::model_studio as studio;
 use super::parse::parse_scene_value_preloaded;
 use super::parse_texture::Preloaded;
@@ -27,6 +29,8 @@ const VFOV_DEG: f64 = 40.0;
 pub(super) const SIZE: (u32, u32) = (640, 480);
 /// Albedo of the default material.
 const ALBEDO: f64 = 0.8;
+/// The default material's name (an OBJ's `.mtl` materials are `mtl NAME`).
+const DEFAULT_MATERIAL: &str = "model";
 /// Radiance of the environment without the studio.
 const ENVIRONMENT: f64 = 1.0;
 /// The automatic camera's elevation above the bounding box's centre, degrees.
@@ -58,9 +62,10 @@ pub fn model_scene(path: &Path) -> Result<SceneDesc, SceneError> {
     model_scene_with(path, ModelOptions::default())
 }
 
-/// The scene of a model file. OBJ and PLY: the mesh (diffuse, albedo 0.8, its vertex normals as
-/// shading normals where it has them) seen by the automatic camera, lit as `options` and the
-/// rule in `model_studio.rs` say. glTF: as docs/scene-format.md, "glTF materials", says.
+/// The scene of a model file. PLY: the mesh (diffuse, albedo 0.8, its vertex normals as shading
+/// normals where it has them); OBJ: a mesh per `.mtl` material it uses (docs/scene-format.md,
+/// "OBJ materials"); either seen by the automatic camera, lit as `options` and the rule in
+/// `model_studio.rs` say. glTF: as docs/scene-format.md, "glTF materials", says.
 pub fn model_scene_with(path: &Path, options: ModelOptions) -> Result<SceneDesc, SceneError> {
     let file = path
         .file_name()
@@ -91,29 +96,67 @@ pub(super) struct ModelParts {
     pub warnings: Vec<String>,
 }
 
-/// An OBJ or PLY file's parts: one mesh, one diffuse material, the automatic camera.
+/// An OBJ or PLY file's parts: one diffuse mesh (an OBJ: a mesh per `.mtl` material,
+/// `mesh/obj_materials.rs`), the automatic camera.
 fn mesh_model(path: &Path, file: &str) -> Result<ModelParts, SceneError> {
-    let data = super::mesh::load_mesh(path).map_err(|e| SceneError::new("", e.to_string()))?;
-    if data.indices.is_empty() {
+    let is_obj = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+    let (groups, obj_materials, warnings) = if is_obj {
+        let m = load_obj_model(path).map_err(|e| SceneError::new("", e.to_string()))?;
+        let groups = m.groups.into_iter().map(|g| (g.mesh, g.material)).collect();
+        (groups, m.materials, m.warnings)
+    } else {
+        let data = super::mesh::load_mesh(path).map_err(|e| SceneError::new("", e.to_string()))?;
+        (vec![(data, None)], Vec::new(), Vec::new())
+    };
+    if groups.iter().all(|(mesh, _)| mesh.indices.is_empty()) {
         return Err(SceneError::new("", "the model has no triangles").in_file(path));
     }
-    let bounds = bounds(&data.positions);
-    let camera = auto_camera(path, bounds, &mut data.positions.iter().copied())?;
+    let all = || groups.iter().flat_map(|(m, _)| m.positions.iter().copied());
+    let bounds = bounds(&all().collect::<Vec<_>>());
+    let camera = auto_camera(path, bounds, &mut all())?;
     let folder = path.parent().unwrap_or(Path::new(""));
     let mut preloaded = Preloaded::default();
-    preloaded.meshes.insert(folder.join(file), data);
     let mut materials = Map::new();
-    materials.insert(
-        "model".into(),
-        json!({"type": "diffuse", "albedo": [ALBEDO, ALBEDO, ALBEDO]}),
-    );
+    let mut shapes = Vec::new();
+    let single = groups.len() == 1 && groups[0].1.is_none();
+    for (mesh, material) in groups {
+        let (name, material) = match material {
+            None => {
+                let default = json!({"type": "diffuse", "albedo": [ALBEDO, ALBEDO, ALBEDO]});
+                materials.insert(DEFAULT_MATERIAL.into(), default);
+                (format!("{file}#no material"), None)
+            }
+            Some(k) => {
+                let m = &obj_materials[k];
+                let key = format!("mtl {}", m.name);
+                materials.insert(key.clone(), m.json.clone());
+                (format!("{file}#usemtl {}", m.name), Some((key, m.emission)))
+            }
+        };
+        // One mesh without materials keeps the file's own name (warnings say nothing more).
+        let name = if single { file.to_owned() } else { name };
+        let mut shape = json!({"type": "mesh", "file": name});
+        match material {
+            None => shape["material"] = json!(DEFAULT_MATERIAL),
+            Some((key, emission)) => {
+                shape["material"] = json!(key);
+                if let Some(e) = emission {
+                    shape["emission"] = json!(e);
+                }
+            }
+        }
+        preloaded.meshes.insert(folder.join(&name), mesh);
+        shapes.push(shape);
+    }
     Ok(ModelParts {
         camera,
         materials,
-        shapes: vec![json!({"type": "mesh", "file": file, "material": "model"})],
+        shapes,
         preloaded,
         bounds,
-        warnings: Vec::new(),
+        warnings,
     })
 }
 

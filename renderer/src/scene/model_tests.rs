@@ -379,3 +379,40 @@ fn an_emissive_label_keeps_the_sky_and_a_lamp_does_not() {
         }
     }
 }
+
+/// An OBJ file with a `.mtl`: a shape per material used (named `mtl NAME`), faces without one
+/// on the default material, `Ke` as the shape's emission, the `.mtl`'s warnings kept.
+#[test]
+fn an_obj_file_gets_its_mtl_materials_one_shape_each() {
+    let dir = Dir::new("model-mtl");
+    let path = dir.file("two.obj");
+    std::fs::write(
+        &path,
+        "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\n\
+         usemtl Red\nf 1 2 3\nusemtl Lamp\nf 1 3 4\nusemtl Nowhere\nf 1 2 5\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.file("two.mtl"),
+        "newmtl Red\nKd 0.8 0.1 0.1\nnewmtl Lamp\nKd 0 0 0\nKe 2 2 2\n",
+    )
+    .unwrap();
+    let d = plain(&path);
+    let names: Vec<&str> = d
+        .shapes
+        .iter()
+        .map(|s| d.materials[s.material.unwrap()].name.as_str())
+        .collect();
+    assert_eq!(names, ["mtl Red", "mtl Lamp", "model"]);
+    assert_eq!(
+        d.materials[d.shapes[0].material.unwrap()].material,
+        MaterialDesc::Diffuse {
+            albedo: DVec3::new(0.8, 0.1, 0.1)
+        }
+    );
+    assert_eq!(d.shapes[1].emission, DVec3::splat(2.0));
+    assert_eq!(d.shapes[0].emission, DVec3::ZERO);
+    assert_eq!(d.warnings.len(), 1, "{:?}", d.warnings);
+    assert!(d.warnings[0].contains("'Nowhere'"), "{:?}", d.warnings);
+    Scene::from_desc(&d).unwrap();
+}

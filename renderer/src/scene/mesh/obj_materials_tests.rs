@@ -246,14 +246,15 @@ fn ke_is_the_emission_and_an_emitter_is_not_masked() {
 }
 
 /// One warning for everything not rendered: by material, each keyword once, in file order;
-/// `Ka` and `map_Ka` are not named (ambient light means nothing to a path tracer); materials
-/// no face uses are not named.
+/// `Ka` and `map_Ka` are not named (ambient light means nothing to a path tracer), nor a white
+/// `Tf` (it filters nothing); materials no face uses are not named.
 #[test]
 fn unrendered_statements_are_one_warning_each_named_once() {
     let obj = format!("mtllib car.mtl\n{SQUARE}usemtl Body\nf 1 2 3\nusemtl Glass\nf 1 3 4\n");
     let mtl = "newmtl Body\nKa 1 1 1\nmap_Ka amb.png\nmap_Bump -bm 0.5 n.png\nmap_Ks s.png\n\
                bump n.png\nmap_Bump n2.png\nKd spectral red.rfl\nillum 2\n\
-               newmtl Glass\nTf 1 1 1\nillum 7\nPr 0.5\n\
+               Tf 1 1 1\n\
+               newmtl Glass\nTf 1 0.5 1\nillum 7\nPr 0.5\n\
                newmtl Unused\nrefl -type sphere r.png\n";
     let m = model(&obj, &[("car.mtl", mtl)]);
     assert_eq!(

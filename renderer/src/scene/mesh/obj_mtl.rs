@@ -163,6 +163,13 @@ fn statement(
         }
         "map_kd" => m.map_kd = Some(texture_file(m, keyword, rest)?),
         "ka" | "map_ka" => {}
+        // The transmission filter: white (what many exporters write for every material) filters
+        // nothing, so naming it would be a warning that changes nothing.
+        "tf" => {
+            if colour(m, keyword, values)?.is_some_and(|c| c != [1.0; 3]) {
+                m.unrendered(keyword);
+            }
+        }
         _ => m.unrendered(keyword),
     }
     Ok(())
