@@ -157,6 +157,7 @@ fn every_model_in_tests_data_opens_to_a_picture() {
 fn white_on_white_fails_the_contrast_check() {
     let path = common::data_dir().join("models/homer.obj");
     let p = picture(&path, ModelOptions { studio: false });
+    eprintln!("homer.obj without the studio: {p:?}");
     assert!(p.span >= MIN_SPAN && p.coverage >= MIN_COVERAGE, "{p:?}");
     assert!(p.contrast < MIN_CONTRAST, "{p:?}");
 }
