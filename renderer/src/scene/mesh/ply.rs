@@ -974,5 +974,8 @@ fn attribute_prefixes(mesh: &MeshData) -> io::Result<Vec<&str>> {
 }
 
 #[cfg(test)]
+#[path = "ply_attributes_tests.rs"]
+mod attributes_tests;
+#[cfg(test)]
 #[path = "ply_tests.rs"]
 pub(super) mod tests;
