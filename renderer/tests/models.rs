@@ -63,7 +63,7 @@ struct Picture {
 
 /// Rec. 709 luminance.
 fn luminance(c: Vec3) -> f64 {
-    c.dot(Vec3::new(0.2126, 0.7152, 0.0722)) as f64
+    lumis::math::luminance(c) as f64
 }
 
 /// The model's scene at [`SIZE`], rendered, measured.
@@ -90,12 +90,11 @@ fn picture(path: &Path, options: ModelOptions) -> Picture {
             })
         })
         .collect();
-    let of = |model: bool| {
-        let y: Vec<f64> = (0..mean.len())
+    let of = |model: bool| -> Vec<f64> {
+        (0..mean.len())
             .filter(|&k| sees_model[k] == model)
             .map(|k| luminance(mean[k]))
-            .collect();
-        y
+            .collect()
     };
     let (model, background) = (of(true), of(false));
     // The silhouette's bounding rectangle, as shares of the width and height.

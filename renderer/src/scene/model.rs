@@ -114,7 +114,7 @@ fn mesh_model(path: &Path, file: &str) -> Result<ModelParts, SceneError> {
         return Err(SceneError::new("", "the model has no triangles").in_file(path));
     }
     let all = || groups.iter().flat_map(|(m, _)| m.positions.iter().copied());
-    let bounds = bounds(&all().collect::<Vec<_>>());
+    let bounds = bounds(all());
     let camera = auto_camera(path, bounds, &mut all())?;
     let folder = path.parent().unwrap_or(Path::new(""));
     let mut preloaded = Preloaded::default();
@@ -122,30 +122,27 @@ fn mesh_model(path: &Path, file: &str) -> Result<ModelParts, SceneError> {
     let mut shapes = Vec::new();
     let single = groups.len() == 1 && groups[0].1.is_none();
     for (mesh, material) in groups {
-        let (name, material) = match material {
+        let (part, key, emission) = match material {
             None => {
                 let default = json!({"type": "diffuse", "albedo": [ALBEDO, ALBEDO, ALBEDO]});
                 materials.insert(DEFAULT_MATERIAL.into(), default);
-                (format!("{file}#no material"), None)
+                ("no material".to_owned(), DEFAULT_MATERIAL.to_owned(), None)
             }
             Some(k) => {
                 let m = &obj_materials[k];
                 let key = format!("mtl {}", m.name);
                 materials.insert(key.clone(), m.json.clone());
-                (format!("{file}#usemtl {}", m.name), Some((key, m.emission)))
+                (format!("usemtl {}", m.name), key, m.emission)
             }
         };
         // One mesh without materials keeps the file's own name (warnings say nothing more).
-        let name = if single { file.to_owned() } else { name };
-        let mut shape = json!({"type": "mesh", "file": name});
-        match material {
-            None => shape["material"] = json!(DEFAULT_MATERIAL),
-            Some((key, emission)) => {
-                shape["material"] = json!(key);
-                if let Some(e) = emission {
-                    shape["emission"] = json!(e);
-                }
-            }
+        let name = match single {
+            true => file.to_owned(),
+            false => format!("{file}#{part}"),
+        };
+        let mut shape = json!({"type": "mesh", "file": name, "material": key});
+        if let Some(e) = emission {
+            shape["emission"] = json!(e);
         }
         preloaded.meshes.insert(folder.join(&name), mesh);
         shapes.push(shape);
@@ -183,17 +180,10 @@ fn finish(
         .collect();
     let (background, mean) = if options.studio {
         let (ground, ground_material) = studio::ground(lo, hi);
-        if materials
-            .insert(studio::GROUND_MATERIAL.into(), ground_material)
-            .is_some()
-        {
-            // A file's material of that name would be replaced silently.
-            let m = format!(
-                "the model has a material named '{}', the studio's ground's: use --no-studio",
-                studio::GROUND_MATERIAL
-            );
-            return Err(SceneError::new("", m).in_file(path));
-        }
+        // No model material has this name: glTF's are `materials[k] …` or `default material…`,
+        // an OBJ's `mtl …` or `model`, a PLY's `model`.
+        let replaced = materials.insert(studio::GROUND_MATERIAL.into(), ground_material);
+        debug_assert!(replaced.is_none(), "a model material named like the ground");
         shapes.push(ground);
         let map = studio::studio_map();
         let mean = studio::mean_luminance(&map);
@@ -273,11 +263,11 @@ pub(super) fn auto_camera(
 }
 
 /// The bounding box of `positions` (infinite when empty).
-pub(super) fn bounds(positions: &[Vec3]) -> (DVec3, DVec3) {
+pub(super) fn bounds(positions: impl IntoIterator<Item = Vec3>) -> (DVec3, DVec3) {
     let (lo, hi) = positions
-        .iter()
+        .into_iter()
         .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(a, b), p| {
-            (a.min(*p), b.max(*p))
+            (a.min(p), b.max(p))
         });
     (lo.as_dvec3(), hi.as_dvec3())
 }

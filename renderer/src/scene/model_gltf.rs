@@ -22,11 +22,17 @@ pub(super) fn gltf_model(path: &Path, file: &str) -> Result<ModelParts, SceneErr
     let mut ignored = materials.ignored;
     let mut warnings = Vec::new();
     let mut preloaded = Preloaded::default();
-    let positions: Vec<Vec3> = primitives
-        .iter()
-        .flat_map(|p| p.mesh.positions.iter().copied())
-        .collect();
-    let (lo, hi) = bounds(&positions);
+    let all = || {
+        primitives
+            .iter()
+            .flat_map(|p| p.mesh.positions.iter().copied())
+    };
+    let (lo, hi) = bounds(all());
+    let radius = (0.5 * (hi - lo).length()).max(1e-6);
+    let camera = match camera {
+        Some(c) => gltf_camera(path, &c, radius)?,
+        None => auto_camera(path, (lo, hi), &mut all())?,
+    };
 
     let mut shapes = Vec::new();
     for p in primitives {
@@ -59,11 +65,6 @@ pub(super) fn gltf_model(path: &Path, file: &str) -> Result<ModelParts, SceneErr
         preloaded.images.insert((folder.join(name), raw), image);
     }
 
-    let radius = (0.5 * (hi - lo).length()).max(1e-6);
-    let camera = match camera {
-        Some(c) => gltf_camera(path, &c, radius)?,
-        None => auto_camera(path, (lo, hi), &mut positions.into_iter())?,
-    };
     let mut seen = std::collections::HashSet::new();
     ignored.retain(|i| seen.insert(i.clone()));
     if !ignored.is_empty() {

@@ -8,7 +8,7 @@ use crate::integrator::Settings;
 use crate::scene::Scene;
 use crate::scene::desc::{BackgroundDesc, GeometryDesc, MaterialDesc, ProjectionDesc, SceneDesc};
 use crate::scene::mesh::gltf::test_asset::*;
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use serde_json::json;
 use std::path::Path;
 use std::sync::Arc;
@@ -307,7 +307,7 @@ fn centre_mean(p: &Progressive, r: u32) -> f32 {
     let mut sum = 0.0;
     for y in cy - r / 2..cy + r / 2 {
         for x in cx - r / 2..cx + r / 2 {
-            sum += mean[(y * f.width + x) as usize].dot(Vec3::new(0.2126, 0.7152, 0.0722));
+            sum += crate::math::luminance(mean[(y * f.width + x) as usize]);
         }
     }
     sum / (r * r) as f32
