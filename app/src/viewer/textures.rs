@@ -44,10 +44,18 @@ impl Picture {
     }
 }
 
+/// What a texture shows: the addresses of the pixel buffers it was made from and the display.
+type Key = (usize, usize, Display);
+
+/// The buffers behind a [`Key`]'s addresses, held while the texture shows them: a freed buffer's
+/// address can be given to the next image, whose texture would then never be uploaded (the
+/// viewer's wipe test saw a side show an older image under load, 2026-12-08).
+type Pins = Vec<Arc<dyn std::any::Any + Send + Sync>>;
+
 /// The uploaded textures and what each showed.
 #[derive(Default)]
 pub struct TextureCache {
-    slots: HashMap<Picture, ((usize, usize, Display), egui::TextureHandle)>,
+    slots: HashMap<Picture, (Key, Pins, egui::TextureHandle)>,
     used: HashSet<Picture>,
 }
 
@@ -91,15 +99,20 @@ impl ViewerApp {
             return Some(display.texture(i, &live, gain));
         }
         let ptr = |p: &Arc<Vec<Vec3>>| Arc::as_ptr(p) as usize;
-        let (key, make): (_, Box<dyn FnOnce() -> egui::ColorImage>) = match picture {
+        let pin = |p: &Arc<Vec<Vec3>>| -> Arc<dyn std::any::Any + Send + Sync> { p.clone() };
+        let (key, pins, make): (Key, Pins, Box<dyn FnOnce() -> egui::ColorImage>) = match picture {
             Picture::Image(s) => {
                 let (px, w, h) = self.source_pixels(s)?;
                 let display = Display {
                     content: Content::Image,
                     ..self.display
                 };
-                let key = (ptr(&px), 0, display);
-                (key, Box::new(move || color_image(w, h, &px, &[], display)))
+                let (key, pins) = ((ptr(&px), 0, display), vec![pin(&px)]);
+                (
+                    key,
+                    pins,
+                    Box::new(move || color_image(w, h, &px, &[], display)),
+                )
             }
             Picture::Error(i) => {
                 let l = self.output.lanes.get(i)?;
@@ -118,8 +131,10 @@ impl ViewerApp {
                     self.display
                 };
                 let key = (ptr(&px), Arc::as_ptr(&errors) as usize, display);
+                let pins: Pins = vec![pin(&px), errors.clone()];
                 (
                     key,
+                    pins,
                     Box::new(move || color_image(w, h, &px, &errors, display)),
                 )
             }
@@ -134,8 +149,10 @@ impl ViewerApp {
                     ..self.display
                 };
                 let key = (Arc::as_ptr(&parts) as usize, 1, display);
+                let pins: Pins = vec![parts.clone()];
                 (
                     key,
+                    pins,
                     Box::new(move || {
                         // A GPU lane or a preview records no split: uniform dark grey, which
                         // the legend explains.
@@ -156,8 +173,10 @@ impl ViewerApp {
                     content: Content::Difference,
                 };
                 let key = (ptr(&pa), ptr(&pb), display);
+                let pins = vec![pin(&pa), pin(&pb)];
                 (
                     key,
+                    pins,
                     Box::new(move || {
                         egui::ColorImage::from_rgb(
                             [w as usize, h as usize],
@@ -169,16 +188,16 @@ impl ViewerApp {
         };
         let cache = &mut self.textures;
         cache.used.insert(picture);
-        if let Some((k, t)) = cache.slots.get_mut(&picture) {
+        if let Some((k, p, t)) = cache.slots.get_mut(&picture) {
             if *k != key {
-                *k = key;
+                (*k, *p) = (key, pins);
                 t.set(make(), PANE_SAMPLING);
             }
             return Some(t.id());
         }
         let t = ctx.load_texture(format!("{picture:?}"), make(), PANE_SAMPLING);
         let id = t.id();
-        cache.slots.insert(picture, (key, t));
+        cache.slots.insert(picture, (key, pins, t));
         Some(id)
     }
 }
