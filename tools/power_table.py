@@ -94,7 +94,7 @@ SECONDS = re.compile(r", [0-9.]+ s\)")
 def build(binaries):
     """Builds the test binaries with the mutation points compiled in; returns {name: executable}.
     They are then run directly, so edits made while the table runs cannot change what is measured."""
-    cmd = ["cargo", "test", "--release", "-p", "lumis-renderer", "--features", "mutants", "--no-run",
+    cmd = ["cargo", "test", "--release", "-p", "lumis-renderer", "--features", "mutants full-suite", "--no-run",
            "--message-format=json"]
     for b in binaries:
         cmd += ["--test", b]

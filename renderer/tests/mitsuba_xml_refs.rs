@@ -126,7 +126,7 @@ fn assert_detected(name: &str, m: &Imported, seed: u32, what: &str) {
     );
 }
 
-/// Every strategy of [`STRATEGIES`] with `spp[i]` samples, seed `seed + i`, against the
+/// Every strategy of [`STRATEGIES`] in this tier with `spp[i]` samples, seed `seed + i`, against the
 /// reference; panics with every failure.
 fn every_strategy(name: &str, spp: [u32; 5], seed: u32) {
     let m = import(name, &[]);
@@ -134,6 +134,8 @@ fn every_strategy(name: &str, spp: [u32; 5], seed: u32) {
     let failures: Vec<String> = STRATEGIES
         .into_iter()
         .enumerate()
+        // The CI tier renders MIS (power) alone (`common/tier.rs`).
+        .filter(|(_, s)| tier::runs(*s))
         .filter_map(|(i, s)| compare(name, &m.desc, rr, s, spp[i], seed + i as u32).err())
         .collect();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
@@ -152,6 +154,7 @@ fn xml_meshes_matches_its_mitsuba_reference() {
 /// the reference was made with) fails, MIS 256 spp, seed 1840. Measured: 7 of 60 blocks, worst
 /// |z| 54.8 (critical 3.76).
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_meshes_wrong_preset_is_detected() {
     let m = import("xml_meshes", &[("metal", "Cu")]);
     assert_detected("xml_meshes", &m, 1840, "with metal=Cu");
@@ -170,6 +173,7 @@ fn xml_shapes_matches_its_mitsuba_reference() {
 /// up, away from the scene) fails, MIS 256 spp, seed 1860. Measured: 60 of 60 blocks, worst
 /// |z| 2105 (critical 3.76).
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_shapes_unflipped_light_is_detected() {
     let m = import("xml_shapes", &[("flip", "false")]);
     assert_detected("xml_shapes", &m, 1860, "with flip=false");
@@ -190,6 +194,7 @@ fn xml_beckmann_matches_its_mitsuba_reference() {
 /// importer that ignored Mitsuba's default distribution would make) fails, MIS 256 spp, seed
 /// 1880. Measured: 33 of 60 blocks, worst |z| 27.3 (critical 3.76); stage 2 36 of 60.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_beckmann_as_ggx_is_detected() {
     use lumis::scene::MaterialDesc;
     use lumis::scene::desc::Distribution;
@@ -224,6 +229,7 @@ fn xml_anisotropic_matches_its_mitsuba_reference() {
 /// would make) fails, MIS 256 spp, seed 1900. Measured: 6 of 60 blocks, worst |z| 11.0
 /// (critical 3.76); stage 2 6 of 60, |z| 15.1.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_anisotropic_turned_lobe_is_detected() {
     let m = import("xml_anisotropic", &[("au", "0.4"), ("av", "0.05")]);
     assert_detected("xml_anisotropic", &m, 1900, "with the torus's lobe turned");
@@ -240,6 +246,7 @@ fn xml_plastic_matches_its_mitsuba_reference() {
 /// Power: `xml_plastic.xml` with `-D nonlinear=false` (the floor's internal bounces untinted:
 /// what an importer that dropped the flag would render) fails, MIS 256 spp, seed 1920.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_plastic_linear_floor_is_detected() {
     let m = import("xml_plastic", &[("nonlinear", "false")]);
     assert_detected("xml_plastic", &m, 1920, "with nonlinear=false");
@@ -249,6 +256,7 @@ fn xml_plastic_linear_floor_is_detected() {
 /// before Mitsuba's: Schlick Fresnel, GGX, energy-conserving base) fails, MIS 256 spp, seed
 /// 1930.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_plastic_in_lumis_coupling_is_detected() {
     use lumis::scene::{MaterialDesc, PlasticModel};
     let mut m = import("xml_plastic", &[]);
@@ -277,6 +285,7 @@ fn xml_anisotropic_textured_matches_its_mitsuba_reference() {
 /// textures and the constants: a turned lobe wherever the two differ) fails, MIS 256 spp, seed
 /// 1950.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_anisotropic_textured_swapped_slots_are_detected() {
     use lumis::scene::MaterialDesc;
     let mut m = import("xml_anisotropic_textured", &[]);
@@ -325,6 +334,7 @@ fn xml_thinlens_matches_its_mitsuba_reference() {
 /// `smaller` (y) one (`-D fov_axis=x`: the importer bug of ignoring `fov_axis`, a view 25%
 /// narrower) fails, MIS 256 spp, seed 1971.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_thinlens_fov_on_the_wrong_axis_is_detected() {
     let m = import("xml_thinlens", &[("fov_axis", "x")]);
     assert_detected("xml_thinlens", &m, 1971, "with fov_axis=x");
@@ -340,6 +350,7 @@ fn xml_orthographic_matches_its_mitsuba_reference() {
 /// Power: `xml_orthographic.xml` with `-D sx=2.3` (a film 4.5% wider: what a film size off by
 /// a few pixels' worth would render) fails, MIS 256 spp, seed 1990.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_orthographic_wider_film_is_detected() {
     let m = import("xml_orthographic", &[("sx", "2.3")]);
     assert_detected("xml_orthographic", &m, 1990, "with sx=2.3");
@@ -358,6 +369,7 @@ fn xml_principal_point_matches_its_mitsuba_reference() {
 /// Power: `xml_principal_point.xml` with `-D ox=-0.15` (the horizontal offset with the wrong
 /// sign) fails, MIS 256 spp, seed 2170.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_principal_point_wrong_sign_is_detected() {
     let m = import("xml_principal_point", &[("ox", "-0.15")]);
     assert_detected("xml_principal_point", &m, 2170, "with ox=-0.15");
@@ -375,6 +387,7 @@ fn xml_cylinder_matches_its_mitsuba_reference() {
 /// axis: the same surface, its u axis and so its checkerboard turned, what an importer that
 /// ignored the rotation in the u axis would render) fails, MIS 256 spp, seed 2370.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_cylinder_turned_texture_is_detected() {
     let m = import("xml_cylinder", &[("turn", "30")]);
     assert_detected("xml_cylinder", &m, 2370, "with turn=30");
@@ -384,6 +397,7 @@ fn xml_cylinder_turned_texture_is_detected() {
 /// along the axis instead of around it: what ∂p/∂u along the axis would render) fails, MIS
 /// 256 spp, seed 2371.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_cylinder_tangent_along_the_axis_is_detected() {
     let m = import("xml_cylinder", &[("alpha_u", "0.35"), ("alpha_v", "0.05")]);
     assert_detected("xml_cylinder", &m, 2371, "with alpha_u and alpha_v swapped");
@@ -401,6 +415,7 @@ fn xml_thin_matches_its_mitsuba_reference() {
 /// normal incidence 0.10 for 0.17, the light it passes 0.90 for 0.83) fails, MIS 256 spp, seed
 /// 2540.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_thin_wrong_index_is_detected() {
     let m = import("xml_thin", &[("ior", "1.6")]);
     assert_detected("xml_thin", &m, 2540, "with ior=1.6");
@@ -419,6 +434,7 @@ fn xml_mask_matches_its_mitsuba_reference() {
 /// Power: `xml_mask.xml` with `-D raw=true` (the mask's 8-bit texels read as linear, not
 /// sRGB-decoded: a mid-grey texel is 0.50 opaque for 0.22) fails, MIS 256 spp, seed 2780.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_mask_undecoded_opacity_is_detected() {
     let m = import("xml_mask", &[("raw", "true")]);
     assert_detected("xml_mask", &m, 2780, "with raw=true");
@@ -436,6 +452,7 @@ fn xml_two_sided_matches_its_mitsuba_reference() {
 /// inside=orange`: what a front/back convention the wrong way round renders) fails, MIS 256
 /// spp, seed 2880.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_two_sided_swapped_sides_are_detected() {
     let m = import(
         "xml_two_sided",
@@ -455,6 +472,7 @@ fn xml_blend_matches_its_mitsuba_reference() {
 /// Power: `xml_blend.xml` with `-D w=0.7` (the panel's weight the wrong way round: 0.7 for 0.3)
 /// fails, MIS 256 spp, seed 2980.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_blend_reversed_weight_is_detected() {
     let m = import("xml_blend", &[("w", "0.7")]);
     assert_detected("xml_blend", &m, 2980, "with w=0.7");
@@ -473,6 +491,7 @@ fn xml_mesh_attribute_matches_its_mitsuba_reference() {
 /// (`-D left=face_color`: what a lookup by the wrong attribute or kind renders) fails, MIS 256
 /// spp, seed 3080.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_mesh_attribute_wrong_attribute_is_detected() {
     let m = import("xml_mesh_attribute", &[("left", "face_color")]);
     assert_detected("xml_mesh_attribute", &m, 3080, "with left=face_color");
@@ -490,6 +509,7 @@ fn xml_instances_matches_its_mitsuba_reference() {
 /// instance transform dropped or applied in the wrong order renders) fails, MIS 256 spp, seed
 /// 3180.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_instances_wrong_placement_is_detected() {
     let m = import("xml_instances", &[("angle", "0")]);
     assert_detected("xml_instances", &m, 3180, "with angle=0");
@@ -507,6 +527,7 @@ fn xml_blend_delta_matches_its_mitsuba_reference() {
 /// sample keeps its own weight, the unbiased blend Mitsuba does not render) fails, MIS 256 spp,
 /// seed 3280.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_blend_delta_as_a_plain_mix_is_detected() {
     let mut m = import("xml_blend_delta", &[]);
     let mut blends = 0;
@@ -530,6 +551,7 @@ fn xml_principled_matches_its_mitsuba_reference() {
 /// Power: `xml_principled.xml` with `-D trans=0.7` (the right sphere's spec_trans 0.7 for 0.9:
 /// a transmission lobe weighted 22% low) fails, MIS 256 spp, seed 3380.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_principled_wrong_transmission_is_detected() {
     let m = import("xml_principled", &[("trans", "0.7")]);
     assert_detected("xml_principled", &m, 3380, "with trans=0.7");
@@ -558,6 +580,7 @@ fn xml_principledthin_matches_its_mitsuba_reference() {
     let failures: Vec<String> = STRATEGIES
         .into_iter()
         .enumerate()
+        .filter(|(_, s)| tier::runs(*s))
         .filter_map(|(i, strategy)| {
             let seed = 3470 + i as u32;
             let settings = Settings {
@@ -587,6 +610,7 @@ fn xml_principledthin_rough_matches_its_mitsuba_reference() {
 /// Power of the rough copy's light-only test: its bubble's spec_trans 0.6 for 0.8 (`-D
 /// trans=0.6`) fails light-only per block, 256 spp, seed 3580.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_principledthin_rough_light_only_detects_a_wrong_transmission() {
     let name = "xml_principledthin_rough";
     let m = import(name, &[("trans", "0.6")]);
@@ -600,6 +624,7 @@ fn xml_principledthin_rough_light_only_detects_a_wrong_transmission() {
 /// Power: `xml_principledthin.xml` with `-D trans=0.6` (the bubble's spec_trans 0.6 for 0.8: its
 /// specular lobes weighted 25% low, its diffuse ones doubled) fails, MIS 256 spp, seed 3480.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_principledthin_wrong_transmission_is_detected() {
     let m = import("xml_principledthin", &[("trans", "0.6")]);
     assert_detected("xml_principledthin", &m, 3480, "with trans=0.6");
@@ -618,6 +643,7 @@ fn xml_textured_shapes_matches_its_mitsuba_reference() {
 /// its own pole: the same surface, its texture turned, what a sphere whose uv ignored the
 /// rotation would render) fails, MIS 256 spp, seed 2390.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_textured_shapes_turned_sphere_is_detected() {
     let m = import("xml_textured_shapes", &[("turn", "20")]);
     assert_detected("xml_textured_shapes", &m, 2390, "with turn=20");
@@ -634,6 +660,8 @@ fn every_strategy_seeing_delta_lights(name: &str, seed: u32) {
     let mut failures: Vec<String> = DELTA_STRATEGIES
         .into_iter()
         .enumerate()
+        // The CI tier renders MIS (power) alone (`common/tier.rs`).
+        .filter(|(_, s)| tier::runs(*s))
         .filter_map(|(i, s)| compare(name, &m.desc, rr, s, 256, seed + i as u32).err())
         .collect();
     let bvh = Settings {
@@ -700,6 +728,7 @@ fn xml_spot_matches_its_mitsuba_reference() {
 /// Power: the textured spot's texture mirrored left to right (its frame's x turned round: the
 /// convention bug of `look_at`'s left-handed x) fails, seed 2341.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_spot_mirrored_texture_is_detected() {
     use lumis::lights::Light;
     assert_scene_change_detected("xml_spot", 2341, "with the texture mirrored", |s| {
@@ -725,6 +754,7 @@ fn xml_directional_matches_its_mitsuba_reference() {
 /// |z| 3.22 of 3.76, same seed): the shadows move by a pixel or two, which 16 × 16 blocks
 /// average away.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_directional_turned_is_detected() {
     use lumis::lights::Light;
     let turn = glam::Mat3::from_rotation_y(10f32.to_radians());
@@ -748,6 +778,7 @@ fn xml_projector_matches_its_mitsuba_reference() {
 /// Power: the projected image mirrored vertically (Mitsuba's v running the other way) fails,
 /// seed 2343.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn xml_projector_flipped_image_is_detected() {
     use lumis::lights::Light;
     assert_scene_change_detected("xml_projector", 2343, "with the image flipped", |s| {

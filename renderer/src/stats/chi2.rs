@@ -344,8 +344,8 @@ impl<'a> ChiSquareTest<'a> {
                     ..Tally::default()
                 };
                 let n = CHUNK.min(self.sample_count - c * CHUNK);
-                for (u1, u2) in chunk_uniforms(self.seed, c, n) {
-                    let Some(s) = self.sampler.sample(u1, u2) else {
+                for (k, (u1, u2)) in chunk_uniforms(self.seed, c, n).enumerate() {
+                    let Some(s) = self.sampler.sample_at(c * CHUNK + k, u1, u2) else {
                         t.delta_or_none += 1;
                         continue;
                     };

@@ -7,41 +7,18 @@ use super::chi2::drawn_uniforms;
 use super::domain::Domain;
 use super::sampler::{DirectionSample, DirectionalSampler};
 use glam::{Vec2, Vec3};
-use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
 
-/// Samples looked up by their uniforms; `pdf` and `domain` from `density`.
+/// Samples looked up by their position in the test's draws, each stored with the uniforms it
+/// was computed for, so that a lookup for other uniforms is caught; `pdf` and `domain` from
+/// `density`. (They were looked up by their uniforms in a hash map before: hashing and probing
+/// half a million keys per case was a fifth of the GPU χ² test's time, 2026-12-08.)
 pub struct Precomputed<D> {
-    samples: HashMap<[u32; 3], Option<DirectionSample>, BuildHasherDefault<KeyHasher>>,
+    samples: Vec<([u32; 3], Option<DirectionSample>)>,
     /// The density the samples are tested against.
     pub density: D,
 }
 
-/// The keys' hash: their words multiplied into one u64. The keys are the bits of random
-/// floats, so the default SipHash's protection against chosen keys buys nothing, and it cost
-/// about 7% of the GPU χ² test's time (hashing half a million keys per case, 2026-12-07).
-#[derive(Default)]
-struct KeyHasher(u64);
-
-impl Hasher for KeyHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        for b in bytes.chunks(4) {
-            let mut word = [0u8; 4];
-            word[..b.len()].copy_from_slice(b);
-            self.write_u32(u32::from_le_bytes(word));
-        }
-    }
-
-    fn write_u32(&mut self, n: u32) {
-        self.0 = (self.0.rotate_left(26) ^ n as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    }
-
-    fn finish(&self) -> u64 {
-        self.0 ^ (self.0 >> 29)
-    }
-}
-
-/// The lookup key of a uniform pair (its exact bits).
+/// The uniform pair's exact bits.
 fn key(u1: f32, u2: Vec2) -> [u32; 3] {
     [u1.to_bits(), u2.x.to_bits(), u2.y.to_bits()]
 }
@@ -69,13 +46,18 @@ impl<D: DirectionalSampler> Precomputed<D> {
 }
 
 impl<D: DirectionalSampler> DirectionalSampler for Precomputed<D> {
-    /// The precomputed sample; a pair that was not precomputed (a test with another seed or
-    /// count) is a bug in the caller.
-    fn sample(&self, u1: f32, u2: Vec2) -> Option<DirectionSample> {
-        *self
-            .samples
-            .get(&key(u1, u2))
-            .expect("uniforms not precomputed: same seed and sample count as the test?")
+    /// Only draws by position have samples here ([`Self::sample_at`]).
+    fn sample(&self, _u1: f32, _u2: Vec2) -> Option<DirectionSample> {
+        panic!("precomputed samples are drawn by position (sample_at)")
+    }
+
+    /// The precomputed sample; other uniforms at that position (a test with another seed or
+    /// count) are a bug in the caller.
+    fn sample_at(&self, index: usize, u1: f32, u2: Vec2) -> Option<DirectionSample> {
+        match self.samples.get(index) {
+            Some((k, s)) if *k == key(u1, u2) => *s,
+            _ => panic!("uniforms not precomputed: same seed and sample count as the test?"),
+        }
     }
 
     fn pdf(&self, w: Vec3) -> f32 {

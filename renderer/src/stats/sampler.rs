@@ -25,6 +25,14 @@ pub trait DirectionalSampler: Sync {
     /// `None` when the routine produces no sample.
     fn sample(&self, u1: f32, u2: Vec2) -> Option<DirectionSample>;
 
+    /// The `index`-th draw of a test, from its uniforms `u1`, `u2`: [`Self::sample`] for a
+    /// routine that runs here; samples computed beforehand look theirs up by position
+    /// ([`crate::stats::Precomputed`]).
+    fn sample_at(&self, index: usize, u1: f32, u2: Vec2) -> Option<DirectionSample> {
+        let _ = index;
+        self.sample(u1, u2)
+    }
+
     /// Solid-angle density of the non-delta samples at unit direction `w`.
     fn pdf(&self, w: Vec3) -> f32;
 
@@ -45,6 +53,9 @@ pub trait DirectionalSampler: Sync {
 impl<S: DirectionalSampler + ?Sized> DirectionalSampler for Box<S> {
     fn sample(&self, u1: f32, u2: Vec2) -> Option<DirectionSample> {
         (**self).sample(u1, u2)
+    }
+    fn sample_at(&self, index: usize, u1: f32, u2: Vec2) -> Option<DirectionSample> {
+        (**self).sample_at(index, u1, u2)
     }
     fn pdf(&self, w: Vec3) -> f32 {
         (**self).pdf(w)

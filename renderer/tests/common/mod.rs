@@ -8,6 +8,7 @@ pub mod ground;
 pub mod hidden;
 pub mod protocol;
 pub mod surface_detail;
+pub mod tier;
 
 use glam::Vec3;
 use lumis::engine::Progressive;

@@ -60,6 +60,7 @@ fn the_gpu_renders_the_cpus_bump_mapped_image_with_each_estimator() {
 /// The image test's power: the GPU's render at half the bump scale against the CPU's at the
 /// scene's must fail (MIS, seed 4506).
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn a_gpu_at_half_the_bump_scale_is_detected() {
     if context().is_none() {
         return;

@@ -169,6 +169,7 @@ fn gpu_glass_room_matches_reference() {
 /// the floor, ceiling and back wall's albedo × 1.03 fail light and MIS (|z| 10), the red wall's
 /// (|z| 5.9) too; the sphere's IOR 1.45 instead of 1.5 and the slab's 1.4 pass every strategy.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn glass_error_is_detected() {
     let text = std::fs::read_to_string(data_dir().join("scenes/glass_room.json")).unwrap();
     let mut desc: serde_json::Value = serde_json::from_str(&text).unwrap();
@@ -213,6 +214,7 @@ fn gpu_envmap_objects_matches_reference() {
 /// blocks, worst |z| 99, 3160 and 6.5; critical 3.91; the sky seen directly is nearly noise-free,
 /// hence the first two).
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn envmap_error_is_detected() {
     let text = std::fs::read_to_string(data_dir().join("scenes/envmap_objects.json")).unwrap();
     let folder = data_dir().join("scenes");
@@ -248,6 +250,7 @@ fn envmap_error_is_detected() {
 /// (the same as `reference_scenes::local_bias_is_detected`) fails the GPU's MIS render of every
 /// scene at this file's spp and seed. The full table is in `docs/testing.md`.
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn local_bias_is_detected() {
     for (name, material) in LOCAL_BIAS_MATERIALS {
         let biased = scene_with_scaled_albedo(name, material, 1.03);

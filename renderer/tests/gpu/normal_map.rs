@@ -77,6 +77,7 @@ fn the_gpus_back_of_a_two_sided_normal_map_is_mitsubas() {
 /// gate): the GPU's render of the scene with its normal map removed (the plain rough plastic)
 /// must fail against the CPU's with it (MIS, seed 4406).
 #[test]
+#[cfg_attr(not(feature = "full-suite"), ignore = "full tier: a power check")]
 fn a_gpu_without_the_normal_map_is_detected() {
     if crate::gpu_common::context().is_none() {
         return;
