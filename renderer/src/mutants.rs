@@ -278,6 +278,7 @@ pub fn scale_albedo(
         }
         MaterialDesc::Principled(p) => p.base_color *= factor,
         MaterialDesc::PrincipledThin(p) => p.base_color *= factor,
+        MaterialDesc::GltfPbr(p) => p.base_color *= factor,
     }
     Ok(())
 }
