@@ -916,5 +916,8 @@ fn a_gltf_pbr_material_is_refused_by_name() {
     let err = write_export(&desc, &dir.0.join("s.xml"), &ExportOptions::default()).unwrap_err();
     let err = err.to_string();
     assert!(err.contains("materials") && err.contains(&name), "{err}");
-    assert!(err.contains("gltf_pbr material cannot be exported"), "{err}");
+    assert!(
+        err.contains("gltf_pbr material cannot be exported"),
+        "{err}"
+    );
 }

@@ -451,7 +451,11 @@ fn resolution_scene() -> Scene {
     scene.material_textures[i] = Some(t);
     // glTF materials: base colour, roughness (G) and metallic (B, as glTF's texture holds them),
     // both ids in c.w; and a metallic alone (the roughness half 0xFFFF).
-    let i = scene.material_names.iter().position(|n| n == "gltf").unwrap();
+    let i = scene
+        .material_names
+        .iter()
+        .position(|n| n == "gltf")
+        .unwrap();
     let base = checker(Vec3::new(0.8, 0.2, 0.1), Vec3::new(0.1, 0.5, 0.9));
     let mut t = MaterialTextures::new(base, None, None, None, &scene.materials[i]).unwrap();
     t.principled[0] = bitmap(Channel::G);

@@ -1,7 +1,7 @@
 //! glTF 2.0 materials as lumis materials, for a glTF file opened on its own (the rule is in
 //! docs/scene-format.md, "glTF materials"): each material the placed primitives use becomes
-//! JSON materials of the scene format (a conductor, a plastic, a dielectric, or mixes of them)
-//! and an emission, with its textures as `bitmap` objects whose images this module has decoded
+//! JSON materials of the scene format (glTF's own metallic-roughness material, `gltf_pbr`; with
+//! `KHR_materials_transmission`, mixes of it and a dielectric) and an emission, with its textures as `bitmap` objects whose images this module has decoded
 //! already, so that the JSON front end checks everything exactly as it checks a scene file.
 //!
 //! The base colour's alpha becomes the material's `opacity` (alpha masks): `MASK` the alpha
@@ -255,6 +255,7 @@ impl Reader<'_> {
             }
             None => (Param::Constant(vec3(base_factor)), None),
         };
+        let textured_base = base.is_texture();
         let alpha_factor = unit(self, &format!("{pbr_at}.baseColorFactor[3]"), f[3])?;
         let opacity = match alpha_mode {
             Some(cutoff) => self.opacity(&at, &base_at, base_texture, alpha_factor, cutoff)?,
@@ -267,27 +268,26 @@ impl Reader<'_> {
             }
             None => None,
         };
-        let alpha = match &mr {
-            // α = roughness² is not linear in the texel: baked per texel, before filtering.
+        // The gltf_pbr material squares the roughness at the hit, after filtering, as glTF does.
+        let roughness_param = match &mr {
             Some(t) => {
-                let name = format!("{}#{at}.alpha", self.file_name);
-                let data = t
-                    .image
-                    .data
-                    .iter()
-                    .map(|c| Vec3::splat((roughness * c.y).powi(2)));
-                let image = Image {
-                    width: t.image.width,
-                    height: t.image.height,
-                    data: data.collect(),
-                };
-                self.out.images.push((name.clone(), true, Arc::new(image)));
                 let mut j = t.json.clone();
-                j["file"] = json!(name);
+                j["channel"] = json!("g");
+                j["scale"] = json!(roughness);
                 Param::Texture(j)
             }
-            None => Param::Constant(json!((roughness as f64).powi(2))),
+            None => Param::Constant(json!(roughness)),
         };
+        let metallic_param = match &mr {
+            Some(t) if metallic > 0.0 => {
+                let mut j = t.json.clone();
+                j["channel"] = json!("b");
+                j["scale"] = json!(metallic);
+                Param::Texture(j)
+            }
+            _ => Param::Constant(json!(metallic)),
+        };
+        // The weight of the metal in a transmitting material's mix.
         let metal_weight = match &mr {
             Some(t) if metallic > 0.0 => {
                 let mut j = t.json.clone();
@@ -313,6 +313,28 @@ impl Reader<'_> {
             None => None,
         };
         let transmission = transmission.filter(|(factor, _)| *factor > 0.0);
+        // A transmitting material's glass takes α = roughness², which is not linear in the texel:
+        // baked per texel, before filtering.
+        let alpha = match &mr {
+            Some(t) if transmission.is_some() => {
+                let name = format!("{}#{at}.alpha", self.file_name);
+                let data = t
+                    .image
+                    .data
+                    .iter()
+                    .map(|c| Vec3::splat((roughness * c.y).powi(2)));
+                let image = Image {
+                    width: t.image.width,
+                    height: t.image.height,
+                    data: data.collect(),
+                };
+                self.out.images.push((name.clone(), true, Arc::new(image)));
+                let mut j = t.json.clone();
+                j["file"] = json!(name);
+                Param::Texture(j)
+            }
+            _ => Param::Constant(json!((roughness as f64).powi(2))),
+        };
         if transmission.is_some() {
             if base.is_texture() || base_factor != Vec3::ONE {
                 self.out.ignored.push(format!(
@@ -349,20 +371,23 @@ impl Reader<'_> {
             json.insert(key.clone(), v);
             key
         };
-        // The dielectric part: a plastic (a diffuse at ior 1, whose coat reflects nothing),
-        // a glass, or a mix of the two by the transmission.
-        let plastic = if ior == 1.0 {
-            two_sided(json!({"type": "diffuse", "albedo": base.json()}))
-        } else {
+        // glTF's material as its specification defines it, with the metallic given.
+        let pbr = |metallic: &Param| {
             two_sided(json!({
-                "type": "plastic", "albedo": base.json(), "alpha": alpha.json(), "ior": ior,
-                "specular": [1, 1, 1],
+                "type": "gltf_pbr", "base_color": base.json(), "roughness": roughness_param.json(),
+                "metallic": metallic.json(), "ior": ior,
             }))
         };
+        let Some(transmission) = transmission else {
+            let top = add("", pbr(&metallic_param));
+            return self.finish(m, others, &at, top, opacity, textured_base || mr.is_some());
+        };
+        // With transmission, the dielectric part is the opaque material (metallic 0), a glass,
+        // or a mix of the two by the transmission; the metal (metallic 1) is mixed in by the
+        // metallic (the material is linear in it, so this is the material's expected value).
+        let opaque = pbr(&Param::Constant(json!(0.0)));
         let glass = json!({"type": "dielectric", "ior": ior, "alpha": alpha.json()});
-        let conductor = two_sided(json!({
-            "type": "conductor", "alpha": alpha.json(), "reflectance": base.json(),
-        }));
+        let metal = pbr(&Param::Constant(json!(1.0)));
         let mix = |a: &str, b: &str, w: &Param| json!({"type": "mix", "materials": [a, b], "weight": w.json()});
         let metal_only = metallic == 1.0 && metal_weight.is_none();
         let top_suffix = |part: &str| {
@@ -374,25 +399,39 @@ impl Reader<'_> {
         };
         let dielectric_part = match &transmission {
             _ if metal_only => None,
-            None => Some(add(&top_suffix(" (plastic)"), plastic)),
-            Some((factor, None)) if *factor == 1.0 => Some(add(&top_suffix(" (glass)"), glass)),
-            Some((factor, texture)) => {
+            (factor, None) if *factor == 1.0 => Some(add(&top_suffix(" (glass)"), glass)),
+            (factor, texture) => {
                 let w = texture.clone().unwrap_or(Param::Constant(json!(factor)));
-                let a = add(" (plastic)", plastic);
+                let a = add(" (opaque)", opaque);
                 let b = add(" (glass)", glass);
                 Some(add(&top_suffix(" (dielectric)"), mix(&a, &b, &w)))
             }
         };
         let top = match (dielectric_part, &metal_weight) {
-            (None, _) => add("", conductor),
+            (None, _) => add("", metal),
             (Some(d), None) => d,
             (Some(d), Some(w)) => {
-                let c = add(" (metal)", conductor);
+                let c = add(" (metal)", metal);
                 add("", mix(&d, &c, w))
             }
         };
 
-        let emission = self.emission(m, others, &at)?;
+        let textured = textured_base || mr.is_some() || transmission.1.is_some();
+        self.finish(m, others, &at, top, opacity, textured)
+    }
+
+    /// The emission of `m` (at `at`) and the opacity of its material `top`, and what its
+    /// primitives get (`textured`: a parameter of the material is).
+    fn finish(
+        &mut self,
+        m: &json::Material,
+        others: Option<&Map<String, Value>>,
+        at: &str,
+        top: String,
+        opacity: Option<Param>,
+        textured: bool,
+    ) -> Result<Mapped, MeshError> {
+        let emission = self.emission(m, others, at)?;
         // An emitter's material takes no opacity (Mitsuba masks a BSDF, not its emission).
         let opacity = match opacity {
             Some(_) if emission.is_some() => {
@@ -406,9 +445,7 @@ impl Reader<'_> {
         if let Some(o) = &opacity {
             self.out.json[&top]["opacity"] = o.json();
         }
-        let textured = base.is_texture()
-            || mr.is_some()
-            || transmission.as_ref().is_some_and(|(_, t)| t.is_some())
+        let textured = textured
             || emission.as_ref().is_some_and(Param::is_texture)
             || opacity.as_ref().is_some_and(Param::is_texture);
         Ok(Mapped {
