@@ -1,8 +1,8 @@
 // glTF's metallic-roughness material, the twin of `materials/gltf_pbr.rs`, which states the model
 // (the specification's Appendix B, separable Smith G) and its sampling.
-// Record (gpu/scene/materials.rs): a.xyz base colour; b = (roughness, metallic, ior, _); c.w the
-// ids of its roughness (low 16 bits) and metallic (high 16 bits, 0xFFFF: none) textures, NONE
-// where neither is textured; a.w its base colour texture's.
+// Record (gpu/scene/materials.rs): a.xyz base colour; b = (roughness, metallic, ior, specular);
+// c.xyz the specular colour, c.w the ids of its roughness (low 16 bits) and metallic (high 16
+// bits, 0xFFFF: none) textures, NONE where neither is textured; a.w its base colour texture's.
 
 // `GltfPbr::alpha`: roughness², at least SMOOTH_ALPHA.
 fn gltf_pbr_alpha(m: Material) -> f32 {
@@ -16,16 +16,26 @@ fn gltf_pbr_schlick_rgb(f0: vec3f, cos_theta: f32) -> vec3f {
     return f0 + (vec3f(1.0) - f0) * (m2 * m2 * m);
 }
 
+// `GltfPbr::non_metal_fresnel`: specular·Schlick(min(f0·specular colour, 1), cos).
+fn gltf_pbr_non_metal_fresnel(m: Material, cos: f32) -> vec3f {
+    let f0 = min(schlick_f0_from_ior(m.b.z) * m.c.xyz, vec3f(1.0));
+    return m.b.w * gltf_pbr_schlick_rgb(f0, cos);
+}
+
+fn gltf_pbr_max3(v: vec3f) -> f32 {
+    return max(max(v.x, v.y), v.z);
+}
+
 // `GltfPbr::specular_probability`.
 fn gltf_pbr_specular_probability(m: Material, wo: vec3f) -> f32 {
     let metallic = m.b.y;
-    let f_d = fresnel_schlick(schlick_f0_from_ior(m.b.z), wo.z);
+    let f_d = gltf_pbr_non_metal_fresnel(m, wo.z);
     let f_m = gltf_pbr_schlick_rgb(m.a.xyz, wo.z);
-    let w_d = (1.0 - metallic) * (1.0 - f_d) * luminance(m.a.xyz);
+    let w_d = (1.0 - metallic) * (1.0 - gltf_pbr_max3(f_d)) * luminance(m.a.xyz);
     if w_d <= 0.0 {
         return 1.0;
     }
-    let w_s = (1.0 - metallic) * f_d + metallic * luminance(f_m);
+    let w_s = (1.0 - metallic) * luminance(f_d) + metallic * luminance(f_m);
     return max(w_s / (w_s + w_d), GLTF_PBR_MIN_SPECULAR_RATE);
 }
 
@@ -39,9 +49,9 @@ fn gltf_pbr_eval(m: Material, wo: vec3f, wi: vec3f) -> vec3f {
     let alpha = gltf_pbr_alpha(m);
     let s = ggx_d(alpha, hv.xyz) * ggx_g2_separable(alpha, wo, wi) / (4.0 * wo.z);
     let metallic = m.b.y;
-    let f_d = fresnel_schlick(schlick_f0_from_ior(m.b.z), hv.w);
+    let f_d = gltf_pbr_non_metal_fresnel(m, hv.w);
     let f_m = gltf_pbr_schlick_rgb(m.a.xyz, hv.w);
-    let non_metal = (1.0 - f_d) * INV_PI * wi.z * m.a.xyz + vec3f(f_d * s);
+    let non_metal = (1.0 - gltf_pbr_max3(f_d)) * INV_PI * wi.z * m.a.xyz + f_d * s;
     return (1.0 - metallic) * non_metal + metallic * s * f_m;
 }
 

@@ -13,7 +13,9 @@ use std::f64::consts::PI;
 /// α²/(π((N·H)²(α² − 1) + 1)²), V the separable Smith
 /// 1/((|N·L| + √(α² + (1 − α²)(N·L)²))(|N·V| + √(α² + (1 − α²)(N·V)²))), Schlick's Fresnel at
 /// |V·H| with the base colour (metal) or ((1 − ior)/(1 + ior))² (dielectric) as f0, then
-/// mix(mix(diffuse, specular, F_d), F_m·specular, metallic).
+/// mix(mix(diffuse, specular, F_d), F_m·specular, metallic); the dielectric's `fresnel_mix` as
+/// `KHR_materials_specular` rewrites it: f0 = min(f0·specularColor, 1),
+/// (1 − specular·max(fr))·diffuse + specular·fr·specular_brdf (the plain one at its defaults).
 fn spec_brdf(p: &GltfPbr, v: DVec3, l: DVec3) -> DVec3 {
     if v.z <= 0.0 || l.z <= 0.0 {
         return DVec3::ZERO;
@@ -28,9 +30,11 @@ fn spec_brdf(p: &GltfPbr, v: DVec3, l: DVec3) -> DVec3 {
     let c = p.base_color.as_dvec3();
     let m5 = (1.0 - v.dot(h).abs()).powi(5);
     let f0 = ((1.0 - p.ior as f64) / (1.0 + p.ior as f64)).powi(2);
-    let f_d = f0 + (1.0 - f0) * m5;
+    let f0 = (f0 * p.specular_color.as_dvec3()).min(DVec3::ONE);
+    let fr = f0 + (DVec3::ONE - f0) * m5;
+    let weight = p.specular as f64;
     let f_m = c + (DVec3::ONE - c) * m5;
-    let dielectric = (1.0 - f_d) * c / PI + DVec3::splat(f_d * specular);
+    let dielectric = (1.0 - weight * fr.max_element()) * c / PI + weight * fr * specular;
     let metal = f_m * specular;
     dielectric * (1.0 - p.metallic as f64) + metal * p.metallic as f64
 }
@@ -71,7 +75,8 @@ fn dir(theta_deg: f64) -> DVec3 {
 /// scale covers f32 rounding near the horizon). Catches any term written otherwise: the
 /// height-correlated Smith G in place of the separable one (several % apart at these
 /// roughnesses), α = roughness instead of roughness², the Fresnel at N·V instead of V·H, the
-/// diffuse lobe not weighted by 1 − F, a metal's f0 not the base colour.
+/// diffuse lobe not weighted by 1 − F, a metal's f0 not the base colour; with
+/// `KHR_materials_specular` (a third of the pairs), the colour's clamp or the weight misplaced.
 #[test]
 fn eval_is_the_specifications_formula() {
     let mut rng = Rng::new(9710, 0, 0);
@@ -82,6 +87,16 @@ fn eval_is_the_specifications_formula() {
             metallic: [0.0, 1.0, rng.next_f32()][k % 3],
             roughness: 0.1 + 0.9 * rng.next_f32(),
             ior: 1.0 + 2.0 * rng.next_f32(),
+            ..GltfPbr::default()
+        };
+        let p = if k % 3 == 1 {
+            GltfPbr {
+                specular: rng.next_f32(),
+                specular_color: Vec3::new(rng.next_f32(), rng.next_f32(), 30.0 * rng.next_f32()),
+                ..p
+            }
+        } else {
+            p
         };
         let wo = crate::sampling::sample_uniform_sphere(rng.next_2d());
         let wi = crate::sampling::sample_uniform_sphere(rng.next_2d());
@@ -126,7 +141,7 @@ fn white_furnace_albedo_matches_quadrature() {
                     base_color: Vec3::ONE,
                     metallic,
                     roughness,
-                    ior: 1.5,
+                    ..GltfPbr::default()
                 };
                 let wo = dir(th);
                 let quad = spec_albedo(&p, wo, 1500, 600).x;
@@ -197,6 +212,7 @@ fn shared_checks() {
                 metallic: 0.0,
                 roughness: 0.3,
                 ior: 1.8,
+                ..GltfPbr::default()
             },
             2.0,
         ),
@@ -214,6 +230,18 @@ fn shared_checks() {
                 metallic: 0.6,
                 roughness: 0.7,
                 ior: 1.0,
+                ..GltfPbr::default()
+            },
+            2.0,
+        ),
+        (
+            GltfPbr {
+                base_color: Vec3::new(0.6, 0.6, 0.3),
+                metallic: 0.2,
+                roughness: 0.4,
+                specular: 0.5,
+                specular_color: Vec3::new(1.5, 0.5, 20.0),
+                ..GltfPbr::default()
             },
             2.0,
         ),
@@ -257,7 +285,7 @@ fn lobe_probabilities_and_the_mixtures_pdf() {
         roughness: 0.1,
         ..GltfPbr::default()
     };
-    let f = fresnel_schlick(0.04, wo.z);
+    let f = super::super::fresnel::fresnel_schlick(0.04, wo.z);
     let p_s = white.specular_probability(wo);
     assert!((p_s - f.max(MIN_SPECULAR_RATE)).abs() < 1e-6, "{p_s} {f}");
     let ior1 = GltfPbr { ior: 1.0, ..white };

@@ -26,8 +26,9 @@
 //   PrincipledThin: a.xyz base colour, b, c.xyz and d.xy its scalars, h.z its rates and scalar
 //               texture ids in `tables` (`materials/principled_thin.wgsl`); c.w as a
 //               principled's; the same from both sides, never two-sided.
-//   GltfPbr:    a.xyz base colour, b = (roughness, metallic, ior, _); c.w the ids of its roughness
-//               (low 16 bits) and metallic (high 16) textures (`materials/gltf_pbr.wgsl`).
+//   GltfPbr:    a.xyz base colour, b = (roughness, metallic, ior, specular), c.xyz the specular
+//               colour; c.w the ids of its roughness (low 16 bits) and metallic (high 16)
+//               textures (`materials/gltf_pbr.wgsl`).
 //   Only the principled kinds fill d.
 //   Every kind: a.w, c.w = bits of the ids of its colour texture (a diffuse's or plastic's albedo,
 //       a conductor's reflectance: replaces a.xyz) and its roughness textures (α, or α_u in the

@@ -482,6 +482,10 @@ pub struct GltfPbrDesc {
     pub scalars: [f64; 2],
     /// The dielectric's index of refraction, finite and ≥ 1.
     pub ior: f64,
+    /// `KHR_materials_specular`'s factor, in [0, 1].
+    pub specular: f64,
+    /// `KHR_materials_specular`'s colour factor, each component finite and ≥ 0.
+    pub specular_color: DVec3,
 }
 
 impl Default for GltfPbrDesc {
@@ -492,6 +496,8 @@ impl Default for GltfPbrDesc {
             base_color: p.base_color.as_dvec3(),
             scalars: crate::materials::gltf_pbr::GltfParam::ALL.map(|k| k.get(&p) as f64),
             ior: p.ior as f64,
+            specular: p.specular as f64,
+            specular_color: p.specular_color.as_dvec3(),
         }
     }
 }
@@ -502,6 +508,8 @@ impl GltfPbrDesc {
         let mut p = crate::materials::GltfPbr {
             base_color: self.base_color.as_vec3(),
             ior: self.ior as f32,
+            specular: self.specular as f32,
+            specular_color: self.specular_color.as_vec3(),
             ..Default::default()
         };
         for (k, v) in crate::materials::gltf_pbr::GltfParam::ALL
@@ -1138,6 +1146,13 @@ fn bsdf_json(m: &NamedMaterial) -> Value {
             });
             let names = crate::materials::gltf_pbr::GltfParam::ALL.map(|k| k.name());
             principled_family_keys(&mut obj, &names, &p.scalars, &[], &[], &m.textures);
+            // KHR_materials_specular's keys only where they change something.
+            if p.specular != 1.0 {
+                obj["specular"] = json!(p.specular);
+            }
+            if p.specular_color != DVec3::ONE {
+                obj["specular_color"] = vec3(p.specular_color);
+            }
             obj
         }
     };

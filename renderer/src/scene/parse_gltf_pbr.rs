@@ -3,14 +3,15 @@
 //! a texture, default 1), `roughness` and `metallic` (each a number in [0, 1] or a texture read as
 //! a scalar, default 1: glTF's `roughnessFactor` and `metallicFactor`, or the G and B channels of
 //! its `metallicRoughnessTexture` through a bitmap's `channel`), `ior` (a number ≥ 1, default 1.5,
-//! `KHR_materials_ior`), and `two_sided`, `normal_map`, `bump_map`, `opacity` as every
-//! reflecting material has them.
+//! `KHR_materials_ior`), `specular` (a number in [0, 1], default 1) and `specular_color` (a colour
+//! of finite components ≥ 0, default white; `KHR_materials_specular`, which allows them above 1),
+//! and `two_sided`, `normal_map`, `bump_map`, `opacity` as every reflecting material has them.
 
 use super::desc::{GltfPbrDesc, MaterialDesc, MaterialTextures};
 use super::error::SceneError;
 use super::parse_materials::unit_color;
 use super::parse_texture::{TextureLoader, TextureUse, texture_at};
-use super::walk::Obj;
+use super::walk::{Obj, check_components};
 use crate::materials::gltf_pbr::GltfParam;
 
 /// A `gltf_pbr` material; its textures go into `t` (`base_color` into `albedo`, the scalars into
@@ -24,6 +25,8 @@ pub(crate) fn parse_gltf_pbr(
         "type",
         "base_color",
         "ior",
+        "specular",
+        "specular_color",
         "two_sided",
         "normal_map",
         "bump_map",
@@ -61,6 +64,21 @@ pub(crate) fn parse_gltf_pbr(
             return Err(SceneError::new(obj.at("ior"), msg));
         }
         p.ior = ior;
+    }
+    if let Some(x) = obj.opt_number("specular")? {
+        if !(0.0..=1.0).contains(&x) {
+            let msg = format!("specular {x} is outside [0, 1]");
+            return Err(SceneError::new(obj.at("specular"), msg));
+        }
+        p.specular = x;
+    }
+    if obj.get("specular_color").is_some() {
+        p.specular_color = check_components(
+            obj.vec3("specular_color")?,
+            &obj.at("specular_color"),
+            |x| x >= 0.0 && (x as f32).is_finite(),
+            "must be a finite number ≥ 0",
+        )?;
     }
     Ok(MaterialDesc::GltfPbr(p))
 }

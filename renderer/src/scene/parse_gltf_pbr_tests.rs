@@ -27,6 +27,7 @@ fn defaults_are_gltfs() {
     assert_eq!(p.base_color, DVec3::ONE);
     assert_eq!(p.scalars, [1.0, 1.0]);
     assert_eq!(p.ior, 1.5);
+    assert_eq!((p.specular, p.specular_color), (1.0, DVec3::ONE));
     assert_eq!(*p, GltfPbrDesc::default());
     assert!(m.two_sided && !m.material.transmits());
 }
@@ -36,7 +37,7 @@ fn defaults_are_gltfs() {
 fn every_key_is_read_and_written_back() {
     let v = json!({
         "type": "gltf_pbr", "base_color": [0.8, 0.4, 0.2], "roughness": 0.3, "metallic": 0.6,
-        "ior": 1.33, "two_sided": false,
+        "ior": 1.33, "two_sided": false, "specular": 0.25, "specular_color": [2, 0.5, 0],
     });
     let d = parse_scene_value(&with(v)).unwrap();
     let MaterialDesc::GltfPbr(p) = &d.materials[3].material else {
@@ -45,6 +46,8 @@ fn every_key_is_read_and_written_back() {
     assert_eq!(p.scalars, [0.3, 0.6]);
     let m = p.material();
     assert_eq!((m.roughness, m.metallic, m.ior), (0.3, 0.6, 1.33));
+    assert_eq!(m.specular, 0.25);
+    assert_eq!(m.specular_color, glam::Vec3::new(2.0, 0.5, 0.0));
     assert_eq!(m.base_color, glam::Vec3::new(0.8, 0.4, 0.2));
     assert!(!d.materials[3].two_sided);
     let back = parse_scene_value(&d.to_json()).unwrap();
@@ -91,6 +94,16 @@ fn bad_input_is_one_located_error() {
     }
     let s = with(json!({"type": "gltf_pbr", "base_color": [0.5, 1.5, 0.5]}));
     expect_err(&s, &format!("{PATH}.base_color[1]"), "[0, 1]");
+    for bad in [1.5, -0.5] {
+        let s = with(json!({"type": "gltf_pbr", "specular": bad}));
+        expect_err(&s, &format!("{PATH}.specular"), "[0, 1]");
+    }
+    let s = with(json!({"type": "gltf_pbr", "specular_color": [1, -0.5, 1]}));
+    expect_err(
+        &s,
+        &format!("{PATH}.specular_color[1]"),
+        "finite number ≥ 0",
+    );
     let s = with(json!({"type": "gltf_pbr", "alpha": 0.5}));
     expect_err(&s, &format!("{PATH}.alpha"), "unknown key `alpha`");
     let tex = json!({"type": "checkerboard", "color0": 0.5, "color1": 2.5});

@@ -774,7 +774,8 @@ pub fn principled_thin_cases() -> Vec<Case> {
 /// metal and a coloured rough dielectric at every angle of [`THETAS_DEG`], a half-metallic one at
 /// θo ∈ {30°, 85°}, a narrow metal (roughness 0.25, α 0.0625: half vectors zoomed on the normal)
 /// at θo ∈ {0°, 60°, 89°}, and a dielectric of ior 1 (the specular lobe's floor rate) at θo ∈
-/// {0°, 60°}. Named `gltf_pbr/{what}/th{θ}`.
+/// {0°, 60°}, and one with `KHR_materials_specular` (weight ½, a colour clamped in one channel)
+/// at θo ∈ {30°, 85°}. Named `gltf_pbr/{what}/th{θ}`.
 pub fn gltf_pbr_cases() -> Vec<Case> {
     use crate::materials::GltfPbr;
     let mut out = Vec::new();
@@ -815,8 +816,18 @@ pub fn gltf_pbr_cases() -> Vec<Case> {
         metallic: 0.0,
         roughness: 0.6,
         ior: 1.0,
+        ..GltfPbr::default()
     };
     add("ior1", ior1, &[0.0, 60.0]);
+    let specular = GltfPbr {
+        base_color: Vec3::new(0.6, 0.6, 0.3),
+        metallic: 0.2,
+        roughness: 0.5,
+        specular: 0.5,
+        specular_color: Vec3::new(1.5, 0.5, 20.0),
+        ..GltfPbr::default()
+    };
+    add("specular", specular, &[30.0, 85.0]);
     out
 }
 

@@ -1,7 +1,8 @@
 //! Parity of glTF's metallic-roughness material's WGSL twin (`materials/gltf_pbr.wgsl`) with
 //! `materials/gltf_pbr.rs`: eval, pdf and sampling of materials across its parameters at random
-//! direction pairs (seed 44); and a program with it and nothing else that samples GGX (its
-//! roughness and metallic textured, the base colour too) renders as the CPU.
+//! direction pairs (seed 44), `KHR_materials_specular`'s weight and colour among them; and a
+//! program with it and nothing else that samples GGX (its roughness and metallic textured, the
+//! base colour too) renders as the CPU.
 
 use crate::gpu_common;
 use gpu_common::parity::*;
@@ -18,6 +19,8 @@ fn configs() -> Vec<serde_json::Value> {
         json!({"type": "gltf_pbr", "base_color": [0.5, 0.5, 0.5], "metallic": 0,
                "roughness": 0.7, "ior": 1.0}),
         json!({"type": "gltf_pbr", "base_color": [0.95, 0.64, 0.54], "roughness": 0.05}),
+        json!({"type": "gltf_pbr", "base_color": [0.6, 0.6, 0.3], "metallic": 0.2,
+               "roughness": 0.4, "specular": 0.5, "specular_color": [1.5, 0.5, 20]}),
     ]
 }
 
@@ -45,9 +48,10 @@ fn gltf_pbr_program_renders_as_the_cpu() {
     let mut shapes = Vec::new();
     for (i, c) in configs.into_iter().enumerate() {
         materials.insert(format!("p{i}"), c);
-        shapes.push(json!({"type": "sphere", "center": [i as f64 - 2.5, 0.4, 0], "radius": 0.4, "material": format!("p{i}")}));
+        shapes.push(json!({"type": "sphere", "center": [0.9 * i as f64 - 2.7, 0.4, 0], "radius": 0.4, "material": format!("p{i}")}));
     }
-    shapes.push(json!({"type": "quad", "corner": [-3, 0, -3], "edge_u": [0, 0, 6], "edge_v": [6, 0, 0], "material": "p5"}));
+    // The textured one (the last) on the floor too.
+    shapes.push(json!({"type": "quad", "corner": [-3, 0, -3], "edge_u": [0, 0, 6], "edge_v": [6, 0, 0], "material": "p6"}));
     shapes.push(json!({"type": "quad", "corner": [-0.5, 2.5, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "emission": [8, 8, 8]}));
     let desc = json!({
         "camera": {"from": [0, 1.2, -5], "to": [0, 0.4, 0], "up": [0, 1, 0], "vfov_deg": 50, "width": 32, "height": 24},

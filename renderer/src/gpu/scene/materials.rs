@@ -363,8 +363,8 @@ pub(super) fn encode(
                 Material::GltfPbr(p) => GpuMaterial {
                     h: [kind, two_sided as u32, 0, smooth],
                     a: v4(p.base_color, 0.0),
-                    b: [p.roughness, p.metallic, p.ior, 0.0],
-                    c: z,
+                    b: [p.roughness, p.metallic, p.ior, p.specular],
+                    c: v4(p.specular_color, 0.0),
                     d: z,
                 },
                 // The same from both sides.

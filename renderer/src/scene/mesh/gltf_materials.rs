@@ -8,7 +8,8 @@
 //! against `alphaCutoff` per texel, `BLEND` the alpha itself as stochastic opacity.
 //!
 //! What lumis does not render (normal maps, extensions other than
-//! `KHR_materials_ior`, `KHR_materials_transmission`, `KHR_materials_emissive_strength` and
+//! `KHR_materials_ior`, `KHR_materials_specular` (its factors; not its textures),
+//! `KHR_materials_transmission`, `KHR_materials_emissive_strength` and
 //! `KHR_texture_transform`, texture rotation, a second texture coordinate set, a sampler whose
 //! two axes wrap differently, nearest filtering) is collected by glTF path into
 //! [`Materials::ignored`], which the caller writes as one warning (occlusion maps are not named:
@@ -34,8 +35,9 @@ use std::sync::Arc;
 
 /// The extensions lumis maps (all others are named in the warning); required, they do not stop
 /// the geometry either.
-pub const HANDLED: [&str; 4] = [
+pub const HANDLED: [&str; 5] = [
     "KHR_materials_ior",
+    "KHR_materials_specular",
     "KHR_materials_transmission",
     "KHR_materials_emissive_strength",
     "KHR_texture_transform",
@@ -308,6 +310,10 @@ impl Reader<'_> {
             return Err(self.error(&ior_at, format!("{ior} must be at least 1")));
         }
 
+        let (specular, specular_color) = match extension(others, "KHR_materials_specular") {
+            Some(e) => self.specular(e, &at)?,
+            None => (1.0, [1.0; 3]),
+        };
         let transmission = match extension(others, "KHR_materials_transmission") {
             Some(e) => Some(self.transmission(e, &at)?),
             None => None,
@@ -339,6 +345,12 @@ impl Reader<'_> {
             if base.is_texture() || base_factor != Vec3::ONE {
                 self.out.ignored.push(format!(
                     "{at}: the base colour's tint of light through KHR_materials_transmission"
+                ));
+            }
+            if specular != 1.0 || specular_color != [1.0; 3] {
+                self.out.ignored.push(format!(
+                    "{at}: KHR_materials_specular on the light through \
+                     KHR_materials_transmission (lumis' glass takes its Fresnel from the ior)"
                 ));
             }
             if extension(others, "KHR_materials_volume").is_none() {
@@ -373,10 +385,17 @@ impl Reader<'_> {
         };
         // glTF's material as its specification defines it, with the metallic given.
         let pbr = |metallic: &Param| {
-            two_sided(json!({
+            let mut v = json!({
                 "type": "gltf_pbr", "base_color": base.json(), "roughness": roughness_param.json(),
                 "metallic": metallic.json(), "ior": ior,
-            }))
+            });
+            if specular != 1.0 {
+                v["specular"] = json!(specular);
+            }
+            if specular_color != [1.0; 3] {
+                v["specular_color"] = json!(specular_color);
+            }
+            two_sided(v)
         };
         let Some(transmission) = transmission else {
             let top = add("", pbr(&metallic_param));
@@ -536,6 +555,38 @@ impl Reader<'_> {
             _ => None,
         };
         Ok((factor, texture))
+    }
+
+    /// `KHR_materials_specular`: `specularFactor` (in [0, 1], default 1) and
+    /// `specularColorFactor` (finite, ≥ 0, default white); its textures are named in the warning.
+    fn specular(&mut self, e: &Map<String, Value>, at: &str) -> Result<(f64, [f64; 3]), MeshError> {
+        let ext_at = format!("{at}.extensions.KHR_materials_specular");
+        let factor_at = format!("{ext_at}.specularFactor");
+        let factor = self.number(e, "specularFactor", &factor_at, 1.0)?;
+        if !(0.0..=1.0).contains(&factor) {
+            return Err(self.error(&factor_at, format!("{factor} is outside [0, 1]")));
+        }
+        let color_at = format!("{ext_at}.specularColorFactor");
+        let color = match e.get("specularColorFactor") {
+            None => [1.0; 3],
+            Some(v) => {
+                let c = v.as_array().filter(|a| a.len() == 3);
+                let c = c.and_then(|a| Some([a[0].as_f64()?, a[1].as_f64()?, a[2].as_f64()?]));
+                c.filter(|c| c.iter().all(|x| *x >= 0.0 && (*x as f32).is_finite()))
+                    .ok_or_else(|| {
+                        self.error(
+                            &color_at,
+                            format!("expected 3 finite numbers ≥ 0, found {v}"),
+                        )
+                    })?
+            }
+        };
+        for key in ["specularTexture", "specularColorTexture"] {
+            if e.contains_key(key) {
+                self.out.ignored.push(format!("{ext_at}.{key}"));
+            }
+        }
+        Ok((factor, color))
     }
 
     /// `emissiveFactor` × `KHR_materials_emissive_strength` (× `emissiveTexture`, sRGB), if

@@ -89,6 +89,7 @@ fn gltf_pbr(base_color: DVec3, roughness: f64, metallic: f64, ior: f64) -> Mater
         base_color,
         scalars: [roughness, metallic],
         ior,
+        ..Default::default()
     })
 }
 
@@ -169,7 +170,7 @@ fn factors_map_to_the_gltf_material() {
             base_color: Vec3::ONE,
             metallic: 0.5,
             roughness: 1.0,
-            ior: 1.5,
+            ..Default::default()
         })
     );
 }
@@ -474,6 +475,65 @@ fn transmission_is_a_dielectric_or_a_mix_with_one() {
     );
     let scene = Scene::from_desc(&d).unwrap();
     assert!(scene.has_transmission());
+}
+
+/// `KHR_materials_specular`: its factors become the material's `specular` and
+/// `specular_color` (a colour above 1 allowed, as the extension allows it), its textures are
+/// named in the warning; a factor out of range is an error at its glTF path.
+#[test]
+fn khr_materials_specular_gives_the_specular_weight_and_colour() {
+    let dir = Dir::new("mat-specular");
+    let a = quads(json!([
+        {"pbrMetallicRoughness": {"metallicFactor": 0},
+         "extensions": {"KHR_materials_specular": {
+            "specularFactor": 0.5, "specularColorFactor": [2.0, 1.0, 0.25],
+            "specularTexture": {"index": 0}}}},
+        {"pbrMetallicRoughness": {"metallicFactor": 0},
+         "extensions": {"KHR_materials_specular": {}}},
+    ]));
+    let d = open(&a.write_glb(&dir, "s.glb"));
+    let MaterialDesc::GltfPbr(p) = &named(&d, "materials[0]").material else {
+        panic!()
+    };
+    assert_eq!(
+        (p.specular, p.specular_color),
+        (0.5, DVec3::new(2.0, 1.0, 0.25))
+    );
+    assert_eq!(
+        named(&d, "materials[1]").material,
+        gltf_pbr(DVec3::ONE, 1.0, 0.0, 1.5),
+        "the extension's defaults change nothing"
+    );
+    assert_eq!(d.warnings.len(), 1, "{:?}", d.warnings);
+    let w = &d.warnings[0];
+    assert!(
+        w.contains("materials[0].extensions.KHR_materials_specular.specularTexture"),
+        "{w}"
+    );
+    assert!(!w.contains("extensions.KHR_materials_specular,"), "{w}");
+    let scene = Scene::from_desc(&d).unwrap();
+    let crate::materials::Material::GltfPbr(m) = &scene.materials[0] else {
+        panic!()
+    };
+    assert_eq!((m.specular, m.specular_color.x), (0.5, 2.0));
+    for (bad, key) in [
+        (json!({"specularFactor": 1.5}), "specularFactor"),
+        (
+            json!({"specularColorFactor": [1, -1, 1]}),
+            "specularColorFactor",
+        ),
+    ] {
+        let a = quads(json!([{"extensions": {"KHR_materials_specular": bad}}]));
+        let e = model_scene(&a.write_glb(&dir, "bad.glb"))
+            .expect_err("must be rejected")
+            .to_string();
+        assert!(
+            e.contains(&format!(
+                "materials[0].extensions.KHR_materials_specular.{key}"
+            )),
+            "{e}"
+        );
+    }
 }
 
 /// Everything lumis does not render is named in one warning.
