@@ -249,8 +249,9 @@ pub fn scale_emission(
 }
 
 /// Scales the albedo of material `name` by `factor`: a diffuse or plastic base albedo, a
-/// principled's (thin or not) base colour, or a conductor's Fresnel reflectance; an error if
-/// there is no such material or it has no albedo (a conductor given by a complex IOR).
+/// principled's (thin or not) or glTF material's base colour, or a conductor's Fresnel
+/// reflectance; an error if there is no such material or it has no albedo (a conductor given by
+/// a complex IOR).
 pub fn scale_albedo(
     desc: &mut crate::scene::SceneDesc,
     name: &str,
@@ -278,6 +279,7 @@ pub fn scale_albedo(
         }
         MaterialDesc::Principled(p) => p.base_color *= factor,
         MaterialDesc::PrincipledThin(p) => p.base_color *= factor,
+        MaterialDesc::GltfPbr(p) => p.base_color *= factor,
     }
     Ok(())
 }

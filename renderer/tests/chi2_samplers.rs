@@ -38,7 +38,7 @@ use rayon::prelude::*;
 /// Family-wise significance level.
 const ALPHA: f64 = 0.01;
 /// Number of χ² tests in the family (every case of the suite).
-const N_TESTS: usize = 429 + 49 + 25 + 20 + 17;
+const N_TESTS: usize = 429 + 49 + 25 + 20 + 17 + 19;
 
 /// Runs every case with `samples` samples and asserts that all pass; prints one line per case
 /// and the smallest p-value.
@@ -137,6 +137,14 @@ fn chi2_principled_thin() {
         1_000_000,
         9600,
     );
+}
+
+/// glTF's metallic-roughness material (`suite::gltf_pbr_cases`): the specular lobe by visible
+/// normals and the diffuse by the cosine, picked by their Fresnel estimates at the view
+/// direction; the pdf is the mixture's. Seed fixed before the first run.
+#[test]
+fn chi2_gltf_pbr() {
+    run_cases("glTF PBR", suite::gltf_pbr_cases(), 1_000_000, 9700);
 }
 
 #[test]

@@ -1,20 +1,21 @@
-//! A glTF material of metallic 0.5 (issue 17, item 3) is a mix of its conductor and its plastic,
-//! chosen per shading point (`materials/mix.rs`), so its image converges to the average of the
-//! metallic-1 and metallic-0 images of the same file. The scene: a rough (roughness 0.5, α 0.25)
-//! coloured floor lit by an emitting glTF quad above it (so the glossy conductor and the
-//! diffuse-looking plastic differ strongly across the image), opened as a model file
-//! ([`lumis::scene::load_scene`]) and rendered at 48 × 36. The floor cannot see itself and the
-//! light reflects nothing (a black conductor), so every path meets the mixed material at most
-//! once, where the mix's expected BSDF is the average: the image is then exactly `(A + B)/2`.
-//! (With interreflections on the mixed material it would not be: a path that meets it twice sees
-//! `((f_a + f_b)/2)²`, not `(f_a² + f_b²)/2`.)
+//! A glTF material of metallic 0.5 converges to the average of the metallic-1 and metallic-0
+//! images of the same file. Until issue 44 that material was a mix of a conductor and a plastic
+//! (issue 17, item 3, `materials/mix.rs`); it is now glTF's own `gltf_pbr`
+//! (`materials/gltf_pbr.rs`), whose BRDF is linear in the metallic,
+//! (1 − m)·dielectric + m·metal, so the same test holds. The scene: a rough (roughness 0.5, α
+//! 0.25) coloured floor lit by an emitting glTF quad above it (so the glossy metal and the
+//! diffuse-looking dielectric differ strongly across the image), opened as a model file
+//! ([`lumis::scene::load_scene`]) and rendered at 48 × 36. The floor cannot see itself, so a path
+//! meets the floor a second time only through the light's own reflection (a black metal: only
+//! Schlick's grazing (1 − V·H)⁵ of its rough lobe), where the image would be
+//! `((f_a + f_b)/2)²` and not `(f_a² + f_b²)/2`; with the conductor of the old mapping that
+//! reflection was 0, now it is small enough that the test's blocks pass.
 //!
 //! Test: the block z-test (8 × 8 blocks, family-wise α = 0.01, Šidák-corrected over blocks and
 //! channels) of the mix against `(A + B)/2`, with variance `(var A + var B)/4`; seeds 1, 2, 3,
 //! 256 samples per pixel. Power: the same test must reject a mix of metallic 0.6 against the 0.5
 //! average (seed 4): a 10-point error in the weight, 0.1·(A − B) per pixel, which catches a
-//! choice that ignores the weight, a swapped pair (weight 1 − w) or a mix resolved differently
-//! at eval and sample.
+//! metallic that is ignored, swapped (1 − m) or weighted differently at eval and sample.
 
 mod common;
 
@@ -105,13 +106,18 @@ fn scene(metallic: f64) -> Arc<Scene> {
     std::fs::remove_file(&path).unwrap();
     assert!(desc.warnings.is_empty(), "{:?}", desc.warnings);
     (desc.camera.width, desc.camera.height) = (48, 36);
-    let mixes = desc.materials.iter().filter(|m| m.mix.is_some()).count();
-    assert_eq!(mixes, usize::from(metallic > 0.0 && metallic < 1.0));
+    // One glTF material each, no mix (the old mapping's mix of metallic 0.5 fails here).
+    assert!(desc.materials.iter().all(|m| m.mix.is_none()));
+    let gltf = desc
+        .materials
+        .iter()
+        .filter(|m| matches!(m.material, lumis::scene::MaterialDesc::GltfPbr(_)));
+    assert_eq!(gltf.count(), 2, "the floor's and the light's");
     Arc::new(Scene::from_desc(&desc).unwrap_or_else(|e| panic!("{e}")))
 }
 
-/// The block test of a mix of `metallic` (rendered with `seed`) against the average of the
-/// metal and the plastic renders.
+/// The block test of the material of `metallic` (rendered with `seed`) against the average of
+/// the metal and the dielectric renders.
 fn against_average(
     metallic: f64,
     seed: u32,
@@ -162,10 +168,10 @@ fn metallic_half_converges_to_the_average_of_metal_and_plastic() {
     );
 }
 
-/// The GPU backend resolves mixes since issue 17, item 3 (`renderer/tests/gpu/mix.rs` compares its
-/// choices and a rendered image with the CPU's): the scene is accepted, with the mix code.
+/// The GPU backend renders the glTF material (`renderer/tests/gpu/parity_gltf_pbr.rs` compares
+/// it with the CPU): the scene is accepted, with its code.
 #[test]
-fn the_gpu_accepts_a_mix() {
+fn the_gpu_accepts_the_gltf_material() {
     let scene = scene(0.5);
     // The GPU tests' policy (renderer/tests/gpu/common): no adapter fails unless skipping is asked for.
     if std::env::var_os("LUMIS_SKIP_GPU_TESTS").is_some() {
@@ -173,5 +179,5 @@ fn the_gpu_accepts_a_mix() {
     }
     let ctx = lumis::gpu::GpuContext::new().unwrap_or_else(|e| panic!("{e}"));
     let gpu = lumis::gpu::GpuScene::new(ctx, scene).unwrap_or_else(|e| panic!("{e}"));
-    assert!(gpu.features().has_mixes, "{:?}", gpu.features());
+    assert!(gpu.features().has_gltf_pbr, "{:?}", gpu.features());
 }

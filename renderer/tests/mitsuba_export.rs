@@ -898,3 +898,26 @@ fn quad_corners_come_back_exactly() {
     }
     println!("{exact} of 200 corners exact in f64");
 }
+
+/// A `gltf_pbr` material has no Mitsuba BSDF (Mitsuba's principled is Burley's model, not
+/// glTF's): the export is refused at the material's path, naming why, even inside a mix.
+#[test]
+fn a_gltf_pbr_material_is_refused_by_name() {
+    let mut desc = kitchen_sink();
+    let m = desc
+        .materials
+        .iter_mut()
+        .find(|m| m.parts().is_none() && !m.material.transmits())
+        .expect("a reflecting material");
+    let name = m.name.clone();
+    m.material = lumis::scene::MaterialDesc::GltfPbr(Default::default());
+    m.textures = Default::default();
+    let dir = Dir::new("gltf_pbr_refused");
+    let err = write_export(&desc, &dir.0.join("s.xml"), &ExportOptions::default()).unwrap_err();
+    let err = err.to_string();
+    assert!(err.contains("materials") && err.contains(&name), "{err}");
+    assert!(
+        err.contains("gltf_pbr material cannot be exported"),
+        "{err}"
+    );
+}

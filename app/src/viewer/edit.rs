@@ -5,6 +5,7 @@
 
 use super::light_shape::{Keep, LightShape, PlanarLight};
 use glam::DVec3;
+use lumis::materials::gltf_pbr::GltfParam;
 use lumis::materials::principled::{PrincipledParam, mitsuba_eta};
 use lumis::materials::principled_thin::ThinParam;
 use lumis::scene::desc::Distribution;
@@ -25,11 +26,13 @@ pub fn alpha(m: &MaterialDesc) -> Option<f64> {
         MaterialDesc::Conductor { alpha, .. }
         | MaterialDesc::Plastic { alpha, .. }
         | MaterialDesc::Dielectric { alpha, .. } => Some(*alpha),
-        // Its roughness is one of its own sliders ([`PRINCIPLED_SLIDERS`], [`THIN_SLIDERS`]).
+        // Its roughness is one of its own sliders ([`PRINCIPLED_SLIDERS`], [`THIN_SLIDERS`],
+        // [`GLTF_SLIDERS`]).
         MaterialDesc::Diffuse { .. }
         | MaterialDesc::ThinDielectric { .. }
         | MaterialDesc::Principled(_)
-        | MaterialDesc::PrincipledThin(_) => None,
+        | MaterialDesc::PrincipledThin(_)
+        | MaterialDesc::GltfPbr(_) => None,
     }
 }
 
@@ -56,7 +59,8 @@ pub fn set_alpha(m: &mut MaterialDesc, value: f64) {
         MaterialDesc::Diffuse { .. }
         | MaterialDesc::ThinDielectric { .. }
         | MaterialDesc::Principled(_)
-        | MaterialDesc::PrincipledThin(_) => {}
+        | MaterialDesc::PrincipledThin(_)
+        | MaterialDesc::GltfPbr(_) => {}
     }
 }
 
@@ -142,6 +146,7 @@ pub fn colour(m: &MaterialDesc) -> Option<DVec3> {
         MaterialDesc::Diffuse { albedo } | MaterialDesc::Plastic { albedo, .. } => Some(*albedo),
         MaterialDesc::Principled(p) => Some(p.base_color),
         MaterialDesc::PrincipledThin(p) => Some(p.base_color),
+        MaterialDesc::GltfPbr(p) => Some(p.base_color),
         MaterialDesc::Conductor {
             fresnel: FresnelDesc::Reflectance(r),
             ..
@@ -159,6 +164,7 @@ pub fn set_colour(m: &mut MaterialDesc, value: DVec3) {
         MaterialDesc::Diffuse { albedo } | MaterialDesc::Plastic { albedo, .. } => *albedo = value,
         MaterialDesc::Principled(p) => p.base_color = value,
         MaterialDesc::PrincipledThin(p) => p.base_color = value,
+        MaterialDesc::GltfPbr(p) => p.base_color = value,
         MaterialDesc::Conductor {
             fresnel: FresnelDesc::Reflectance(r),
             ..
@@ -175,6 +181,7 @@ pub fn ior(m: &MaterialDesc) -> Option<f64> {
         MaterialDesc::Plastic { ior, .. }
         | MaterialDesc::Dielectric { ior, .. }
         | MaterialDesc::ThinDielectric { ior } => Some(*ior),
+        MaterialDesc::GltfPbr(p) => Some(p.ior),
         _ => None,
     }
 }
@@ -190,6 +197,8 @@ pub fn set_ior(m: &mut MaterialDesc, value: f64) {
     }
     match m {
         MaterialDesc::Plastic { ior, .. } => *ior = value.max(1.0001),
+        // Only its f0 depends on it: 1 (no reflection at normal incidence) is allowed.
+        MaterialDesc::GltfPbr(p) => p.ior = value.max(1.0),
         MaterialDesc::Dielectric { ior, .. } => *ior = dielectric_ior(value),
         MaterialDesc::ThinDielectric { ior } => {
             let max = f64::from(lumis::materials::dielectric::MAX_IOR);
@@ -216,7 +225,9 @@ fn dielectric_ior(value: f64) -> f64 {
 /// it shows and a loaded IOR outside the range would otherwise change on mere selection.
 pub fn ior_slider_range(m: &MaterialDesc, current: f64) -> RangeInclusive<f64> {
     let lo: f64 = match m {
-        MaterialDesc::Dielectric { .. } | MaterialDesc::ThinDielectric { .. } => 1.0,
+        MaterialDesc::Dielectric { .. }
+        | MaterialDesc::ThinDielectric { .. }
+        | MaterialDesc::GltfPbr(_) => 1.0,
         _ => 1.01,
     };
     lo.min(current)..=current.max(3.0)
@@ -230,6 +241,26 @@ pub fn ior_presets(m: &MaterialDesc) -> &'static [(&'static str, f64)] {
             &DIELECTRIC_PRESETS
         }
         _ => &[],
+    }
+}
+
+/// A glTF material's scalars offered as sliders (beside its base colour and IOR): all of them.
+pub const GLTF_SLIDERS: [GltfParam; 2] = GltfParam::ALL;
+
+/// A glTF material's scalar `param`; `None` for other materials.
+pub fn gltf_scalar(m: &MaterialDesc, param: GltfParam) -> Option<f64> {
+    match m {
+        MaterialDesc::GltfPbr(p) => Some(p.scalars[param as usize]),
+        _ => None,
+    }
+}
+
+/// Sets a glTF material's scalar `param`, clamped to [0, 1].
+pub fn set_gltf_scalar(m: &mut MaterialDesc, param: GltfParam, value: f64) {
+    if let MaterialDesc::GltfPbr(p) = m
+        && value.is_finite()
+    {
+        p.scalars[param as usize] = value.clamp(0.0, 1.0);
     }
 }
 

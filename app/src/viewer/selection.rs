@@ -231,6 +231,25 @@ impl ViewerApp {
                 changed = true;
             }
         }
+        // A glTF material's, likewise.
+        for param in edit::GLTF_SLIDERS {
+            let Some(mut v) = edit::gltf_scalar(m, param) else {
+                break;
+            };
+            let slot = &mut textures.principled[param as usize];
+            let label = match slot {
+                Some(_) => format!("{} (texture mean)", param.name()),
+                None => param.name().to_owned(),
+            };
+            if ui
+                .add(egui::Slider::new(&mut v, 0.0..=1.0).text(label))
+                .changed()
+            {
+                edit::set_gltf_scalar(m, param, v);
+                *slot = None;
+                changed = true;
+            }
+        }
         if let Some(mut s) = edit::specular(m)
             && ui
                 .add(egui::Slider::new(&mut s, 0.0..=1.0).text("specular (sets η)"))

@@ -74,6 +74,7 @@ const MODULES: &[Module] = &[
     module!("materials/gtr1.wgsl"),
     module!("materials/principled.wgsl"),
     module!("materials/principled_thin.wgsl"),
+    module!("materials/gltf_pbr.wgsl"),
     module!("lights/mod.wgsl"),
     module!("lights/light_sampler.wgsl"),
     module!("lights/light_bvh.wgsl"),
@@ -176,6 +177,8 @@ pub struct Features {
     /// Mitsuba's thin principled BSDF (`materials/principled_thin.wgsl`, with the principled's
     /// helpers).
     pub has_principled_thin: bool,
+    /// glTF's metallic-roughness material (`materials/gltf_pbr.wgsl`).
+    pub has_gltf_pbr: bool,
     /// Disk shapes.
     pub has_disk_shape: bool,
     /// Sphere shapes.
@@ -239,6 +242,7 @@ impl Features {
             has_principled: true,
             has_principled_transmission: true,
             has_principled_thin: true,
+            has_gltf_pbr: true,
             has_disk_shape: true,
             has_sphere_shape: true,
             has_cylinder_shape: true,
@@ -330,15 +334,22 @@ impl Features {
                     f.has_principled_thin = true;
                     f.has_ggx = true;
                 }
+                // Always rough (α ≥ 0.001), always GGX.
+                Material::GltfPbr(_) => {
+                    f.has_gltf_pbr = true;
+                    f.has_ggx = true;
+                }
             }
         }
         // A textured α may be rough where the material's constant (its mean) is smooth; a
         // textured pair anisotropic where its means are equal.
-        for t in scene.material_textures.iter().flatten() {
+        for (t, m) in scene.material_textures.iter().zip(&scene.materials) {
+            let Some(t) = t else { continue };
             f.has_ggx |= t.alpha.is_some();
             f.has_anisotropic |= t.alpha_v.is_some();
-            // A textured anisotropy may be non-zero where its mean is.
-            f.has_anisotropic |= t.principled[1].is_some();
+            // A textured anisotropy may be non-zero where its mean is (a glTF material's slot 1
+            // is its metallic).
+            f.has_anisotropic |= t.principled[1].is_some() && !matches!(m, Material::GltfPbr(_));
         }
         for p in scene.accel.primitives() {
             match p.shape {
@@ -381,7 +392,7 @@ impl Features {
     }
 
     /// The `#if` names and their values.
-    fn defines(&self) -> [(&'static str, bool); 42] {
+    fn defines(&self) -> [(&'static str, bool); 43] {
         [
             ("HAS_LIGHTS", self.has_lights),
             ("HAS_BACKGROUND", self.has_background),
@@ -424,6 +435,7 @@ impl Features {
             ("HAS_THIN_DIELECTRIC", self.has_thin_dielectric),
             ("HAS_PRINCIPLED", self.has_principled),
             ("HAS_PRINCIPLED_THIN", self.has_principled_thin),
+            ("HAS_GLTF_PBR", self.has_gltf_pbr),
             // A material that light passes through: the path tracer's transmission code.
             ("HAS_TRANSMISSION", self.has_transmission()),
             // A material that refracts (glass, a transmitting principled; not a thin sheet).
@@ -498,6 +510,7 @@ impl Features {
                     || self.has_dielectric
                     || self.has_thin_dielectric
                     || self.principled_family()
+                    || self.has_gltf_pbr
             }
             "materials/ggx.wgsl" => self.has_ggx,
             "materials/beckmann.wgsl" => self.has_ggx && self.has_beckmann,
@@ -515,6 +528,7 @@ impl Features {
             // The thin one shares the principled's helpers (which call GTR1's).
             "materials/gtr1.wgsl" | "materials/principled.wgsl" => self.principled_family(),
             "materials/principled_thin.wgsl" => self.has_principled_thin,
+            "materials/gltf_pbr.wgsl" => self.has_gltf_pbr,
             // A disk light's ellipse samples find their point as a disk hit does.
             "geometry/disk.wgsl" => self.has_disk_shape || (lights && self.has_disk_light),
             // A cylinder's intersection solves the sphere's quadratic (`careful_roots`).

@@ -1,5 +1,6 @@
 //! Materials (BSDFs): Lambertian diffuse, GGX conductor, a rough plastic, a dielectric, a thin
-//! dielectric sheet and Mitsuba's principled and thin principled BSDFs.
+//! dielectric sheet, Mitsuba's principled and thin principled BSDFs and glTF's metallic-roughness
+//! material.
 //!
 //! Everything works in the local shading frame: normal = +z, `wo` points towards the viewer and
 //! `wi` towards the light, both unit and pointing away from the surface. The integrator flips the
@@ -23,6 +24,7 @@ pub mod dielectric;
 pub mod diffuse;
 pub mod fresnel;
 pub mod ggx;
+pub mod gltf_pbr;
 pub mod gtr1;
 pub mod mask;
 pub mod microfacet;
@@ -42,6 +44,7 @@ pub mod two_sided;
 pub use conductor::{Conductor, ConductorFresnel};
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
+pub use gltf_pbr::GltfPbr;
 pub use microfacet::{Distribution, Microfacet};
 pub use mix::Mix;
 pub use plastic::Plastic;
@@ -117,6 +120,8 @@ pub enum Material {
     Principled(Principled),
     /// Mitsuba's thin principled BSDF: a sheet with the same two sides, which transmits.
     PrincipledThin(PrincipledThin),
+    /// glTF 2.0's metallic-roughness material (its specification's Appendix B).
+    GltfPbr(GltfPbr),
 }
 
 impl Material {
@@ -134,6 +139,7 @@ impl Material {
             Material::Diffuse(m) => m.eval(wo, wi),
             Material::Conductor(m) => m.eval(wo, wi),
             Material::Plastic(m) => m.eval(wo, wi),
+            Material::GltfPbr(m) => m.eval(wo, wi),
             Material::Principled(m) if !m.transmission || TRANSMISSION => m.eval(wo, wi),
             Material::Dielectric(m) if TRANSMISSION => Vec3::splat(m.eval_pdf(wo, wi).0),
             Material::PrincipledThin(m) if TRANSMISSION => m.eval(wo, wi),
@@ -164,6 +170,7 @@ impl Material {
             Material::Diffuse(m) => m.pdf(wo, wi),
             Material::Conductor(m) => m.pdf(wo, wi),
             Material::Plastic(m) => m.pdf(wo, wi),
+            Material::GltfPbr(m) => m.pdf(wo, wi),
             Material::Principled(m) if !m.transmission || TRANSMISSION => m.pdf(wo, wi),
             Material::Dielectric(m) if TRANSMISSION => m.eval_pdf(wo, wi).1,
             Material::PrincipledThin(m) if TRANSMISSION => m.pdf(wo, wi),
@@ -206,6 +213,7 @@ impl Material {
             Material::Diffuse(m) => m.sample(wo, u),
             Material::Conductor(m) => m.sample(wo, u),
             Material::Plastic(m) => m.sample(wo, u_lobe, u),
+            Material::GltfPbr(m) => m.sample(wo, u_lobe, u),
             Material::Principled(m) if !m.transmission || TRANSMISSION => m.sample(wo, u_lobe, u),
             Material::Dielectric(m) if TRANSMISSION => m.sample(wo, u_lobe, u),
             Material::ThinDielectric(m) if TRANSMISSION => m.sample(wo, u_lobe, u),
@@ -232,7 +240,7 @@ impl Material {
             Material::Dielectric(m) => !m.is_delta(),
             Material::ThinDielectric(_) => false,
             // Its diffuse or its rough (α ≥ 0.001) specular lobes.
-            Material::Principled(_) | Material::PrincipledThin(_) => true,
+            Material::Principled(_) | Material::PrincipledThin(_) | Material::GltfPbr(_) => true,
         }
     }
 
@@ -245,7 +253,10 @@ impl Material {
             Material::Dielectric(d) => !d.is_delta() && d.microfacet.is_anisotropic(),
             Material::Principled(p) => p.is_anisotropic(),
             Material::PrincipledThin(p) => p.is_anisotropic(),
-            Material::Diffuse(_) | Material::Plastic(_) | Material::ThinDielectric(_) => false,
+            Material::Diffuse(_)
+            | Material::Plastic(_)
+            | Material::ThinDielectric(_)
+            | Material::GltfPbr(_) => false,
         }
     }
 
@@ -258,7 +269,10 @@ impl Material {
             // Symmetric: its back side is its front side mirrored.
             Material::PrincipledThin(_) => true,
             Material::Principled(p) => p.transmission,
-            Material::Diffuse(_) | Material::Conductor(_) | Material::Plastic(_) => false,
+            Material::Diffuse(_)
+            | Material::Conductor(_)
+            | Material::Plastic(_)
+            | Material::GltfPbr(_) => false,
         }
     }
 
@@ -275,6 +289,7 @@ impl Material {
             Material::Plastic(m) => m.albedo_hint(),
             Material::Principled(m) => m.base_color,
             Material::PrincipledThin(m) => m.base_color,
+            Material::GltfPbr(m) => m.base_color,
             Material::Dielectric(_) | Material::ThinDielectric(_) => Vec3::ONE,
         }
     }

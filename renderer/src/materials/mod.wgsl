@@ -1,6 +1,6 @@
 // The closed set of materials, the twin of `materials/mod.rs`: one record per material, a `switch`
 // on the same variant order as `Material` (Diffuse, Conductor, Plastic, Dielectric,
-// ThinDielectric, Principled, PrincipledThin); and, under
+// ThinDielectric, Principled, PrincipledThin, GltfPbr); and, under
 // HAS_TEXTURES, `material_at`, the twin of `materials/textured.rs`, which evaluates a material's
 // textures at a hit.
 //
@@ -26,6 +26,9 @@
 //   PrincipledThin: a.xyz base colour, b, c.xyz and d.xy its scalars, h.z its rates and scalar
 //               texture ids in `tables` (`materials/principled_thin.wgsl`); c.w as a
 //               principled's; the same from both sides, never two-sided.
+//   GltfPbr:    a.xyz base colour, b = (roughness, metallic, ior, specular), c.xyz the specular
+//               colour; c.w the ids of its roughness (low 16 bits) and metallic (high 16)
+//               textures (`materials/gltf_pbr.wgsl`).
 //   Only the principled kinds fill d.
 //   Every kind: a.w, c.w = bits of the ids of its colour texture (a diffuse's or plastic's albedo,
 //       a conductor's reflectance: replaces a.xyz) and its roughness textures (α, or α_u in the
@@ -126,6 +129,11 @@ fn material_eval(m: Material, wo: vec3f, wi: vec3f) -> vec3f {
             return principled_thin_eval(m, wo, wi);
         }
 // #endif
+// #if HAS_GLTF_PBR
+        case MATERIAL_GLTF_PBR: {
+            return gltf_pbr_eval(m, wo, wi);
+        }
+// #endif
         default: {
             return vec3f(unknown_tag());
         }
@@ -179,6 +187,11 @@ fn material_pdf_unmutated(m: Material, wo: vec3f, wi: vec3f) -> f32 {
             return principled_thin_pdf(m, wo, wi);
         }
 // #endif
+// #if HAS_GLTF_PBR
+        case MATERIAL_GLTF_PBR: {
+            return gltf_pbr_pdf(m, wo, wi);
+        }
+// #endif
         default: {
             return unknown_tag();
         }
@@ -225,6 +238,11 @@ fn material_sample(m: Material, wo: vec3f, u_lobe: f32, u: vec2f) -> BsdfSample 
 // #if HAS_PRINCIPLED_THIN
         case MATERIAL_PRINCIPLED_THIN: {
             s = principled_thin_sample(m, wo, u_lobe, u);
+        }
+// #endif
+// #if HAS_GLTF_PBR
+        case MATERIAL_GLTF_PBR: {
+            s = gltf_pbr_sample(m, wo, u_lobe, u);
         }
 // #endif
         default: {
@@ -321,6 +339,17 @@ fn material_at(m_in: Material, at: TexPoint) -> Material {
             }
         }
 // #endif
+// #if HAS_GLTF_PBR
+        // Its base colour in the colour slot, roughness and metallic by the ids in c.w.
+        case MATERIAL_GLTF_PBR: {
+            if colour != NONE {
+                m.a = vec4f(texture_eval(colour, at), m.a.w);
+            }
+            if slot != NONE {
+                m = gltf_pbr_at(m, at);
+            }
+        }
+// #endif
         default: {
             m.a = vec4f(unknown_tag());
         }
@@ -381,6 +410,12 @@ fn material_smooth_part(m: Material) -> bool {
 // #endif
 // #if HAS_PRINCIPLED_THIN
         case MATERIAL_PRINCIPLED_THIN: {
+            return true;
+        }
+// #endif
+// #if HAS_GLTF_PBR
+        // Always rough (α ≥ SMOOTH_ALPHA).
+        case MATERIAL_GLTF_PBR: {
             return true;
         }
 // #endif

@@ -2,13 +2,16 @@
 //! coordinates and give the plain [`Material`] the BSDF code sees (pbrt-v4's `GetBSDF`). Untextured
 //! materials never come here; the path tracer uses them as they are.
 //!
-//! Which parameters: `albedo` (diffuse, plastic), `reflectance` (a conductor's tint), `alpha`
-//! (conductor, plastic, dielectric). A plastic's coat-albedo table depends on its α and takes
-//! ≈ 1 ms to build, far too slow per hit: [`MaterialTextures::new`] builds the plastic's tables
-//! on a grid of α once, and a hit blends the two around its α ([`super::plastic_textured`]).
+//! Which parameters: `albedo` (diffuse, plastic, and the principled kinds' and glTF material's base
+//! colour), `reflectance` (a conductor's tint), `alpha` (conductor, plastic, dielectric), and the
+//! scalar slots of the principled kinds and the glTF material (`principled`). A plastic's
+//! coat-albedo table depends on its α and takes ≈ 1 ms to build, far too slow per hit:
+//! [`MaterialTextures::new`] builds the plastic's tables on a grid of α once, and a hit blends the
+//! two around its α ([`super::plastic_textured`]).
 //!
 //! WGSL twin: `materials/mod.wgsl` (`material_at`).
 
+use super::gltf_pbr::GltfParam;
 use super::plastic_textured::CoatGrid;
 use super::principled::PrincipledParam;
 use super::principled_thin::ThinParam;
@@ -29,8 +32,9 @@ pub struct MaterialTextures {
     pub alpha_v: Option<Texture>,
     /// A plastic with a textured α: its coat tables on the α grid, for its F0.
     pub(crate) coat_grid: Option<CoatGrid>,
-    /// A principled's scalar parameters, in [`PrincipledParam::ALL`]'s order, or a thin
-    /// principled's in [`ThinParam::ALL`]'s (the base colour of either is `albedo`).
+    /// A principled's scalar parameters, in [`PrincipledParam::ALL`]'s order, a thin
+    /// principled's in [`ThinParam::ALL`]'s or a glTF material's in [`GltfParam::ALL`]'s (the
+    /// base colour of each is `albedo`).
     pub principled: [Option<Texture>; 10],
 }
 
@@ -65,7 +69,10 @@ impl MaterialTextures {
         let pair = self.alpha_v.is_none()
             || (self.alpha.is_some()
                 && matches!(base, Material::Conductor(_) | Material::Dielectric(_)));
-        let principled = matches!(base, Material::Principled(_) | Material::PrincipledThin(_));
+        let principled = matches!(
+            base,
+            Material::Principled(_) | Material::PrincipledThin(_) | Material::GltfPbr(_)
+        );
         let ok = pair
             && (principled || self.principled.iter().all(Option::is_none))
             && match base {
@@ -80,7 +87,7 @@ impl MaterialTextures {
                     self.albedo.is_none() && self.reflectance.is_none() && self.alpha.is_none()
                 }
                 // Its base colour in `albedo`, the rest in `principled`.
-                Material::Principled(_) | Material::PrincipledThin(_) => {
+                Material::Principled(_) | Material::PrincipledThin(_) | Material::GltfPbr(_) => {
                     self.reflectance.is_none() && self.alpha.is_none()
                 }
             };
@@ -144,6 +151,17 @@ impl MaterialTextures {
                     p.base_color = t.eval(uv);
                 }
                 for (param, t) in ThinParam::ALL.into_iter().zip(&self.principled) {
+                    if let Some(t) = t {
+                        param.set(p, t.eval_scalar(uv));
+                    }
+                }
+            }
+            // α = roughness² is taken at the hit, after the texture's filtering (glTF's order).
+            Material::GltfPbr(p) => {
+                if let Some(t) = &self.albedo {
+                    p.base_color = t.eval(uv);
+                }
+                for (param, t) in GltfParam::ALL.into_iter().zip(&self.principled) {
                     if let Some(t) = t {
                         param.set(p, t.eval_scalar(uv));
                     }

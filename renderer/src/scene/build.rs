@@ -154,6 +154,7 @@ fn material(desc: &MaterialDesc) -> Material {
         }
         MaterialDesc::Principled(p) => Material::Principled(p.material()),
         MaterialDesc::PrincipledThin(p) => Material::PrincipledThin(p.material()),
+        MaterialDesc::GltfPbr(p) => Material::GltfPbr(p.material()),
     }
 }
 

@@ -326,8 +326,9 @@ pub struct MaterialTextures {
     /// `alpha` holds α_u, a number of the pair as a constant texture).
     pub alpha_v: Option<TextureDesc>,
     /// A principled's scalars, in [`crate::materials::principled::PrincipledParam::ALL`]'s order,
-    /// or a thin principled's in [`crate::materials::principled_thin::ThinParam::ALL`]'s (the
-    /// base colour of either is `albedo`).
+    /// a thin principled's in [`crate::materials::principled_thin::ThinParam::ALL`]'s, or a glTF
+    /// material's in [`crate::materials::gltf_pbr::GltfParam::ALL`]'s (the base colour of each is
+    /// `albedo`).
     pub principled: [Option<TextureDesc>; 10],
 }
 
@@ -467,6 +468,58 @@ pub enum MaterialDesc {
     /// Mitsuba's thin principled BSDF (`materials/principled_thin.rs`): the same from both
     /// sides, so it has no `two_sided`.
     PrincipledThin(PrincipledThinDesc),
+    /// glTF 2.0's metallic-roughness material (`materials/gltf_pbr.rs`).
+    GltfPbr(GltfPbrDesc),
+}
+
+/// glTF's metallic-roughness material's parameters (`scene/parse_gltf_pbr.rs`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfPbrDesc {
+    /// Base colour, in [0, 1].
+    pub base_color: DVec3,
+    /// The scalars in [`crate::materials::gltf_pbr::GltfParam::ALL`]'s order (roughness,
+    /// metallic), each in [0, 1].
+    pub scalars: [f64; 2],
+    /// The dielectric's index of refraction, finite and ≥ 1.
+    pub ior: f64,
+    /// `KHR_materials_specular`'s factor, in [0, 1].
+    pub specular: f64,
+    /// `KHR_materials_specular`'s colour factor, each component finite and ≥ 0.
+    pub specular_color: DVec3,
+}
+
+impl Default for GltfPbrDesc {
+    /// glTF's defaults.
+    fn default() -> Self {
+        let p = crate::materials::GltfPbr::default();
+        GltfPbrDesc {
+            base_color: p.base_color.as_dvec3(),
+            scalars: crate::materials::gltf_pbr::GltfParam::ALL.map(|k| k.get(&p) as f64),
+            ior: p.ior as f64,
+            specular: p.specular as f64,
+            specular_color: p.specular_color.as_dvec3(),
+        }
+    }
+}
+
+impl GltfPbrDesc {
+    /// The material it describes.
+    pub fn material(&self) -> crate::materials::GltfPbr {
+        let mut p = crate::materials::GltfPbr {
+            base_color: self.base_color.as_vec3(),
+            ior: self.ior as f32,
+            specular: self.specular as f32,
+            specular_color: self.specular_color.as_vec3(),
+            ..Default::default()
+        };
+        for (k, v) in crate::materials::gltf_pbr::GltfParam::ALL
+            .into_iter()
+            .zip(self.scalars)
+        {
+            k.set(&mut p, v as f32);
+        }
+        p
+    }
 }
 
 /// A thin principled BSDF's parameters (`scene/parse_principled_thin.rs`).
@@ -1087,11 +1140,28 @@ fn bsdf_json(m: &NamedMaterial) -> Value {
             principled_family_keys(&mut obj, &names, &p.scalars, &rates, &p.rates, &m.textures);
             obj
         }
+        MaterialDesc::GltfPbr(p) => {
+            let mut obj = json!({
+                "type": "gltf_pbr", "base_color": vec3(p.base_color), "ior": p.ior,
+            });
+            let names = crate::materials::gltf_pbr::GltfParam::ALL.map(|k| k.name());
+            principled_family_keys(&mut obj, &names, &p.scalars, &[], &[], &m.textures);
+            // KHR_materials_specular's keys only where they change something.
+            if p.specular != 1.0 {
+                obj["specular"] = json!(p.specular);
+            }
+            if p.specular_color != DVec3::ONE {
+                obj["specular_color"] = vec3(p.specular_color);
+            }
+            obj
+        }
     };
     let t = &m.textures;
     // A principled's base colour is its `base_color` (written above).
     let albedo = match &m.material {
-        MaterialDesc::Principled(_) | MaterialDesc::PrincipledThin(_) => &None,
+        MaterialDesc::Principled(_)
+        | MaterialDesc::PrincipledThin(_)
+        | MaterialDesc::GltfPbr(_) => &None,
         _ => &t.albedo,
     };
     for (key, slot) in [

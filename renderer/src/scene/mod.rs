@@ -19,6 +19,7 @@ mod model_studio;
 pub mod parse;
 mod parse_background;
 mod parse_composite;
+pub(crate) mod parse_gltf_pbr;
 mod parse_lights;
 mod parse_materials;
 mod parse_mesh;

@@ -179,6 +179,7 @@ fn parse_material(
         }
         "principled" => super::parse_principled::parse_principled(obj, loader, t)?,
         "principled_thin" => super::parse_principled_thin::parse_principled_thin(obj, loader, t)?,
+        "gltf_pbr" => super::parse_gltf_pbr::parse_gltf_pbr(obj, loader, t)?,
         "mix" => {
             if obj.get("two_sided").is_some() {
                 let msg = "a mix has no sides of its own: its materials' `two_sided` apply";
@@ -203,8 +204,8 @@ fn parse_material(
                 obj.at("type"),
                 format!(
                     "unknown material type `{other}` (expected diffuse, conductor, plastic, \
-                     dielectric, thin_dielectric, principled, principled_thin, mix or \
-                     two_sided)"
+                     dielectric, thin_dielectric, principled, principled_thin, gltf_pbr, mix \
+                     or two_sided)"
                 ),
             ));
         }

@@ -80,9 +80,13 @@ fn slots(m: &mut NamedMaterial) -> Vec<Slot<'_>> {
         }
     }
     let thin = matches!(m.material, MaterialDesc::PrincipledThin(_));
+    let gltf = matches!(m.material, MaterialDesc::GltfPbr(_));
     for (k, slot) in t.principled.iter_mut().enumerate() {
         if let Some(tex) = slot {
-            let (key, use_) = if thin {
+            let (key, use_) = if gltf {
+                let param = crate::materials::gltf_pbr::GltfParam::ALL[k];
+                (param.name(), TextureUse::Parameter)
+            } else if thin {
                 let param = crate::materials::principled_thin::ThinParam::ALL[k];
                 (
                     param.name(),
@@ -335,6 +339,13 @@ fn stand_in(m: &mut NamedMaterial, key: &str, mean: DVec3) {
         (MaterialDesc::Principled(p), "albedo") => p.base_color = mean,
         (MaterialDesc::Principled(p), key) => {
             let params = crate::materials::principled::PrincipledParam::ALL;
+            if let Some(k) = params.iter().position(|q| q.name() == key) {
+                p.scalars[k] = scalar;
+            }
+        }
+        (MaterialDesc::GltfPbr(p), "albedo") => p.base_color = mean,
+        (MaterialDesc::GltfPbr(p), key) => {
+            let params = crate::materials::gltf_pbr::GltfParam::ALL;
             if let Some(k) = params.iter().position(|q| q.name() == key) {
                 p.scalars[k] = scalar;
             }

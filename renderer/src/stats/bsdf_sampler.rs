@@ -71,6 +71,7 @@ impl BsdfSampler {
             Material::PrincipledThin(p) => {
                 Some(widest(&p.microfacet()).max(widest(&p.transmission_microfacet())))
             }
+            Material::GltfPbr(p) => Some(p.alpha()),
         }
     }
 }

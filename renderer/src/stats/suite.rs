@@ -769,6 +769,68 @@ pub fn principled_thin_cases() -> Vec<Case> {
     out
 }
 
+/// glTF's metallic-roughness material (`materials/gltf_pbr.rs`), its specular lobe by visible
+/// normals and its diffuse lobe by the cosine, picked by their Fresnel estimates: a white rough
+/// metal and a coloured rough dielectric at every angle of [`THETAS_DEG`], a half-metallic one at
+/// θo ∈ {30°, 85°}, a narrow metal (roughness 0.25, α 0.0625: half vectors zoomed on the normal)
+/// at θo ∈ {0°, 60°, 89°}, and a dielectric of ior 1 (the specular lobe's floor rate) at θo ∈
+/// {0°, 60°}, and one with `KHR_materials_specular` (weight ½, a colour clamped in one channel)
+/// at θo ∈ {30°, 85°}. Named `gltf_pbr/{what}/th{θ}`.
+pub fn gltf_pbr_cases() -> Vec<Case> {
+    use crate::materials::GltfPbr;
+    let mut out = Vec::new();
+    let mut add = |what: &str, m: GltfPbr, thetas: &[f32]| {
+        let m = Material::GltfPbr(m);
+        for &th in thetas {
+            let name = format!("gltf_pbr/{what}/th{th}");
+            out.push(case(name, sampler_at(&m, th, 0.0, false)));
+        }
+    };
+    let metal = GltfPbr {
+        roughness: 0.5,
+        ..GltfPbr::default()
+    };
+    add("metal", metal, &THETAS_DEG);
+    let dielectric = GltfPbr {
+        base_color: Vec3::new(0.8, 0.3, 0.1),
+        metallic: 0.0,
+        roughness: 0.7,
+        ..GltfPbr::default()
+    };
+    add("dielectric", dielectric, &THETAS_DEG);
+    let half = GltfPbr {
+        base_color: Vec3::new(0.9, 0.6, 0.2),
+        metallic: 0.4,
+        roughness: 0.5,
+        ..GltfPbr::default()
+    };
+    add("half_metal", half, &[30.0, 85.0]);
+    let narrow = GltfPbr {
+        base_color: Vec3::new(0.95, 0.64, 0.54),
+        roughness: 0.25,
+        ..GltfPbr::default()
+    };
+    add("narrow_metal", narrow, &[0.0, 60.0, 89.0]);
+    let ior1 = GltfPbr {
+        base_color: Vec3::new(0.5, 0.5, 0.5),
+        metallic: 0.0,
+        roughness: 0.6,
+        ior: 1.0,
+        ..GltfPbr::default()
+    };
+    add("ior1", ior1, &[0.0, 60.0]);
+    let specular = GltfPbr {
+        base_color: Vec3::new(0.6, 0.6, 0.3),
+        metallic: 0.2,
+        roughness: 0.5,
+        specular: 0.5,
+        specular_color: Vec3::new(1.5, 0.5, 20.0),
+        ..GltfPbr::default()
+    };
+    add("specular", specular, &[30.0, 85.0]);
+    out
+}
+
 /// Every case of the suite.
 pub fn all_cases() -> Vec<Case> {
     let mut v = warp_cases();
@@ -778,6 +840,7 @@ pub fn all_cases() -> Vec<Case> {
     v.extend(mitsuba_plastic_cases());
     v.extend(principled_cases());
     v.extend(principled_thin_cases());
+    v.extend(gltf_pbr_cases());
     v.extend(light_cases());
     v.extend(envmap_cases());
     v.extend(mixture_cases());

@@ -24,6 +24,7 @@ mod parity;
 mod parity_dielectric;
 mod parity_envmap;
 mod parity_filter;
+mod parity_gltf_pbr;
 mod parity_mesh;
 mod parity_optimal;
 mod parity_principled;

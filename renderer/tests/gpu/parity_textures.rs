@@ -358,7 +358,9 @@ fn resolution_scene() -> Scene {
         "glass": {"type": "dielectric", "ior": 1.5, "alpha": 0.1},
         "plain": {"type": "diffuse", "albedo": [0.25, 0.5, 0.75]},
         "principled": {"type": "principled", "spec_trans": 0.5, "sheen": 0.3},
-        "thin": {"type": "principled_thin", "spec_trans": 0.5, "sheen": 0.3}
+        "thin": {"type": "principled_thin", "spec_trans": 0.5, "sheen": 0.3},
+        "gltf": {"type": "gltf_pbr", "metallic": 0.5, "roughness": 0.5},
+        "gltf_metallic": {"type": "gltf_pbr", "base_color": [0.9, 0.6, 0.2], "roughness": 0.3}
       },
       "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "matte"}]
     }"#;
@@ -447,11 +449,31 @@ fn resolution_scene() -> Scene {
     t.principled[7] = checker(Vec3::splat(0.4), Vec3::splat(1.6));
     t.principled[8] = checker(Vec3::splat(1.2), Vec3::splat(1.8));
     scene.material_textures[i] = Some(t);
+    // glTF materials: base colour, roughness (G) and metallic (B, as glTF's texture holds them),
+    // both ids in c.w; and a metallic alone (the roughness half 0xFFFF).
+    let i = scene
+        .material_names
+        .iter()
+        .position(|n| n == "gltf")
+        .unwrap();
+    let base = checker(Vec3::new(0.8, 0.2, 0.1), Vec3::new(0.1, 0.5, 0.9));
+    let mut t = MaterialTextures::new(base, None, None, None, &scene.materials[i]).unwrap();
+    t.principled[0] = bitmap(Channel::G);
+    t.principled[1] = bitmap(Channel::B);
+    scene.material_textures[i] = Some(t);
+    let i = scene
+        .material_names
+        .iter()
+        .position(|n| n == "gltf_metallic")
+        .unwrap();
+    let mut t = MaterialTextures::new(None, None, None, None, &scene.materials[i]).unwrap();
+    t.principled[1] = checker(Vec3::ZERO, Vec3::ONE);
+    scene.material_textures[i] = Some(t);
     scene
 }
 
 /// `material_at` (and `material_textured`) against `MaterialTextures::at` for every textured
-/// slot of every kind, at 4096 points where the textures are exact (centres of checkerboard
+/// slot of every kind (the glTF material's too), at 4096 points where the textures are exact (centres of checkerboard
 /// squares and of texels), so every field must agree exactly, the recomputed has-a-smooth-part
 /// flag (a plastic's black base, a conductor's or dielectric's α below SMOOTH_ALPHA) and the
 /// conductor's switch to a tint included; untextured materials are not touched. Seed 17/72.
@@ -494,7 +516,7 @@ fn textured_materials_resolve_as_on_the_cpu() {
         1,
         6,
     );
-    let (mut flips, mut tints, mut principled, mut thin) = (0, 0, 0, 0);
+    let (mut flips, mut tints, mut principled, mut thin, mut gltf) = (0, 0, 0, 0, 0);
     for (&(mi, uv), o) in items.iter().zip(out.chunks(6)) {
         let what = format!("material {} at {uv}", scene.material_names[mi as usize]);
         let base = &scene.materials[mi as usize];
@@ -560,11 +582,17 @@ fn textured_materials_resolve_as_on_the_cpu() {
                 assert_eq!(xyz(o[2]), c, "{what}: c");
                 assert_eq!((o[5][0], o[5][1]), (p.diff_trans, p.eta), "{what}: d");
             }
+            Material::GltfPbr(p) => {
+                gltf += 1;
+                assert_eq!(xyz(o[1]), p.base_color, "{what}: base colour");
+                let b = [p.roughness, p.metallic, p.ior];
+                assert_eq!([o[4][0], o[4][1], o[4][2]], b, "{what}: b");
+            }
         }
     }
     assert!(
-        principled > 300 && thin > 300,
-        "{principled} principled, {thin} thin points"
+        principled > 300 && thin > 300 && gltf > 600,
+        "{principled} principled, {thin} thin, {gltf} glTF points"
     );
     eprintln!("{flips} points changed the smooth-part flag, {tints} turned a conductor to a tint");
     assert!(flips > 500 && tints > 200, "{flips} flips, {tints} tints");

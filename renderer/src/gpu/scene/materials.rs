@@ -75,6 +75,8 @@ gpu_tags! {
         TwoSided => "MATERIAL_TWO_SIDED",
         /// [`Material::PrincipledThin`] (`materials/principled_thin.wgsl`).
         PrincipledThin => "MATERIAL_PRINCIPLED_THIN",
+        /// [`Material::GltfPbr`] (`materials/gltf_pbr.wgsl`).
+        GltfPbr => "MATERIAL_GLTF_PBR",
     }
 }
 
@@ -90,6 +92,7 @@ impl MaterialTag {
             Material::ThinDielectric(_) => MaterialTag::ThinDielectric,
             Material::Principled(_) => MaterialTag::Principled,
             Material::PrincipledThin(_) => MaterialTag::PrincipledThin,
+            Material::GltfPbr(_) => MaterialTag::GltfPbr,
         }
     }
 }
@@ -145,6 +148,17 @@ pub(crate) fn roughness_slot(alpha: u32, alpha_v: u32) -> u32 {
     }
     let v = if alpha_v == NONE { 0xFFFF } else { alpha_v };
     (alpha & 0xFFFF) | (v << 16)
+}
+
+/// A glTF material's `c.w` from the ids of its roughness and metallic textures: `NONE` where
+/// neither is textured, else roughness's id in the low 16 bits and metallic's in the high 16
+/// (`0xFFFF`: that one constant; `textures::check_records` keeps ids below 0xFFFF).
+pub(crate) fn gltf_pbr_slot(roughness: u32, metallic: u32) -> u32 {
+    if roughness == NONE && metallic == NONE {
+        return NONE;
+    }
+    let half = |id: u32| if id == NONE { 0xFFFF } else { id & 0xFFFF };
+    half(roughness) | (half(metallic) << 16)
 }
 
 /// Appends `grid`'s node tables, then their E_avg, to `tables` (layout in the module doc);
@@ -345,6 +359,14 @@ pub(super) fn encode(
                         d: [p.diff_trans, p.eta, 0.0, 0.0],
                     }
                 }
+                // Two-sided as any reflection-only material; c.w its scalar textures (below).
+                Material::GltfPbr(p) => GpuMaterial {
+                    h: [kind, two_sided as u32, 0, smooth],
+                    a: v4(p.base_color, 0.0),
+                    b: [p.roughness, p.metallic, p.ior, p.specular],
+                    c: v4(p.specular_color, 0.0),
+                    d: z,
+                },
                 // The same from both sides.
                 Material::ThinDielectric(t) => GpuMaterial {
                     h: [kind, 0, 0, smooth],
@@ -365,6 +387,12 @@ pub(super) fn encode(
                     .is_some_and(|ids| ids.iter().any(|&i| i != NONE))
             {
                 r.c[3] = bits(0);
+            }
+            // A glTF material's roughness and metallic textures, both ids in c.w (its α is
+            // roughness², taken at the hit, so it has no α slot).
+            if let Material::GltfPbr(_) = m {
+                let ids = principled.get(index).copied().unwrap_or([NONE; 10]);
+                r.c[3] = bits(gltf_pbr_slot(ids[0], ids[1]));
             }
             r.h[1] |= sides_word(normal_maps[index], scene.normal_maps.get(index));
             r

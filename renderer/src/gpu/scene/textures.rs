@@ -323,9 +323,12 @@ pub(crate) fn encode(scene: &Scene) -> SceneTextures {
             scene.materials[i],
             crate::materials::Material::PrincipledThin(_)
         );
+        let gltf = matches!(scene.materials[i], crate::materials::Material::GltfPbr(_));
         for (k, texture) in textures.principled.iter().enumerate() {
             let Some(texture) = texture else { continue };
-            let name = if thin {
+            let name = if gltf {
+                crate::materials::gltf_pbr::GltfParam::ALL[k].name()
+            } else if thin {
                 crate::materials::principled_thin::ThinParam::ALL[k].name()
             } else {
                 crate::materials::principled::PrincipledParam::ALL[k].name()

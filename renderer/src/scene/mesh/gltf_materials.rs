@@ -1,14 +1,15 @@
 //! glTF 2.0 materials as lumis materials, for a glTF file opened on its own (the rule is in
 //! docs/scene-format.md, "glTF materials"): each material the placed primitives use becomes
-//! JSON materials of the scene format (a conductor, a plastic, a dielectric, or mixes of them)
-//! and an emission, with its textures as `bitmap` objects whose images this module has decoded
+//! JSON materials of the scene format (glTF's own metallic-roughness material, `gltf_pbr`; with
+//! `KHR_materials_transmission`, mixes of it and a dielectric) and an emission, with its textures as `bitmap` objects whose images this module has decoded
 //! already, so that the JSON front end checks everything exactly as it checks a scene file.
 //!
 //! The base colour's alpha becomes the material's `opacity` (alpha masks): `MASK` the alpha
 //! against `alphaCutoff` per texel, `BLEND` the alpha itself as stochastic opacity.
 //!
 //! What lumis does not render (normal maps, extensions other than
-//! `KHR_materials_ior`, `KHR_materials_transmission`, `KHR_materials_emissive_strength` and
+//! `KHR_materials_ior`, `KHR_materials_specular` (its factors; not its textures),
+//! `KHR_materials_transmission`, `KHR_materials_emissive_strength` and
 //! `KHR_texture_transform`, texture rotation, a second texture coordinate set, a sampler whose
 //! two axes wrap differently, nearest filtering) is collected by glTF path into
 //! [`Materials::ignored`], which the caller writes as one warning (occlusion maps are not named:
@@ -17,6 +18,7 @@
 //!
 //! Raw JSON is read for the extensions (the `gltf` crate is built without its typed ones) and
 //! for images, whose typed accessors unwrap what validation does not check.
+//! The material extensions' readers are in `gltf_material_extensions.rs`.
 
 use super::buffers::{read_uri, relative_path};
 use crate::image_io::Image;
@@ -34,8 +36,9 @@ use std::sync::Arc;
 
 /// The extensions lumis maps (all others are named in the warning); required, they do not stop
 /// the geometry either.
-pub const HANDLED: [&str; 4] = [
+pub const HANDLED: [&str; 5] = [
     "KHR_materials_ior",
+    "KHR_materials_specular",
     "KHR_materials_transmission",
     "KHR_materials_emissive_strength",
     "KHR_texture_transform",
@@ -255,6 +258,7 @@ impl Reader<'_> {
             }
             None => (Param::Constant(vec3(base_factor)), None),
         };
+        let textured_base = base.is_texture();
         let alpha_factor = unit(self, &format!("{pbr_at}.baseColorFactor[3]"), f[3])?;
         let opacity = match alpha_mode {
             Some(cutoff) => self.opacity(&at, &base_at, base_texture, alpha_factor, cutoff)?,
@@ -267,27 +271,26 @@ impl Reader<'_> {
             }
             None => None,
         };
-        let alpha = match &mr {
-            // α = roughness² is not linear in the texel: baked per texel, before filtering.
+        // The gltf_pbr material squares the roughness at the hit, after filtering, as glTF does.
+        let roughness_param = match &mr {
             Some(t) => {
-                let name = format!("{}#{at}.alpha", self.file_name);
-                let data = t
-                    .image
-                    .data
-                    .iter()
-                    .map(|c| Vec3::splat((roughness * c.y).powi(2)));
-                let image = Image {
-                    width: t.image.width,
-                    height: t.image.height,
-                    data: data.collect(),
-                };
-                self.out.images.push((name.clone(), true, Arc::new(image)));
                 let mut j = t.json.clone();
-                j["file"] = json!(name);
+                j["channel"] = json!("g");
+                j["scale"] = json!(roughness);
                 Param::Texture(j)
             }
-            None => Param::Constant(json!((roughness as f64).powi(2))),
+            None => Param::Constant(json!(roughness)),
         };
+        let metallic_param = match &mr {
+            Some(t) if metallic > 0.0 => {
+                let mut j = t.json.clone();
+                j["channel"] = json!("b");
+                j["scale"] = json!(metallic);
+                Param::Texture(j)
+            }
+            _ => Param::Constant(json!(metallic)),
+        };
+        // The weight of the metal in a transmitting material's mix.
         let metal_weight = match &mr {
             Some(t) if metallic > 0.0 => {
                 let mut j = t.json.clone();
@@ -308,15 +311,47 @@ impl Reader<'_> {
             return Err(self.error(&ior_at, format!("{ior} must be at least 1")));
         }
 
+        let (specular, specular_color) = match extension(others, "KHR_materials_specular") {
+            Some(e) => self.specular(e, &at)?,
+            None => (1.0, [1.0; 3]),
+        };
         let transmission = match extension(others, "KHR_materials_transmission") {
             Some(e) => Some(self.transmission(e, &at)?),
             None => None,
         };
         let transmission = transmission.filter(|(factor, _)| *factor > 0.0);
+        // A transmitting material's glass takes α = roughness², which is not linear in the texel:
+        // baked per texel, before filtering.
+        let alpha = match &mr {
+            Some(t) if transmission.is_some() => {
+                let name = format!("{}#{at}.alpha", self.file_name);
+                let data = t
+                    .image
+                    .data
+                    .iter()
+                    .map(|c| Vec3::splat((roughness * c.y).powi(2)));
+                let image = Image {
+                    width: t.image.width,
+                    height: t.image.height,
+                    data: data.collect(),
+                };
+                self.out.images.push((name.clone(), true, Arc::new(image)));
+                let mut j = t.json.clone();
+                j["file"] = json!(name);
+                Param::Texture(j)
+            }
+            _ => Param::Constant(json!((roughness as f64).powi(2))),
+        };
         if transmission.is_some() {
             if base.is_texture() || base_factor != Vec3::ONE {
                 self.out.ignored.push(format!(
                     "{at}: the base colour's tint of light through KHR_materials_transmission"
+                ));
+            }
+            if specular != 1.0 || specular_color != [1.0; 3] {
+                self.out.ignored.push(format!(
+                    "{at}: KHR_materials_specular on the light through \
+                     KHR_materials_transmission (lumis' glass takes its Fresnel from the ior)"
                 ));
             }
             if extension(others, "KHR_materials_volume").is_none() {
@@ -349,20 +384,30 @@ impl Reader<'_> {
             json.insert(key.clone(), v);
             key
         };
-        // The dielectric part: a plastic (a diffuse at ior 1, whose coat reflects nothing),
-        // a glass, or a mix of the two by the transmission.
-        let plastic = if ior == 1.0 {
-            two_sided(json!({"type": "diffuse", "albedo": base.json()}))
-        } else {
-            two_sided(json!({
-                "type": "plastic", "albedo": base.json(), "alpha": alpha.json(), "ior": ior,
-                "specular": [1, 1, 1],
-            }))
+        // glTF's material as its specification defines it, with the metallic given.
+        let pbr = |metallic: &Param| {
+            let mut v = json!({
+                "type": "gltf_pbr", "base_color": base.json(), "roughness": roughness_param.json(),
+                "metallic": metallic.json(), "ior": ior,
+            });
+            if specular != 1.0 {
+                v["specular"] = json!(specular);
+            }
+            if specular_color != [1.0; 3] {
+                v["specular_color"] = json!(specular_color);
+            }
+            two_sided(v)
         };
+        let Some(transmission) = transmission else {
+            let top = add("", pbr(&metallic_param));
+            return self.finish(m, others, &at, top, opacity, textured_base || mr.is_some());
+        };
+        // With transmission, the dielectric part is the opaque material (metallic 0), a glass,
+        // or a mix of the two by the transmission; the metal (metallic 1) is mixed in by the
+        // metallic (the material is linear in it, so this is the material's expected value).
+        let opaque = pbr(&Param::Constant(json!(0.0)));
         let glass = json!({"type": "dielectric", "ior": ior, "alpha": alpha.json()});
-        let conductor = two_sided(json!({
-            "type": "conductor", "alpha": alpha.json(), "reflectance": base.json(),
-        }));
+        let metal = pbr(&Param::Constant(json!(1.0)));
         let mix = |a: &str, b: &str, w: &Param| json!({"type": "mix", "materials": [a, b], "weight": w.json()});
         let metal_only = metallic == 1.0 && metal_weight.is_none();
         let top_suffix = |part: &str| {
@@ -374,25 +419,39 @@ impl Reader<'_> {
         };
         let dielectric_part = match &transmission {
             _ if metal_only => None,
-            None => Some(add(&top_suffix(" (plastic)"), plastic)),
-            Some((factor, None)) if *factor == 1.0 => Some(add(&top_suffix(" (glass)"), glass)),
-            Some((factor, texture)) => {
+            (factor, None) if *factor == 1.0 => Some(add(&top_suffix(" (glass)"), glass)),
+            (factor, texture) => {
                 let w = texture.clone().unwrap_or(Param::Constant(json!(factor)));
-                let a = add(" (plastic)", plastic);
+                let a = add(" (opaque)", opaque);
                 let b = add(" (glass)", glass);
                 Some(add(&top_suffix(" (dielectric)"), mix(&a, &b, &w)))
             }
         };
         let top = match (dielectric_part, &metal_weight) {
-            (None, _) => add("", conductor),
+            (None, _) => add("", metal),
             (Some(d), None) => d,
             (Some(d), Some(w)) => {
-                let c = add(" (metal)", conductor);
+                let c = add(" (metal)", metal);
                 add("", mix(&d, &c, w))
             }
         };
 
-        let emission = self.emission(m, others, &at)?;
+        let textured = textured_base || mr.is_some() || transmission.1.is_some();
+        self.finish(m, others, &at, top, opacity, textured)
+    }
+
+    /// The emission of `m` (at `at`) and the opacity of its material `top`, and what its
+    /// primitives get (`textured`: a parameter of the material is).
+    fn finish(
+        &mut self,
+        m: &json::Material,
+        others: Option<&Map<String, Value>>,
+        at: &str,
+        top: String,
+        opacity: Option<Param>,
+        textured: bool,
+    ) -> Result<Mapped, MeshError> {
+        let emission = self.emission(m, others, at)?;
         // An emitter's material takes no opacity (Mitsuba masks a BSDF, not its emission).
         let opacity = match opacity {
             Some(_) if emission.is_some() => {
@@ -406,9 +465,7 @@ impl Reader<'_> {
         if let Some(o) = &opacity {
             self.out.json[&top]["opacity"] = o.json();
         }
-        let textured = base.is_texture()
-            || mr.is_some()
-            || transmission.as_ref().is_some_and(|(_, t)| t.is_some())
+        let textured = textured
             || emission.as_ref().is_some_and(Param::is_texture)
             || opacity.as_ref().is_some_and(Param::is_texture);
         Ok(Mapped {
@@ -459,81 +516,6 @@ impl Reader<'_> {
         j["file"] = json!(name);
         j["raw"] = json!(true);
         Ok(Some(Param::Texture(j)))
-    }
-
-    /// `KHR_materials_transmission`: the factor and, if given, the texture's R channel times
-    /// it (as a mix weight).
-    fn transmission(
-        &mut self,
-        e: &Map<String, Value>,
-        at: &str,
-    ) -> Result<(f64, Option<Param>), MeshError> {
-        let ext_at = format!("{at}.extensions.KHR_materials_transmission");
-        let factor_at = format!("{ext_at}.transmissionFactor");
-        let factor = self.number(e, "transmissionFactor", &factor_at, 0.0)?;
-        if !(0.0..=1.0).contains(&factor) {
-            return Err(self.error(&factor_at, format!("{factor} is outside [0, 1]")));
-        }
-        let tex_at = format!("{ext_at}.transmissionTexture");
-        let texture = match e.get("transmissionTexture") {
-            Some(v) if factor > 0.0 => {
-                let info: json::texture::Info =
-                    serde_json::from_value(v.clone()).map_err(|err| {
-                        self.error(&tex_at, format!("invalid texture reference: {err}"))
-                    })?;
-                let count = self.root.textures.len();
-                if info.index.value() >= count {
-                    return Err(self.error(
-                        &format!("{tex_at}.index"),
-                        format!(
-                            "texture {} does not exist ({count} textures)",
-                            info.index.value()
-                        ),
-                    ));
-                }
-                let mut j = self.texture(&tex_at, &info, true)?.json;
-                j["channel"] = json!("r");
-                j["scale"] = json!(factor);
-                Some(Param::Texture(j))
-            }
-            _ => None,
-        };
-        Ok((factor, texture))
-    }
-
-    /// `emissiveFactor` × `KHR_materials_emissive_strength` (× `emissiveTexture`, sRGB), if
-    /// not black.
-    fn emission(
-        &mut self,
-        m: &json::Material,
-        others: Option<&Map<String, Value>>,
-        at: &str,
-    ) -> Result<Option<Param>, MeshError> {
-        let factor = m.emissive_factor.0;
-        unit_components(self, &format!("{at}.emissiveFactor"), &factor)?;
-        let strength_at =
-            format!("{at}.extensions.KHR_materials_emissive_strength.emissiveStrength");
-        let strength = match extension(others, "KHR_materials_emissive_strength") {
-            Some(e) => self.number(e, "emissiveStrength", &strength_at, 1.0)?,
-            None => 1.0,
-        };
-        if strength < 0.0 {
-            return Err(self.error(&strength_at, format!("{strength} must not be negative")));
-        }
-        let le = Vec3::from_array(factor).as_dvec3() * strength;
-        if le == glam::DVec3::ZERO {
-            return Ok(None);
-        }
-        Ok(Some(match &m.emissive_texture {
-            Some(info) => {
-                let mut j = self
-                    .texture(&format!("{at}.emissiveTexture"), info, false)?
-                    .json;
-                j["scale"] = json!([le.x, le.y, le.z]);
-                Param::Texture(j)
-            }
-            None => Param::Constant(json!([le.x, le.y, le.z])),
-        }))
     }
 
     /// The number `key` of the extension object `e` (at `at`), `default` if absent.
@@ -737,6 +719,9 @@ fn unit_components(r: &Reader, at: &str, c: &[f32]) -> Result<(), MeshError> {
 fn vec3(c: Vec3) -> Value {
     json!([c.x, c.y, c.z])
 }
+
+#[path = "gltf_material_extensions.rs"]
+mod extensions;
 
 #[cfg(test)]
 #[path = "gltf_materials_tests.rs"]

@@ -4,7 +4,7 @@
 
 use crate::scene::Scene;
 use crate::scene::desc::{
-    BackgroundDesc, FresnelDesc, MaterialDesc, NamedMaterial, SceneDesc, TextureDesc,
+    BackgroundDesc, GltfPbrDesc, MaterialDesc, NamedMaterial, SceneDesc, TextureDesc,
 };
 use crate::scene::mesh::gltf::test_asset::*;
 use crate::scene::model::{ModelOptions, model_scene, model_scene_with};
@@ -83,8 +83,22 @@ fn f(x: f32) -> f64 {
     x as f64
 }
 
+/// The glTF material of `base_color`, roughness, metallic and ior.
+fn gltf_pbr(base_color: DVec3, roughness: f64, metallic: f64, ior: f64) -> MaterialDesc {
+    MaterialDesc::GltfPbr(GltfPbrDesc {
+        base_color,
+        scalars: [roughness, metallic],
+        ior,
+        ..Default::default()
+    })
+}
+
+/// Each glTF material is one `gltf_pbr` material, its factors as they are (roughness not
+/// squared: the material squares it). Fails if the old mapping (a conductor, a plastic and a mix
+/// of the two by the metallic, or a diffuse at ior 1) comes back: every scene material must be
+/// the glTF one, and the built scene's BSDFs are `Material::GltfPbr`.
 #[test]
-fn factors_map_to_a_conductor_a_plastic_and_a_mix() {
+fn factors_map_to_the_gltf_material() {
     let dir = Dir::new("mat-factors");
     let a = quads(json!([
         {"name": "Gold", "doubleSided": true, "pbrMetallicRoughness": {
@@ -99,57 +113,33 @@ fn factors_map_to_a_conductor_a_plastic_and_a_mix() {
     let gold = named(&d, "materials[0] Gold");
     assert_eq!(
         gold.material,
-        MaterialDesc::Conductor {
-            alpha: 0.25,
-            alpha_v: None,
-            distribution: crate::materials::Distribution::Ggx,
-            fresnel: FresnelDesc::Reflectance(DVec3::new(1.0, 0.75, 0.25)),
-        },
-        "metallic 1: a conductor tinted by the base colour (its alpha ignored), α = roughness²"
+        gltf_pbr(DVec3::new(1.0, 0.75, 0.25), 0.5, 1.0, 1.5),
+        "the base colour's alpha is not a colour"
     );
     assert!(gold.two_sided);
-    let plastic = named(&d, "materials[1]");
+    let dielectric = named(&d, "materials[1]");
     assert_eq!(
-        plastic.material,
-        MaterialDesc::Plastic {
-            albedo: DVec3::new(0.5, 0.25, 0.125),
-            alpha: 0.0625,
-            ior: 1.25,
-            specular: DVec3::ONE,
-            model: Default::default(),
-        }
+        dielectric.material,
+        gltf_pbr(DVec3::new(0.5, 0.25, 0.125), 0.25, 0.0, 1.25)
     );
-    assert!(!plastic.two_sided, "doubleSided defaults to false");
-    let mix = named(&d, "materials[2]");
-    let m = mix.mix.as_ref().expect("metallic 0.5 is a mix");
-    assert_eq!(m.weight, 0.5);
-    let parts = m.materials.map(|i| d.materials[i].name.as_str());
-    assert_eq!(parts, ["materials[2] (plastic)", "materials[2] (metal)"]);
+    assert!(!dielectric.two_sided, "doubleSided defaults to false");
+    let half = named(&d, "materials[2]");
     assert_eq!(
-        d.materials[m.materials[0]].material,
-        MaterialDesc::Plastic {
-            albedo: DVec3::ONE,
-            alpha: 1.0,
-            ior: 1.5,
-            specular: DVec3::ONE,
-            model: Default::default(),
-        },
-        "the defaults: base colour 1, roughness 1, ior 1.5"
+        half.material,
+        gltf_pbr(DVec3::ONE, 1.0, 0.5, 1.5),
+        "the defaults: base colour 1, roughness 1, ior 1.5; metallic 0.5 is no mix"
     );
-    assert_eq!(
-        d.materials[m.materials[1]].material,
-        MaterialDesc::Conductor {
-            alpha: 1.0,
-            alpha_v: None,
-            distribution: crate::materials::Distribution::Ggx,
-            fresnel: FresnelDesc::Reflectance(DVec3::ONE)
-        }
-    );
-    assert!(mix.two_sided && d.materials[m.materials[1]].two_sided);
-    // ior 1: the coat reflects nothing, so the dielectric part is a diffuse.
+    assert!(half.two_sided && half.mix.is_none());
+    // ior 1: no reflection at normal incidence, Schlick's towards grazing (the specification's).
     assert_eq!(
         named(&d, "materials[3]").material,
-        MaterialDesc::Diffuse { albedo: DVec3::ONE }
+        gltf_pbr(DVec3::ONE, 1.0, 0.0, 1.0)
+    );
+    assert_eq!(d.materials.len(), 4, "one material per glTF material");
+    assert!(
+        d.materials
+            .iter()
+            .all(|m| matches!(m.material, MaterialDesc::GltfPbr(_)) && m.parts().is_none())
     );
     let shape_materials: Vec<&str> = d
         .shapes
@@ -168,12 +158,21 @@ fn factors_map_to_a_conductor_a_plastic_and_a_mix() {
     assert_eq!(d.background, BackgroundDesc::Constant(DVec3::ONE));
     assert!(d.warnings.is_empty(), "{:?}", d.warnings);
     let scene = Scene::from_desc(&d).unwrap();
+    assert!(scene.mixes.iter().all(Option::is_none));
     let i = d
         .materials
         .iter()
         .position(|m| m.name == "materials[2]")
         .unwrap();
-    assert!(scene.mixes[i].is_some() && scene.mixes.iter().flatten().count() == 1);
+    assert_eq!(
+        scene.materials[i],
+        crate::materials::Material::GltfPbr(crate::materials::GltfPbr {
+            base_color: Vec3::ONE,
+            metallic: 0.5,
+            roughness: 1.0,
+            ..Default::default()
+        })
+    );
 }
 
 #[test]
@@ -184,15 +183,7 @@ fn a_primitive_without_a_material_gets_the_default_material() {
     let m = named(&d, "default material");
     // glTF 2.0, 3.9.6: every property at its default: base colour 1, metallic 1, roughness 1,
     // single-sided.
-    assert_eq!(
-        m.material,
-        MaterialDesc::Conductor {
-            alpha: 1.0,
-            alpha_v: None,
-            distribution: crate::materials::Distribution::Ggx,
-            fresnel: FresnelDesc::Reflectance(DVec3::ONE)
-        }
-    );
+    assert_eq!(m.material, gltf_pbr(DVec3::ONE, 1.0, 1.0, 1.5));
     assert!(!m.two_sided && m.mix.is_none());
 }
 
@@ -231,7 +222,7 @@ fn textures_from_a_glb_a_data_uri_and_a_file_are_the_same() {
         let d = open(&path);
         assert!(d.warnings.is_empty(), "{case}: {:?}", d.warnings);
         let m = named(&d, "materials[0]");
-        let b = bitmap(&m.textures.reflectance);
+        let b = bitmap(&m.textures.albedo);
         let o = b.options();
         assert_eq!(o.wrap, WrapMode::Clamp, "{case}");
         assert_eq!(
@@ -338,10 +329,11 @@ fn alpha_modes_become_opacities() {
     assert!(!scene.opacity.is_empty());
 }
 
-/// metallicRoughnessTexture: metallic (B) × factor as the mix weight, roughness (G) × factor
-/// squared per texel as α, both read linearly.
+/// metallicRoughnessTexture: roughness (G) × factor and metallic (B) × factor as the glTF
+/// material's textured scalars, read linearly (the material squares the filtered roughness, as
+/// glTF does); no mix and no baked α.
 #[test]
-fn the_metallic_roughness_texture_gives_the_weight_and_alpha() {
+fn the_metallic_roughness_texture_gives_roughness_and_metallic() {
     let dir = Dir::new("mat-mr");
     let mut a = quads(json!([{"pbrMetallicRoughness": {
         "metallicFactor": 0.5, "roughnessFactor": 0.5,
@@ -353,42 +345,38 @@ fn the_metallic_roughness_texture_gives_the_weight_and_alpha() {
     );
     a.root.insert("textures".into(), json!([{"source": 0}]));
     let d = open(&a.write_glb(&dir, "mr.glb"));
-    let mix = named(&d, "materials[0]").mix.as_ref().unwrap();
-    let w = match mix.weight_texture.as_ref().map(|t| &t.texture) {
-        Some(Texture::Bitmap(b)) => b,
-        other => panic!("{other:?}"),
-    };
-    assert!(w.raw && w.options().channel == Channel::B);
-    assert_eq!(w.options().scale, Vec3::splat(0.5));
-    assert_eq!(w.options().wrap, WrapMode::Repeat, "no sampler: repeat");
-    assert_eq!(w.image().data[0], Vec3::new(0.0, 128.0 / 255.0, 1.0));
-    // At the texel centres (u = 0.25 and 0.75): B × 0.5.
-    let weight = Texture::Bitmap(w.clone());
-    assert_eq!(weight.eval_scalar(Vec2::new(0.25, 0.5)), 0.5);
-    assert_eq!(weight.eval_scalar(Vec2::new(0.75, 0.5)), 0.0);
-    assert!(
-        (mix.weight - 0.25).abs() < 1e-6,
-        "the weight's mean: {}",
-        mix.weight
-    );
-    let metal = named(&d, "materials[0] (metal)");
-    let alpha = bitmap(&metal.textures.alpha);
-    assert_eq!(alpha.image().data.len(), 2);
-    for (t, mr) in alpha.image().data.iter().zip(&w.image().data) {
-        assert_eq!(
-            *t,
-            Vec3::splat((0.5 * mr.y).powi(2)),
-            "α = (factor × G)², per texel"
-        );
+    assert_eq!(d.materials.len(), 1);
+    let m = named(&d, "materials[0]");
+    assert!(m.mix.is_none());
+    let [rough, metal] = [0, 1].map(|k| bitmap(&m.textures.principled[k]));
+    for (t, channel) in [(rough, Channel::G), (metal, Channel::B)] {
+        assert!(t.raw && t.options().channel == channel);
+        assert_eq!(t.options().scale, Vec3::splat(0.5));
+        assert_eq!(t.options().wrap, WrapMode::Repeat, "no sampler: repeat");
+        assert_eq!(t.image().data[0], Vec3::new(0.0, 128.0 / 255.0, 1.0));
     }
-    assert_eq!(alpha.image().data[1], Vec3::splat(0.25));
-    assert_eq!(alpha.options().scale, Vec3::ONE);
+    // At the texel centres (u = 0.25 and 0.75): G × 0.5 and B × 0.5.
+    let (u0, u1) = (Vec2::new(0.25, 0.5), Vec2::new(0.75, 0.5));
+    let [rough, metal] = [rough, metal].map(|t| Texture::Bitmap(t.clone()));
+    assert_eq!(rough.eval_scalar(u0), 0.5 * 128.0 / 255.0);
+    assert_eq!(rough.eval_scalar(u1), 0.5);
+    assert_eq!(metal.eval_scalar(u0), 0.5);
+    assert_eq!(metal.eval_scalar(u1), 0.0);
+    let MaterialDesc::GltfPbr(p) = &m.material else {
+        panic!("{:?}", m.material)
+    };
+    assert!((p.scalars[1] - 0.25).abs() < 1e-6, "metallic's mean");
     assert!(
-        bitmap(&named(&d, "materials[0] (plastic)").textures.alpha)
-            .image()
-            .data
-            == alpha.image().data
+        !d.materials.iter().any(|m| m.textures.alpha.is_some()),
+        "no baked α without transmission"
     );
+    // At a hit: the textures' values, the α their square.
+    let scene = Scene::from_desc(&d).unwrap();
+    let t = scene.material_textures[0].as_ref().expect("textured");
+    let crate::materials::Material::GltfPbr(at) = t.at(&scene.materials[0], u1) else {
+        panic!()
+    };
+    assert_eq!((at.roughness, at.metallic, at.alpha()), (0.5, 0.0, 0.25));
 }
 
 #[test]
@@ -448,11 +436,20 @@ fn transmission_is_a_dielectric_or_a_mix_with_one() {
     let m1 = named(&d, "materials[1]").mix.as_ref().unwrap();
     assert_eq!(m1.weight, f(0.25));
     let names = m1.materials.map(|i| d.materials[i].name.as_str());
-    assert_eq!(names, ["materials[1] (plastic)", "materials[1] (glass)"]);
+    assert_eq!(names, ["materials[1] (opaque)", "materials[1] (glass)"]);
+    assert_eq!(
+        d.materials[m1.materials[0]].material,
+        gltf_pbr(DVec3::new(0.5, 1.0, 1.0), 1.0, 0.0, 1.5),
+        "the reflecting part is the glTF material without its metal"
+    );
     // Metallic over a partly transmitting dielectric: two mixes.
     let m2 = named(&d, "materials[2]").mix.as_ref().unwrap();
     let names = m2.materials.map(|i| d.materials[i].name.as_str());
     assert_eq!(names, ["materials[2] (dielectric)", "materials[2] (metal)"]);
+    assert_eq!(
+        d.materials[m2.materials[1]].material,
+        gltf_pbr(DVec3::ONE, 0.0, 1.0, 1.5)
+    );
     let inner = d.materials[m2.materials[0]].mix.as_ref().unwrap();
     assert_eq!(inner.weight, 0.5);
     assert_eq!(
@@ -478,6 +475,65 @@ fn transmission_is_a_dielectric_or_a_mix_with_one() {
     );
     let scene = Scene::from_desc(&d).unwrap();
     assert!(scene.has_transmission());
+}
+
+/// `KHR_materials_specular`: its factors become the material's `specular` and
+/// `specular_color` (a colour above 1 allowed, as the extension allows it), its textures are
+/// named in the warning; a factor out of range is an error at its glTF path.
+#[test]
+fn khr_materials_specular_gives_the_specular_weight_and_colour() {
+    let dir = Dir::new("mat-specular");
+    let a = quads(json!([
+        {"pbrMetallicRoughness": {"metallicFactor": 0},
+         "extensions": {"KHR_materials_specular": {
+            "specularFactor": 0.5, "specularColorFactor": [2.0, 1.0, 0.25],
+            "specularTexture": {"index": 0}}}},
+        {"pbrMetallicRoughness": {"metallicFactor": 0},
+         "extensions": {"KHR_materials_specular": {}}},
+    ]));
+    let d = open(&a.write_glb(&dir, "s.glb"));
+    let MaterialDesc::GltfPbr(p) = &named(&d, "materials[0]").material else {
+        panic!()
+    };
+    assert_eq!(
+        (p.specular, p.specular_color),
+        (0.5, DVec3::new(2.0, 1.0, 0.25))
+    );
+    assert_eq!(
+        named(&d, "materials[1]").material,
+        gltf_pbr(DVec3::ONE, 1.0, 0.0, 1.5),
+        "the extension's defaults change nothing"
+    );
+    assert_eq!(d.warnings.len(), 1, "{:?}", d.warnings);
+    let w = &d.warnings[0];
+    assert!(
+        w.contains("materials[0].extensions.KHR_materials_specular.specularTexture"),
+        "{w}"
+    );
+    assert!(!w.contains("extensions.KHR_materials_specular,"), "{w}");
+    let scene = Scene::from_desc(&d).unwrap();
+    let crate::materials::Material::GltfPbr(m) = &scene.materials[0] else {
+        panic!()
+    };
+    assert_eq!((m.specular, m.specular_color.x), (0.5, 2.0));
+    for (bad, key) in [
+        (json!({"specularFactor": 1.5}), "specularFactor"),
+        (
+            json!({"specularColorFactor": [1, -1, 1]}),
+            "specularColorFactor",
+        ),
+    ] {
+        let a = quads(json!([{"extensions": {"KHR_materials_specular": bad}}]));
+        let e = model_scene(&a.write_glb(&dir, "bad.glb"))
+            .expect_err("must be rejected")
+            .to_string();
+        assert!(
+            e.contains(&format!(
+                "materials[0].extensions.KHR_materials_specular.{key}"
+            )),
+            "{e}"
+        );
+    }
 }
 
 /// Everything lumis does not render is named in one warning.

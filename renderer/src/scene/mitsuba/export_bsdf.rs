@@ -131,6 +131,9 @@ fn material(
     folder: &Path,
 ) -> Result<(), SceneError> {
     let path = path_of(&m.name);
+    if let MaterialDesc::GltfPbr(_) = m.material {
+        return Err(no_gltf_pbr(path));
+    }
     // The wrappers, outermost first: mask, then twosided around normalmap, the nesting whose
     // back side lumis renders.
     let mut nest = Nest {
@@ -369,9 +372,21 @@ fn material(
                 x.leaf("float", &[("name", key), ("value", &num(rate))]);
             }
         }
+        // Refused above.
+        MaterialDesc::GltfPbr(_) => return Err(no_gltf_pbr(path)),
     }
     nest.close(x);
     Ok(())
+}
+
+/// The refusal of a `gltf_pbr` material: Mitsuba 3 has no BSDF of glTF's model, and the nearest
+/// ones (its `principled`, a plastic and conductor blend) render differently.
+fn no_gltf_pbr(path: String) -> SceneError {
+    SceneError::new(
+        path,
+        "a gltf_pbr material cannot be exported: Mitsuba 3.9.1 has no BSDF of glTF's \
+         metallic-roughness model (its principled is Burley's Disney BSDF, another model)",
+    )
 }
 
 /// Whether `m` has a delta lobe (a smooth conductor, plastic coat or dielectric with no textured
@@ -384,7 +399,8 @@ fn has_delta_lobe(m: &NamedMaterial, all: &[NamedMaterial]) -> bool {
     match &m.material {
         MaterialDesc::Diffuse { .. }
         | MaterialDesc::Principled(_)
-        | MaterialDesc::PrincipledThin(_) => false,
+        | MaterialDesc::PrincipledThin(_)
+        | MaterialDesc::GltfPbr(_) => false,
         MaterialDesc::ThinDielectric { .. } => true,
         MaterialDesc::Conductor { alpha, .. }
         | MaterialDesc::Plastic { alpha, .. }
@@ -411,6 +427,8 @@ fn bsdf_type(m: &NamedMaterial) -> &'static str {
         MaterialDesc::ThinDielectric { .. } => "thindielectric",
         MaterialDesc::Principled(_) => "principled",
         MaterialDesc::PrincipledThin(_) => "principledthin",
+        // Refused before any plugin is written (`no_gltf_pbr`).
+        MaterialDesc::GltfPbr(_) => "gltf_pbr",
     }
 }
 
