@@ -239,7 +239,7 @@ fn analytic_disk_matches_closed_form() {
     check_closed_form("analytic_disk");
 }
 
-/// The test has power against a local bias, inside the normal suite: one material's albedo
+/// The test has power against a local bias (a full-tier check, docs/testing.md "Tiers"): one material's albedo
 /// × 1.03 (a wall, or the floor under the light), made through the scene itself so that it reaches
 /// the estimator as a real error would, fails the MIS decision of every scene (both stages of the
 /// protocol) at the spp and seed of the strategy loop above. The full table (every scene × strategy × backend × kind of bias) is in
