@@ -713,3 +713,45 @@ fn required_material_extensions_that_lumis_reads_are_accepted() {
         "{e}"
     );
 }
+
+/// `KHR_materials_unlit`: a black diffuse that emits its base colour (factor × sRGB texture),
+/// named in the warning (it lights other surfaces too); a black one emits nothing.
+#[test]
+fn unlit_materials_emit_their_base_colour() {
+    let dir = Dir::new("mat-unlit");
+    let unlit = json!({"KHR_materials_unlit": {}});
+    let mut a = quads(json!([
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 1, 1]}, "extensions": unlit},
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1],
+            "baseColorTexture": {"index": 0}}, "extensions": unlit},
+        {"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}, "extensions": unlit},
+    ]));
+    let view = a.view(&test_png().0);
+    a.root.insert(
+        "images".into(),
+        json!([{"bufferView": view, "mimeType": "image/png"}]),
+    );
+    a.root.insert("textures".into(), json!([{"source": 0}]));
+    a.root
+        .insert("extensionsUsed".into(), json!(["KHR_materials_unlit"]));
+    let d = open(&a.write_glb(&dir, "u.glb"));
+    let black = MaterialDesc::Diffuse {
+        albedo: DVec3::ZERO,
+    };
+    for k in 0..3 {
+        assert_eq!(named(&d, &format!("materials[{k}]")).material, black);
+    }
+    assert_eq!(d.shapes[0].emission, DVec3::new(0.5, 0.25, 1.0));
+    let t = bitmap(&d.shapes[1].emission_texture);
+    assert!(!t.raw, "the base colour texture is sRGB");
+    assert_eq!(
+        (d.shapes[2].emission, &d.shapes[2].emission_texture),
+        (DVec3::ZERO, &None)
+    );
+    let w = d.warnings.join("\n");
+    assert!(
+        w.contains("materials[0].extensions.KHR_materials_unlit: an emitter of its base colour"),
+        "{w}"
+    );
+    assert!(!w.contains("extension KHR_materials_unlit"), "{w}");
+}
