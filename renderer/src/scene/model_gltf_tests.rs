@@ -195,3 +195,40 @@ fn bad_punctual_lights_are_named() {
     let d = model_scene(&a.write_glb(&dir, "required.glb")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(d.lights.len(), 1);
 }
+
+/// The lights render: a quad lit only by a point light in front of it is not black (the
+/// environment is off: the light's 4π·10 outweighs it), and black without the light.
+#[test]
+fn a_point_light_lights_the_model() {
+    use crate::engine::Progressive;
+    use crate::integrator::Settings;
+    use crate::scene::Scene;
+    use std::sync::Arc;
+    let dir = Dir::new("model-lights-render");
+    let path = with_lights(
+        &dir,
+        "lit.glb",
+        json!([{"type": "point", "intensity": 6830}]),
+        &[light_node(0, json!({"translation": [0, 0, 1]}))],
+    );
+    let mut d = model_scene_with(&path, NO_STUDIO).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(d.background, BackgroundDesc::Constant(DVec3::ZERO));
+    (d.camera.width, d.camera.height) = (8, 8);
+    let mean = |d: &super::super::desc::SceneDesc| {
+        let mut p = Progressive::new(
+            Arc::new(Scene::from_desc(d).unwrap()),
+            Settings::default(),
+            1,
+        );
+        assert!(p.render_pass(4));
+        let f = p.film();
+        f.mean()
+            .iter()
+            .map(|c| crate::math::luminance(*c))
+            .sum::<f32>()
+            / f.mean().len() as f32
+    };
+    assert!(mean(&d) > 0.0);
+    d.lights.clear();
+    assert_eq!(mean(&d), 0.0);
+}
