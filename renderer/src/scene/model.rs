@@ -94,6 +94,8 @@ pub(super) struct ModelParts {
     pub bounds: (DVec3, DVec3),
     /// Warnings, without the file's name (whoever prints them names it once).
     pub warnings: Vec<String>,
+    /// The `lights` (a glTF file's `KHR_lights_punctual`).
+    pub lights: Vec<Value>,
 }
 
 /// An OBJ or PLY file's parts: one diffuse mesh (an OBJ: a mesh per `.mtl` material,
@@ -154,6 +156,7 @@ fn mesh_model(path: &Path, file: &str) -> Result<ModelParts, SceneError> {
         preloaded,
         bounds,
         warnings,
+        lights: Vec::new(),
     })
 }
 
@@ -172,6 +175,7 @@ fn finish(
         mut preloaded,
         bounds: (lo, hi),
         warnings,
+        lights,
     } = parts;
     let folder = path.parent().unwrap_or(Path::new(""));
     let model_shapes: Vec<String> = shapes
@@ -201,10 +205,11 @@ fn finish(
         "background": background,
         "materials": materials,
         "shapes": shapes,
+        "lights": lights,
     });
     let mut desc =
         parse_scene_value_preloaded(&scene, folder, preloaded).map_err(|e| e.in_file(path))?;
-    if studio::emitted_flux(&desc) > studio::environment_flux(mean, lo, hi) {
+    if studio::emitted_flux(&desc, lo, hi) > studio::environment_flux(mean, lo, hi) {
         desc.background = BackgroundDesc::Constant(DVec3::ZERO);
     }
     // The front end's warnings name the generated scene's JSON paths and the file again; the

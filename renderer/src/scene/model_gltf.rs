@@ -17,9 +17,11 @@ pub(super) fn gltf_model(path: &Path, file: &str) -> Result<ModelParts, SceneErr
         primitives,
         materials,
         camera,
+        lights,
     } = load_model(path).map_err(|e| SceneError::new("", e.to_string()))?;
     let folder = path.parent().unwrap_or(Path::new(""));
     let mut ignored = materials.ignored;
+    ignored.extend(lights.ignored);
     let mut warnings = Vec::new();
     let mut preloaded = Preloaded::default();
     let all = || {
@@ -80,6 +82,7 @@ pub(super) fn gltf_model(path: &Path, file: &str) -> Result<ModelParts, SceneErr
         preloaded,
         bounds: (lo, hi),
         warnings,
+        lights: lights.json,
     })
 }
 
@@ -150,3 +153,7 @@ fn gltf_camera(path: &Path, c: &CameraNode, radius: f64) -> Result<Value, SceneE
         }
     }
 }
+
+#[cfg(test)]
+#[path = "model_gltf_tests.rs"]
+mod tests;

@@ -12,7 +12,7 @@
 //! **The rule**: the environment (the studio's, or without the studio a white one of radiance
 //! one) stays on unless the file's emitters carry most of the power, that is unless
 //! `Φ_emitters > Φ_environment` with `Φ_emitters = π Σ area·Y(emission)` (each emitter's flux,
-//! one-sided Lambertian, by luminance) and `Φ_environment = π·Ȳ·A`, the flux a uniform
+//! one-sided Lambertian, by luminance) plus its lights' flux ([`emitted_flux`]) and `Φ_environment = π·Ȳ·A`, the flux a uniform
 //! environment of the map's mean luminance Ȳ sends into the surface `A` of the model's bounding
 //! box. So a decorative emissive label (small, at most as bright as the sky) keeps the sky, and
 //! a lamp or a lit room, whose light outweighs what the sky would pour onto the whole model, is
@@ -169,21 +169,58 @@ pub fn ground(lo: DVec3, hi: DVec3) -> (Value, Value) {
 /// The name of the ground's material in the model's scene.
 pub const GROUND_MATERIAL: &str = "studio_ground";
 
-/// The flux of the scene's emitting shapes, `π Σ area·Y(emission)` (see the module doc).
-pub fn emitted_flux(desc: &SceneDesc) -> f64 {
-    desc.shapes
+/// The flux of the scene's emitting shapes, `π Σ area·Y(emission)` (see the module doc), and
+/// of its lights (a glTF file's `KHR_lights_punctual`): a point light's `4π·Y(I)`, a spot's
+/// `Y(I)` times the solid angle of the cone halfway between its beam and its cutoff (lumis'
+/// own power of a spot, `lights/spot.rs`), a directional light's `Y(E)` times the area of the
+/// shadow the box `lo..hi` casts across it (what of its infinite flux reaches the model).
+pub fn emitted_flux(desc: &SceneDesc, lo: DVec3, hi: DVec3) -> f64 {
+    use super::desc::LightDesc;
+    use std::f64::consts::PI;
+    let e = (hi - lo).max(DVec3::ZERO);
+    let lights: f64 = desc
+        .lights
         .iter()
-        .filter(|s| s.emission != DVec3::ZERO || s.emission_texture.is_some())
-        .map(|s| {
-            // A texture's emission is its mean over the uv square, or its maximum where that
-            // mean is black (the scene description's rule for light selection).
-            let y = match &s.emission_texture {
-                Some(t) if s.emission == DVec3::ZERO => luminance(t.texture.max().as_dvec3()),
-                _ => luminance(s.emission),
-            };
-            std::f64::consts::PI * area(&s.geometry) * y
+        .map(|l| match l {
+            LightDesc::Point { intensity, .. } => 4.0 * PI * luminance(*intensity),
+            LightDesc::Spot {
+                intensity,
+                cutoff_angle_deg,
+                beam_width_deg,
+                ..
+            } => {
+                let cos = |deg: f64| deg.to_radians().cos();
+                let solid_angle =
+                    2.0 * PI * (1.0 - 0.5 * (cos(*cutoff_angle_deg) + cos(*beam_width_deg)));
+                solid_angle * luminance(*intensity)
+            }
+            LightDesc::Directional {
+                direction,
+                irradiance,
+            } => {
+                let d = direction.abs();
+                let shadow = d.x * e.y * e.z + d.y * e.z * e.x + d.z * e.x * e.y;
+                shadow * luminance(*irradiance)
+            }
+            // A model makes no projector.
+            LightDesc::Projector { .. } => 0.0,
         })
-        .sum()
+        .sum();
+    lights
+        + desc
+            .shapes
+            .iter()
+            .filter(|s| s.emission != DVec3::ZERO || s.emission_texture.is_some())
+            .map(|s| {
+                // A texture's emission is its mean over the uv square, or its maximum where that
+                // mean is black (the scene description's rule for light selection).
+                let y = match &s.emission_texture {
+                    Some(t) if s.emission == DVec3::ZERO => luminance(t.texture.max().as_dvec3()),
+                    _ => luminance(s.emission),
+                };
+                std::f64::consts::PI * area(&s.geometry) * y
+            })
+            .sum::<f64>()
 }
 
 /// The flux an environment of mean luminance `mean` sends into the box `lo..hi` (see the module

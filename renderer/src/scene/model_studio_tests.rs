@@ -122,7 +122,41 @@ fn the_fluxes_are_area_times_luminance() {
     )
     .unwrap();
     desc.shapes = vec![shape(DVec3::new(0.0, 3.0, 0.0)), shape(DVec3::ZERO)];
-    let flux = emitted_flux(&desc);
+    let flux = emitted_flux(&desc, DVec3::ZERO, DVec3::ONE);
     let want = std::f64::consts::PI * 2.0 * 3.0 * 0.7152;
     assert!((flux - want).abs() < 1e-9, "{flux} vs {want}");
+}
+
+/// A light's flux: a point light's 4π·I, a spot's I times the solid angle of the cone halfway
+/// between its beam and cutoff, a directional light's E times the box's shadow across it.
+#[test]
+fn the_lights_flux_counts_towards_the_emitters() {
+    use crate::scene::desc::LightDesc;
+    let mut desc = crate::scene::parse::parse_scene(
+        r#"{"camera": {"from": [0, 0, 5], "to": [0, 0, 0], "up": [0, 1, 0], "vfov_deg": 40,
+            "width": 4, "height": 4}, "shapes": [], "lights": [
+            {"type": "point", "position": [0, 0, 0], "intensity": [2, 2, 2]},
+            {"type": "spot", "from": [0, 0, 0], "to": [0, 0, 1], "up": [0, 1, 0],
+             "intensity": [3, 3, 3], "cutoff_angle_deg": 60, "beam_width_deg": 60}]}"#,
+    )
+    .unwrap();
+    let (lo, hi) = (DVec3::ZERO, DVec3::new(1.0, 2.0, 3.0));
+    let pi = std::f64::consts::PI;
+    // The spot's hard-edged cone of 60°: 2π(1 − cos 60°) = π.
+    let want = 4.0 * pi * 2.0 + 3.0 * pi;
+    let flux = emitted_flux(&desc, lo, hi);
+    assert!((flux - want).abs() < 1e-9, "{flux} vs {want}");
+    // Straight down onto the 1 × 3 top of the box, and along x onto its 2 × 3 side.
+    for (direction, shadow) in [(DVec3::NEG_Y, 3.0), (DVec3::X, 6.0)] {
+        desc.lights = vec![LightDesc::Directional {
+            direction,
+            irradiance: DVec3::splat(5.0),
+        }];
+        let flux = emitted_flux(&desc, lo, hi);
+        assert!(
+            (flux - 5.0 * shadow).abs() < 1e-9,
+            "{flux} vs {}",
+            5.0 * shadow
+        );
+    }
 }

@@ -4,8 +4,8 @@
 //!
 //! The rules, in the order they apply:
 //! - **Extensions**: an entry of `extensionsRequired` is an error naming it (Draco and meshopt
-//!   compression are the usual ones), except the material extensions `materials::HANDLED` that
-//!   a model scene reads. Optional extensions are ignored here.
+//!   compression are the usual ones), except the extensions `materials::HANDLED` that a model
+//!   scene reads (materials, lights). Optional extensions are ignored here.
 //! - **Scene**: `scene` if the file names one, else scene 0, else (no scenes) every root node.
 //! - **Transforms**: a node's `matrix`, or T·R·S from `translation`/`rotation`/`scale`, composed
 //!   parent × child down the hierarchy (which must be a tree). Positions go through the full
@@ -35,6 +35,8 @@ mod buffers;
 #[cfg(any(test, feature = "testing"))]
 #[path = "gltf_bytes.rs"]
 pub mod bytes;
+#[path = "gltf_lights.rs"]
+pub mod lights;
 #[path = "gltf_materials.rs"]
 pub mod materials;
 #[path = "gltf_model.rs"]
@@ -67,7 +69,7 @@ pub fn load_bytes(path: &Path, bytes: &[u8]) -> Result<MeshData, MeshError> {
         (bytes, None)
     };
     let document = parse_document(path, json_bytes)?;
-    let (placements, _) = placements(path, &document)?;
+    let (placements, ..) = placements(path, &document)?;
     let mut needed = vec![false; document.buffers().len()];
     mark_geometry_buffers(&placements, &mut needed);
     let buffers = load_buffers(path, &document, &needed, glb, bin)?;
@@ -260,16 +262,19 @@ struct Placement<'a> {
     material: Option<usize>,
 }
 
-/// A camera node's index and world matrix.
-type CameraPlacement = (usize, Mat4);
+/// A camera or light node's index and world matrix.
+type NodePlacement = (usize, Mat4);
+/// What [`placements`] finds: primitives, the camera, the lights.
+type Placed<'a> = (
+    Vec<Placement<'a>>,
+    Option<NodePlacement>,
+    Vec<NodePlacement>,
+);
 
 /// Every primitive of the default scene (see the module doc) with its world matrix, depth
 /// first in the file's order, and the first node on that walk with a camera, with its world
-/// matrix.
-fn placements<'a>(
-    file: &Path,
-    doc: &'a Document,
-) -> Result<(Vec<Placement<'a>>, Option<CameraPlacement>), MeshError> {
+/// matrix, and every node on that walk with a `KHR_lights_punctual` light, with theirs.
+fn placements<'a>(file: &Path, doc: &'a Document) -> Result<Placed<'a>, MeshError> {
     let nodes: Vec<_> = doc.nodes().collect();
     let roots: Vec<usize> = match doc.default_scene().or_else(|| doc.scenes().next()) {
         Some(scene) => scene.nodes().map(|n| n.index()).collect(),
@@ -286,7 +291,7 @@ fn placements<'a>(
 
     let mut seen = vec![false; nodes.len()];
     let mut out = Vec::new();
-    let mut camera = None;
+    let (mut camera, mut lights) = (None, Vec::new());
     // An explicit stack: a deep chain of nodes must not overflow the call stack.
     let mut stack: Vec<(usize, Mat4)> = roots.iter().rev().map(|&i| (i, Mat4::IDENTITY)).collect();
     while let Some((index, parent)) = stack.pop() {
@@ -304,6 +309,9 @@ fn placements<'a>(
         if camera.is_none() && node.camera().is_some() {
             camera = Some((index, world));
         }
+        if lights::has_light(node) {
+            lights.push((index, world));
+        }
         if let Some(mesh) = node.mesh() {
             for primitive in mesh.primitives() {
                 out.push(Placement {
@@ -318,7 +326,7 @@ fn placements<'a>(
         let children: Vec<usize> = node.children().map(|c| c.index()).collect();
         stack.extend(children.into_iter().rev().map(|c| (c, world)));
     }
-    Ok((out, camera))
+    Ok((out, camera, lights))
 }
 
 /// A node's own matrix, or what is wrong with it.

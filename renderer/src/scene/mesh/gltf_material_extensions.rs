@@ -1,9 +1,10 @@
 //! The material extensions the glTF reader maps (`gltf_materials.rs`; docs/scene-format.md,
 //! "glTF materials"), as methods of its reader: `KHR_materials_transmission`,
-//! `KHR_materials_specular`, and the emission with `KHR_materials_emissive_strength`. Errors name
+//! `KHR_materials_specular`, the emission with `KHR_materials_emissive_strength`, and
+//! `KHR_materials_unlit`. Errors name
 //! the glTF path of the value, as everywhere in the reader.
 
-use super::{Param, Reader, extension, unit_components};
+use super::{Mapped, Param, Reader, extension, unit_components};
 use crate::scene::mesh::MeshError;
 use ::gltf::json;
 use glam::Vec3;
@@ -119,5 +120,42 @@ impl Reader<'_> {
             }
             None => Param::Constant(json!([le.x, le.y, le.z])),
         }))
+    }
+
+    /// `KHR_materials_unlit`: glTF shows the base colour (`base`; `black`: its factor is 0) to
+    /// the camera and lights nothing else with it. lumis has no emission seen by camera rays
+    /// only (its `hide_emitters` is the opposite, for every emitter), so the nearest is a
+    /// black diffuse surface that emits its base colour as radiance: seen the same, but it
+    /// lights the surfaces around it too (named in the warning). Its other properties are
+    /// ignored, as glTF's unlit material ignores them.
+    pub(super) fn unlit(
+        &mut self,
+        at: &str,
+        name: String,
+        base: Param,
+        black: bool,
+        opacity: Option<Param>,
+    ) -> Mapped {
+        self.out.ignored.push(format!(
+            "{at}.extensions.KHR_materials_unlit: an emitter of its base colour, which lumis              lets light other surfaces too"
+        ));
+        let mut material = json!({"type": "diffuse", "albedo": [0.0, 0.0, 0.0]});
+        let emission = (!black).then_some(base);
+        // An emitter's material takes no opacity (Mitsuba masks a BSDF, not its emission).
+        match &opacity {
+            Some(_) if emission.is_some() => self.out.ignored.push(format!(
+                "{at}.alphaMode on an emissive material (lumis masks no emitter)"
+            )),
+            Some(o) => material["opacity"] = o.json(),
+            None => {}
+        }
+        self.out.json.insert(name.clone(), material);
+        let textured = emission.as_ref().is_some_and(Param::is_texture)
+            || (emission.is_none() && opacity.as_ref().is_some_and(Param::is_texture));
+        Mapped {
+            name,
+            emission: emission.map(|e| e.json()),
+            textured,
+        }
     }
 }

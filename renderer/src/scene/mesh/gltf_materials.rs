@@ -9,8 +9,8 @@
 //!
 //! What lumis does not render (normal maps, extensions other than
 //! `KHR_materials_ior`, `KHR_materials_specular` (its factors; not its textures),
-//! `KHR_materials_transmission`, `KHR_materials_emissive_strength` and
-//! `KHR_texture_transform`, texture rotation, a second texture coordinate set, a sampler whose
+//! `KHR_materials_transmission`, `KHR_materials_emissive_strength`, `KHR_materials_unlit`,
+//! `KHR_texture_transform` and `KHR_lights_punctual` (`gltf_lights.rs`), texture rotation, a second texture coordinate set, a sampler whose
 //! two axes wrap differently, nearest filtering) is collected by glTF path into
 //! [`Materials::ignored`], which the caller writes as one warning (occlusion maps are not named:
 //! a path tracer computes occlusion). Errors name the file and
@@ -34,14 +34,16 @@ use std::collections::HashMap;
 use std::path::Path;
 use std::sync::Arc;
 
-/// The extensions lumis maps (all others are named in the warning); required, they do not stop
-/// the geometry either.
-pub const HANDLED: [&str; 5] = [
+/// The extensions lumis maps (all others are named in the warning; the lights are read by
+/// `gltf_lights.rs`); required, they do not stop the geometry either.
+pub const HANDLED: [&str; 7] = [
     "KHR_materials_ior",
     "KHR_materials_specular",
     "KHR_materials_transmission",
     "KHR_materials_emissive_strength",
     "KHR_texture_transform",
+    "KHR_materials_unlit",
+    super::lights::EXTENSION,
 ];
 
 /// The lumis side of the materials a glTF file's primitives use.
@@ -264,6 +266,9 @@ impl Reader<'_> {
             Some(cutoff) => self.opacity(&at, &base_at, base_texture, alpha_factor, cutoff)?,
             None => None,
         };
+        if extension(others, "KHR_materials_unlit").is_some() {
+            return Ok(self.unlit(&at, name, base, base_factor == Vec3::ZERO, opacity));
+        }
         // glTF keeps roughness in G and metallic in B of one linear texture.
         let mr = match &pbr.metallic_roughness_texture {
             Some(info) => {

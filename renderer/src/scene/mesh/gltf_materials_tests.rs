@@ -573,6 +573,7 @@ fn one_warning_names_every_feature_that_is_not_rendered() {
         "extensionsUsed".into(),
         json!([
             "KHR_lights_punctual",
+            "KHR_materials_variants",
             "KHR_materials_clearcoat",
             "KHR_texture_transform"
         ]),
@@ -595,7 +596,7 @@ fn one_warning_names_every_feature_that_is_not_rendered() {
         "materials[0].pbrMetallicRoughness.baseColorTexture TEXCOORD_1",
         "samplers[0].wrapT",
         "samplers[0].magFilter NEAREST",
-        "extension KHR_lights_punctual",
+        "extension KHR_materials_variants",
         "extension KHR_materials_clearcoat",
         "nodes[0] meshes[0].primitives[0] COLOR_0",
         "nodes[1] meshes[1].primitives[0]: the textures of its material (it has no TEXCOORD_0)",
@@ -603,6 +604,8 @@ fn one_warning_names_every_feature_that_is_not_rendered() {
         assert!(w.contains(name), "{name} is not in: {w}");
     }
     assert!(!w.contains("extension KHR_texture_transform"), "{w}");
+    // Read as lights (`gltf_lights.rs`), so not named.
+    assert!(!w.contains("extension KHR_lights_punctual"), "{w}");
     assert_eq!(
         w.matches("materials[0].normalTexture").count(),
         1,
@@ -709,4 +712,46 @@ fn required_material_extensions_that_lumis_reads_are_accepted() {
         e.contains("requires glTF extension KHR_materials_clearcoat, which lumis does not support"),
         "{e}"
     );
+}
+
+/// `KHR_materials_unlit`: a black diffuse that emits its base colour (factor × sRGB texture),
+/// named in the warning (it lights other surfaces too); a black one emits nothing.
+#[test]
+fn unlit_materials_emit_their_base_colour() {
+    let dir = Dir::new("mat-unlit");
+    let unlit = json!({"KHR_materials_unlit": {}});
+    let mut a = quads(json!([
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 1, 1]}, "extensions": unlit},
+        {"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1],
+            "baseColorTexture": {"index": 0}}, "extensions": unlit},
+        {"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1]}, "extensions": unlit},
+    ]));
+    let view = a.view(&test_png().0);
+    a.root.insert(
+        "images".into(),
+        json!([{"bufferView": view, "mimeType": "image/png"}]),
+    );
+    a.root.insert("textures".into(), json!([{"source": 0}]));
+    a.root
+        .insert("extensionsUsed".into(), json!(["KHR_materials_unlit"]));
+    let d = open(&a.write_glb(&dir, "u.glb"));
+    let black = MaterialDesc::Diffuse {
+        albedo: DVec3::ZERO,
+    };
+    for k in 0..3 {
+        assert_eq!(named(&d, &format!("materials[{k}]")).material, black);
+    }
+    assert_eq!(d.shapes[0].emission, DVec3::new(0.5, 0.25, 1.0));
+    let t = bitmap(&d.shapes[1].emission_texture);
+    assert!(!t.raw, "the base colour texture is sRGB");
+    assert_eq!(
+        (d.shapes[2].emission, &d.shapes[2].emission_texture),
+        (DVec3::ZERO, &None)
+    );
+    let w = d.warnings.join("\n");
+    assert!(
+        w.contains("materials[0].extensions.KHR_materials_unlit: an emitter of its base colour"),
+        "{w}"
+    );
+    assert!(!w.contains("extension KHR_materials_unlit"), "{w}");
 }

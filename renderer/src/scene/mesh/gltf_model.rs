@@ -4,11 +4,11 @@
 //! materials of the glTF materials they use ([`super::materials`]), and the first camera of the
 //! default scene. Geometry is read exactly as [`super::load`] reads it.
 
-use super::materials;
 use super::{
     Merged, Placement, is_surface, load_buffers, mark_geometry_buffers, no_triangles,
     parse_document, placements, read_primitive, split_glb,
 };
+use super::{lights, materials};
 use crate::scene::mesh::{MeshData, MeshError, check};
 use ::gltf::mesh::Semantic;
 use glam::Mat4;
@@ -24,6 +24,8 @@ pub struct Model {
     pub materials: materials::Materials,
     /// The first node of the default scene (depth first) that has a camera.
     pub camera: Option<CameraNode>,
+    /// The `KHR_lights_punctual` lights its nodes place.
+    pub lights: lights::Lights,
 }
 
 /// One placed primitive of a [`Model`].
@@ -81,7 +83,7 @@ pub fn load_model(path: &Path) -> Result<Model, MeshError> {
         (&bytes[..], None)
     };
     let document = parse_document(path, json_bytes)?;
-    let (placements, camera) = placements(path, &document)?;
+    let (placements, camera, light_nodes) = placements(path, &document)?;
     let surfaces: Vec<&Placement> = placements
         .iter()
         .filter(|p| is_surface(p.primitive.mode()))
@@ -118,6 +120,7 @@ pub fn load_model(path: &Path) -> Result<Model, MeshError> {
         return Err(no_triangles(path, placements.len(), skipped));
     }
     let materials = materials::read(path, &document, &slices, &used)?;
+    let lights = lights::read(path, document.as_json(), &light_nodes)?;
     let camera = camera.map(|(node, world)| {
         let cam = document
             .nodes()
@@ -145,5 +148,6 @@ pub fn load_model(path: &Path) -> Result<Model, MeshError> {
         primitives,
         materials,
         camera,
+        lights,
     })
 }
